@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Scene.h
+ * @brief The environment of paper §4.3: surfaces S_1..S_n, their materials, cameras and the
+ * solver settings of the scene file.
+ */
+#ifndef SPHCOVER_SCENE_H
+#define SPHCOVER_SCENE_H
+
+#include "BezierPatch.h"
+#include "Camera.h"
+#include "Material.h"
+
+#include <glm/vec3.hpp>
+
+#include <string>
+#include <vector>
+
+namespace sphcover
+{
+
+/// Defaults of the scene file's "settings" block (see Data/scenes/FORMAT.md).
+struct SceneSettings
+{
+  int ThetaBins = 32;
+  int PhiBins = 128;
+  int MaxLevel = 5;
+  double Tolerance = 0.02;
+};
+
+/// One parametric surface S_i (paper §4.3): a single Bezier patch over [0,1]^2. A scene entry
+/// that loads a .bpt file or a mesh yields several surfaces sharing the entry's name.
+struct Surface
+{
+  Surface(BezierPatch patch, int nameIndex, int materialIndex)
+    : Patch(std::move(patch))
+    , NameIndex(nameIndex)
+    , MaterialIndex(materialIndex)
+  {
+  }
+
+  BezierPatch Patch;
+  /// Index into Scene::SurfaceNames.
+  int NameIndex = 0;
+  /// Index into Scene::Materials.
+  int MaterialIndex = 0;
+  /// Sends and receives light on both sides (the scene's "two_sided").
+  bool TwoSided = false;
+  /// The patch came from a mesh triangle and is stored as the degenerate bilinear patch
+  /// (P00, P10, P11, P01 = P11).
+  bool IsTriangle = false;
+};
+
+struct Scene
+{
+  /// The file the scene was read from (for messages).
+  std::string SourceFile;
+  std::vector<Material> Materials;
+  /// Names of the scene file's surface entries, in file order.
+  std::vector<std::string> SurfaceNames;
+  std::vector<Surface> Surfaces;
+  std::vector<Camera> Cameras;
+  SceneSettings Settings;
+
+  /// Axis-aligned box of all control points (it encloses the surfaces: convex hull property).
+  void Bounds(glm::dvec3& lower, glm::dvec3& upper) const;
+  int FindMaterial(const std::string& name) const;
+};
+
+} // namespace sphcover
+
+#endif

@@ -1,0 +1,329 @@
+#!/usr/bin/env python3
+"""Regenerate the bad-input corpus Testing/Data/bad/ and its expected.json.
+
+    python3 Data/scenes/tools/make_bad_corpus.py
+
+Every corpus file is a small valid input (support/base.scene, or a valid one-patch .bpt) with
+exactly ONE thing broken, so the loader's first and only error is the one expected.
+expected.json maps each corpus file name to the substrings its error message must contain:
+[file base name, location, problem phrase]. The loader prints  <path>: <location>: <problem>
+where <location> is "line L, column C" (JSON syntax), "line L" (.bpt) or an RFC 6901 JSON
+pointer (scene semantics). See Testing/Data/README.md and Data/scenes/FORMAT.md.
+
+Plain python3, no third-party packages. Files are written byte for byte (LF unless a case says
+otherwise), so re-running reproduces the committed corpus exactly.
+"""
+
+import copy
+import json
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+from scenegeom import dumps  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
+BAD = os.path.join(ROOT, "Testing", "Data", "bad")
+SUPPORT = os.path.join(BAD, "support")
+
+# A valid scene every bad scene is derived from (also written as support/base.scene, so a test
+# can check that the base itself loads).
+BASE = {
+    "version": 1,
+    "materials": {
+        "white": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5]},
+        "lamp": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5], "emission": [1, 1, 1]},
+        "glossy": {"type": "phong", "diffuse": [0.4, 0.4, 0.4], "specular": [0.3, 0.3, 0.3], "exponent": 20},
+    },
+    "surfaces": [
+        {"name": "floor", "type": "bilinear", "material": "white",
+         "points": [[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]]},
+        {"name": "light", "type": "bilinear", "material": "lamp", "two_sided": False,
+         "points": [[0, 1, 0], [1, 1, 0], [1, 1, 1], [0, 1, 1]],
+         "transform": {"scale": 1, "rotate": [0, 0, 0], "translate": [0, 0.5, 0]}},
+        {"name": "cap", "type": "bezier", "degree": [2, 1], "material": "glossy",
+         "points": [[0, 0.2, 0], [0.5, 0.6, 0], [1, 0.2, 0], [0, 0.2, 1], [0.5, 0.6, 1], [1, 0.2, 1]]},
+    ],
+    "cameras": [{"name": "main", "position": [0.5, 0.5, -2], "focal_point": [0.5, 0.5, 0.5],
+                 "view_up": [0, 1, 0], "view_angle": 40, "width": 64, "height": 48}],
+    "settings": {"theta_bins": 8, "phi_bins": 16, "max_level": 2, "tolerance": 0.05},
+}
+
+BASE_TEXT = dumps(BASE) + "\n"
+
+# One valid bicubic patch (a gently curved square), 16 lines "x y z", u fastest.
+PATCH_LINES = ["%g %g %g" % (i, j, 0.25 * ((i - 1.5) ** 2 + (j - 1.5) ** 2) / 2.25)
+               for j in range(4) for i in range(4)]
+VALID_BPT = "1\n3 3\n" + "\n".join(PATCH_LINES) + "\n"
+
+CASES = []  # (file name, bytes, [substrings])
+
+
+def scene_case(name, mutate, location, phrase):
+    s = copy.deepcopy(BASE)
+    mutate(s)
+    CASES.append((name, (dumps(s) + "\n").encode(), [name, location, phrase]))
+
+
+def raw_case(name, text, location, phrase, basename=None):
+    data = text.encode() if isinstance(text, str) else text
+    CASES.append((name, data, [basename or name, location, phrase]))
+
+
+def line_of(text, needle, occurrence=1):
+    """1-based line number of the line containing the given occurrence of needle."""
+    pos = -1
+    for _ in range(occurrence):
+        pos = text.index(needle, pos + 1)
+    return text.count("\n", 0, pos) + 1
+
+
+# --------------------------------------------------------------------------- JSON syntax
+
+
+def json_syntax_cases():
+    raw_case("empty.scene", "", "line 1, column 1", "JSON syntax error")
+    raw_case("not_json.scene",
+             '<scene version="3.0.0">\n    <shape type="obj">\n        <string name="filename" value="cbox.obj"/>\n'
+             "    </shape>\n</scene>\n", "line 1, column 1", "JSON syntax error")
+    # Cut in the middle of the surfaces array, at the end of a line; no final newline, so the
+    # end of the file is unambiguously on the last line, one column past its last character.
+    lines = BASE_TEXT.split("\n")
+    cut = next(i for i, l in enumerate(lines) if l.strip() == '"name": "light",')
+    text = "\n".join(lines[:cut + 1])
+    raw_case("truncated.scene", text, "line %d, column %d" % (cut + 1, len(lines[cut]) + 1), "JSON syntax error")
+    # A trailing comma after the last surface: the error is at the "]" that follows it.
+    t = BASE_TEXT
+    i = t.index('  ],\n  "cameras"')
+    j = t.rindex("}", 0, i)
+    text = t[:j + 1] + "," + t[j + 1:]
+    ln = line_of(text, '  ],\n  "cameras"')
+    raw_case("trailing_comma.scene", text, "line %d, column 3" % ln, "JSON syntax error")
+    # A // comment (JSON has none): the error is at the "/".
+    text = BASE_TEXT.replace('  "materials": {', '  // materials follow\n  "materials": {', 1)
+    raw_case("comment.scene", text, "line %d, column 3" % line_of(text, "// materials"), "JSON syntax error")
+    # NaN is not a JSON literal.
+    text = BASE_TEXT.replace('"points": [[0, 0, 0], [0, 0, 1]', '"points": [[0, NaN, 0], [0, 0, 1]', 1)
+    ln = line_of(text, "NaN")
+    col = text.split("\n")[ln - 1].index("NaN") + 1
+    raw_case("nan_literal.scene", text, "line %d, column %d" % (ln, col), "JSON syntax error")
+
+
+# --------------------------------------------------------------------------- scene semantics
+
+
+def set_in(path, value):
+    def f(s):
+        node = s
+        for k in path[:-1]:
+            node = node[k]
+        node[path[-1]] = value
+    return f
+
+
+def del_in(path):
+    def f(s):
+        node = s
+        for k in path[:-1]:
+            node = node[k]
+        del node[path[-1]]
+    return f
+
+
+def semantic_cases():
+    scene_case("version_2.scene", set_in(["version"], 2), "/version", "unsupported version")
+
+    def rename_settings(s):
+        s["setings"] = s.pop("settings")
+    scene_case("unknown_top_key.scene", rename_settings, "/setings", "unknown key 'setings'")
+
+    def typo_reflectance(s):
+        s["materials"]["white"]["reflectence"] = [0.5, 0.5, 0.5]  # next to the correct key
+    scene_case("unknown_key.scene", typo_reflectance, "/materials/white/reflectence", "unknown key 'reflectence'")
+
+    def typo_two_sided(s):
+        del s["surfaces"][1]["two_sided"]
+        s["surfaces"][1]["two_side"] = True
+    scene_case("unknown_key_surface.scene", typo_two_sided, "/surfaces/1/two_side", "unknown key 'two_side'")
+
+    scene_case("unknown_surface_type.scene", set_in(["surfaces", 0, "type"], "nurbs"),
+               "/surfaces/0/type", "unknown surface type 'nurbs'")
+    scene_case("unknown_material_type.scene", set_in(["materials", "white", "type"], "lambert"),
+               "/materials/white/type", "unknown material type 'lambert'")
+    scene_case("unknown_material.scene", set_in(["surfaces", 1, "material"], "lmap"),
+               "/surfaces/1/material", "unknown material 'lmap'")
+
+    scene_case("bilinear_3_points.scene", set_in(["surfaces", 0, "points"], [[0, 0, 0], [0, 0, 1], [1, 0, 1]]),
+               "/surfaces/0/points", "expected 4 points, got 3")
+    scene_case("bezier_7_points.scene",
+               lambda s: s["surfaces"][2]["points"].append([0.5, 0.2, 2]),
+               "/surfaces/2/points", "expected 6 points, got 7")
+
+    def degree_16(s):
+        s["surfaces"][2]["degree"] = [2, 16]
+        s["surfaces"][2]["points"] = [[i * 0.5, 0.2, j / 16.0] for j in range(17) for i in range(3)]
+    scene_case("bezier_degree_16.scene", degree_16, "/surfaces/2/degree/1", "degree must be in [1, 15]")
+
+    scene_case("string_for_number.scene", set_in(["materials", "white", "reflectance"], [0.5, "0.5", 0.5]),
+               "/materials/white/reflectance/1", "expected a number")
+    scene_case("number_for_array.scene", set_in(["materials", "white", "reflectance"], 0.5),
+               "/materials/white/reflectance", "expected an array of 3 numbers")
+    scene_case("point_two_coordinates.scene", set_in(["surfaces", 1, "points", 1], [1, 1]),
+               "/surfaces/1/points/1", "expected an array of 3 numbers")
+    scene_case("rotate_two_numbers.scene", set_in(["surfaces", 1, "transform", "rotate"], [0, 90]),
+               "/surfaces/1/transform/rotate", "expected an array of 3 numbers")
+    scene_case("object_for_string.scene", set_in(["surfaces", 0, "material"], {"name": "white"}),
+               "/surfaces/0/material", "expected a string")
+    scene_case("string_for_object.scene", set_in(["materials", "white"], "diffuse"),
+               "/materials/white", "expected an object")
+    scene_case("float_for_integer.scene", set_in(["settings", "theta_bins"], 8.5),
+               "/settings/theta_bins", "expected an integer")
+    scene_case("string_for_boolean.scene", set_in(["surfaces", 1, "two_sided"], "yes"),
+               "/surfaces/1/two_sided", "expected a boolean")
+
+    # 1e999 overflows a double: JSON has no NaN/Inf literal, this is how an infinity gets in.
+    s = copy.deepcopy(BASE)
+    text = dumps(s) + "\n"
+    text = text.replace('"points": [[0, 0, 0], [0, 0, 1], [1, 0, 1], [1, 0, 0]]',
+                        '"points": [[0, 0, 0], [0, 0, 1], [1, 1e999, 1], [1, 0, 0]]', 1)
+    assert "1e999" in text
+    raw_case("inf_coordinate.scene", text, "/surfaces/0/points/2/1", "not a finite number")
+
+    scene_case("negative_reflectance.scene", set_in(["materials", "white", "reflectance"], [-0.1, 0.5, 0.5]),
+               "/materials/white/reflectance/0", "must be in [0, 1]")
+    scene_case("reflectance_above_one.scene", set_in(["materials", "white", "reflectance"], [0.5, 1.2, 0.5]),
+               "/materials/white/reflectance/1", "must be in [0, 1]")
+
+    def escaped_name(s):
+        m = s["materials"].pop("white")
+        m["reflectance"] = [0.5, 0.5, 1.5]
+        s["materials"]["white/matte~2"] = m
+        s["surfaces"][0]["material"] = "white/matte~2"
+    scene_case("pointer_escaping.scene", escaped_name, "/materials/white~1matte~02/reflectance/2", "must be in [0, 1]")
+
+    scene_case("negative_emission.scene", set_in(["materials", "lamp", "emission"], [1, -1, 1]),
+               "/materials/lamp/emission/1", "must be >= 0")
+    scene_case("negative_exponent.scene", set_in(["materials", "glossy", "exponent"], -1),
+               "/materials/glossy/exponent", "must be >= 0")
+
+    def phong_sum(s):
+        s["materials"]["glossy"]["diffuse"] = [0.7, 0.4, 0.4]
+        s["materials"]["glossy"]["specular"] = [0.4, 0.3, 0.3]
+    scene_case("phong_sum_above_one.scene", phong_sum, "/materials/glossy", "diffuse + specular exceeds 1")
+
+    scene_case("no_surfaces.scene", set_in(["surfaces"], []), "/surfaces", "scene has no surfaces")
+    scene_case("degenerate_patch.scene", set_in(["surfaces", 0, "points"], [[0.5, 0, 0.5]] * 4),
+               "/surfaces/0/points", "degenerate patch")
+    scene_case("missing_points.scene", del_in(["surfaces", 0, "points"]), "/surfaces/0", "missing key 'points'")
+    scene_case("missing_camera_key.scene", del_in(["cameras", 0, "view_up"]), "/cameras/0", "missing key 'view_up'")
+    scene_case("duplicate_surface_name.scene", set_in(["surfaces", 2, "name"], "floor"),
+               "/surfaces/2/name", "duplicate surface name 'floor'")
+    scene_case("view_angle_zero.scene", set_in(["cameras", 0, "view_angle"], 0),
+               "/cameras/0/view_angle", "must be in (0, 180)")
+    scene_case("view_angle_180.scene", set_in(["cameras", 0, "view_angle"], 180),
+               "/cameras/0/view_angle", "must be in (0, 180)")
+    scene_case("negative_width.scene", set_in(["cameras", 0, "width"], -5),
+               "/cameras/0/width", "must be a positive integer")
+    scene_case("zero_theta_bins.scene", set_in(["settings", "theta_bins"], 0),
+               "/settings/theta_bins", "must be a positive integer")
+    scene_case("negative_max_level.scene", set_in(["settings", "max_level"], -1),
+               "/settings/max_level", "must be >= 0")
+
+    def add_surface(entry):
+        return lambda s: s["surfaces"].append(entry)
+    scene_case("missing_bpt.scene",
+               add_surface({"name": "pot", "type": "bpt", "material": "white", "file": "no_such_model.bpt"}),
+               "/surfaces/3/file", "cannot open file")
+    scene_case("missing_mesh.scene",
+               add_surface({"name": "part", "type": "mesh", "material": "white", "file": "no_such_mesh.obj"}),
+               "/surfaces/3/file", "cannot open file")
+
+    def missing_brdf(s):
+        s["materials"]["table"] = {"type": "tabulated", "file": "no_such_brdf.csv"}
+        s["surfaces"][2]["material"] = "table"
+    scene_case("missing_brdf.scene", missing_brdf, "/materials/table/file", "cannot open file")
+
+    scene_case("mesh_pentagon.scene",
+               add_surface({"name": "part", "type": "mesh", "material": "white", "file": "support/pentagon.obj"}),
+               "/surfaces/3/file", "only triangles and quads are supported")
+
+    # An error inside a .bpt read through a scene: the message names the .bpt and its line.
+    scene_case("bpt_error_in_scene.scene",
+               add_surface({"name": "pot", "type": "bpt", "material": "white", "file": "support/nan_patch.bpt"}),
+               "line 7", "not a finite number")
+    CASES[-1][2][0] = "nan_patch.bpt"
+
+
+# --------------------------------------------------------------------------- .bpt
+
+
+def bpt_cases():
+    # Truncated after 10 of 16 points, no final newline: the end of the file is on line 12.
+    text = "1\n3 3\n" + "\n".join(PATCH_LINES[:10])
+    raw_case("bpt_truncated.bpt", text, "line 12", "unexpected end of file")
+    # Claims 999999999 patches, holds one: must fail at the end of the data, not allocate.
+    text = "999999999\n3 3\n" + "\n".join(PATCH_LINES)
+    raw_case("bpt_huge_count.bpt", text, "line 18", "unexpected end of file")
+    raw_case("bpt_empty.bpt", "", "line 1", "unexpected end of file")
+    # Degree 100 (with all its 101 x 4 points, so nothing else is wrong).
+    pts = ["%g %g 0" % (i / 100.0, j / 3.0) for j in range(4) for i in range(101)]
+    raw_case("bpt_degree_100.bpt", "1\n100 3\n" + "\n".join(pts) + "\n", "line 2", "degree must be in [1, 15]")
+    pts = ["0 %g 0" % (j / 3.0) for j in range(4)]
+    raw_case("bpt_degree_0.bpt", "1\n0 3\n" + "\n".join(pts) + "\n", "line 2", "degree must be in [1, 15]")
+    raw_case("bpt_float_degree.bpt", VALID_BPT.replace("\n3 3\n", "\n3.0 3\n", 1), "line 2", "expected an integer")
+    lines = VALID_BPT.split("\n")
+    lines[6] = "1 nan 0"    # file line 7
+    raw_case("bpt_nan.bpt", "\n".join(lines), "line 7", "not a finite number")
+    lines = VALID_BPT.split("\n")
+    lines[10] = "2 1 inf"   # file line 11
+    raw_case("bpt_inf.bpt", "\n".join(lines), "line 11", "not a finite number")
+    # CRLF line endings (as in the GeoNum files): "\r\n" is one line break.
+    lines = VALID_BPT.split("\n")
+    lines[4] = "abc 2 0"    # file line 5
+    raw_case("bpt_bad_token_crlf.bpt", "\r\n".join(lines), "line 5", "expected a number")
+    raw_case("bpt_trailing_garbage.bpt", VALID_BPT + "end of teapot\n", "line 19", "unexpected data after the last patch")
+
+
+def support_files():
+    os.makedirs(SUPPORT, exist_ok=True)
+    with open(os.path.join(SUPPORT, "base.scene"), "wb") as f:
+        f.write(BASE_TEXT.encode())
+    with open(os.path.join(SUPPORT, "base.bpt"), "wb") as f:
+        f.write(VALID_BPT.encode())
+    # A square with a pentagon face (one face, 5 vertices): not a triangle or quad.
+    with open(os.path.join(SUPPORT, "pentagon.obj"), "wb") as f:
+        f.write(b"# one pentagon: only triangles and quads are supported\n"
+                b"v 0 0 0\nv 1 0 0\nv 1.3 1 0\nv 0.5 1.6 0\nv -0.3 1 0\nf 1 2 3 4 5\n")
+    # Used by bpt_error_in_scene.scene: "nan" on line 7.
+    lines = VALID_BPT.split("\n")
+    lines[6] = "1 nan 0"
+    with open(os.path.join(SUPPORT, "nan_patch.bpt"), "wb") as f:
+        f.write("\n".join(lines).encode())
+
+
+def main():
+    json_syntax_cases()
+    semantic_cases()
+    bpt_cases()
+    os.makedirs(BAD, exist_ok=True)
+    names = [c[0] for c in CASES]
+    assert len(names) == len(set(names))
+    # remove stale corpus files (never touches support/)
+    for f in os.listdir(BAD):
+        p = os.path.join(BAD, f)
+        if os.path.isfile(p) and f not in names and f != "expected.json":
+            os.remove(p)
+    for name, data, _ in CASES:
+        with open(os.path.join(BAD, name), "wb") as f:
+            f.write(data)
+    support_files()
+    expected = {name: subs for name, _, subs in CASES}
+    with open(os.path.join(BAD, "expected.json"), "w", newline="\n") as f:
+        f.write("{\n" + ",\n".join("  %s: %s" % (json.dumps(k), json.dumps(v)) for k, v in expected.items()) + "\n}\n")
+    print("wrote %d corpus files + expected.json to %s" % (len(CASES), BAD))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,268 @@
+#!/usr/bin/env python3
+"""Regenerate the reference scenes in Data/scenes/ from the models in Data/models/.
+
+Run from anywhere:  python3 Data/scenes/tools/make_scenes.py
+Then verify them:   python3 Data/scenes/tools/verify_scenes.py
+
+Plain python3, no third-party packages. The geometry of cornell_box.scene is derived from the
+OBJ files in Data/models/cornell_box/ (the Cornell data, in mm, y up).
+"""
+
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+
+from scenegeom import add, cross, dot, read_obj, sub, unit, write_scene  # noqa: E402
+
+SCENES = os.path.dirname(HERE)
+MODELS = os.path.join(os.path.dirname(SCENES), "models")
+CBOX = os.path.join(MODELS, "cornell_box")
+
+DEFAULT_SETTINGS = {"theta_bins": 32, "phi_bins": 128, "max_level": 5, "tolerance": 0.02}
+
+# Mitsuba's RGB conversion of Cornell's measured spectra (bsdfs-rgb.xml / cbox-rgb.xml).
+CORNELL_MATERIALS = {
+    "white": {"type": "diffuse", "reflectance": [0.885809, 0.698859, 0.666422]},
+    "red": {"type": "diffuse", "reflectance": [0.570068, 0.0430135, 0.0443706]},
+    "green": {"type": "diffuse", "reflectance": [0.105421, 0.37798, 0.076425]},
+    "lamp": {"type": "diffuse", "reflectance": [0.78, 0.78, 0.78], "emission": [18.387, 10.9873, 2.75357]},
+}
+
+CORNELL_CAMERA = {"name": "main", "position": [278, 273, -800], "focal_point": [278, 273, -799],
+                  "view_up": [0, 1, 0], "view_angle": 39.3077, "width": 512, "height": 512}
+
+LIGHT_OFFSET_Y = -0.5  # cbox.xml: <translate x="0" y="-0.5" z="0"/> on the luminaire
+
+
+def clean(p):
+    """Round away float noise (e.g. 548.8 - 0.5) so the files show the Cornell numbers."""
+    return [round(c, 6) + 0.0 for c in p]
+
+
+def obj_quads(name):
+    verts, faces = read_obj(os.path.join(CBOX, name))
+    return [[clean(verts[i]) for i in f] for f in faces]
+
+
+def block_faces(objname):
+    """The 12 triangles of a MeshLab block, paired into its 6 quads (a, b, c), (a, c, d) -> a b c d."""
+    verts, faces = read_obj(os.path.join(CBOX, objname))
+    assert len(faces) == 12
+    quads = []
+    for k in range(0, 12, 2):
+        t1, t2 = faces[k], faces[k + 1]
+        assert t1[0] == t2[0] and t1[2] == t2[1], (objname, t1, t2)
+        quads.append([clean(verts[i]) for i in (t1[0], t1[1], t1[2], t2[2])])
+    return quads
+
+
+def centroid(points):
+    n = float(len(points))
+    return [sum(p[i] for p in points) / n for i in range(3)]
+
+
+def face_label(normal):
+    """Name a block face by where its outward normal points, as seen from the Cornell camera
+    (which looks along +z with y up, so screen-left is +x): top, front (-z), back (+z),
+    left (+x, toward the red wall), right (-x, toward the green wall)."""
+    x, y, z = normal
+    if y > 0.9:
+        return "top"
+    if y < -0.9:
+        return "bottom"
+    if abs(z) >= abs(x):
+        return "front" if z < 0 else "back"
+    return "left" if x > 0 else "right"
+
+
+def bilinear_surface(name, points, material):
+    return {"name": name, "type": "bilinear", "material": material, "points": points}
+
+
+# --------------------------------------------------------------------------- Cornell box
+
+
+def cornell_box():
+    surfaces = []
+    walls = [("floor", "cbox_floor.obj", "white"), ("ceiling", "cbox_ceiling.obj", "white"),
+             ("back_wall", "cbox_back.obj", "white"), ("red_wall", "cbox_redwall.obj", "red"),
+             ("green_wall", "cbox_greenwall.obj", "green")]
+    for name, obj, mat in walls:
+        quads = obj_quads(obj)
+        # The ceiling OBJ has a second face (the light opening, reversed winding): only the
+        # first face, the big quad, is the ceiling.
+        surfaces.append(bilinear_surface(name, quads[0], mat))
+    light = [clean(add(p, [0, LIGHT_OFFSET_Y, 0])) for p in obj_quads("cbox_luminaire.obj")[0]]
+    surfaces.append(bilinear_surface("light", light, "lamp"))
+    for block, obj in (("short_block", "cbox_smallbox.obj"), ("tall_block", "cbox_largebox.obj")):
+        quads = block_faces(obj)
+        c = centroid([p for q in quads for p in q])
+        for q in quads:
+            n = unit(cross(sub(q[1], q[0]), sub(q[3], q[0])))
+            if dot(n, sub(centroid(q), c)) < 0:  # make the front point out of the block
+                q = [q[0], q[3], q[2], q[1]]
+                n = [-x for x in n]
+            label = face_label(n)
+            if label == "bottom":  # lies on the floor: omitted
+                continue
+            surfaces.append(bilinear_surface(block + "_" + label, q, "white"))
+    return {"version": 1, "materials": CORNELL_MATERIALS, "surfaces": surfaces,
+            "cameras": [CORNELL_CAMERA], "settings": dict(DEFAULT_SETTINGS)}
+
+
+def cornell_box_meshes():
+    rel = "../models/cornell_box/"
+    entries = [("floor", "cbox_floor.obj", "white", None), ("ceiling", "cbox_ceiling.obj", "white", None),
+               ("back_wall", "cbox_back.obj", "white", None), ("red_wall", "cbox_redwall.obj", "red", None),
+               ("green_wall", "cbox_greenwall.obj", "green", None),
+               ("light", "cbox_luminaire.obj", "lamp", {"translate": [0, LIGHT_OFFSET_Y, 0]}),
+               ("short_block", "cbox_smallbox.obj", "white", None),
+               ("tall_block", "cbox_largebox.obj", "white", None)]
+    surfaces = []
+    for name, obj, mat, tr in entries:
+        s = {"name": name, "type": "mesh", "material": mat, "file": rel + obj}
+        if tr:
+            s["transform"] = tr
+        surfaces.append(s)
+    return {"version": 1, "materials": CORNELL_MATERIALS, "surfaces": surfaces,
+            "cameras": [CORNELL_CAMERA], "settings": dict(DEFAULT_SETTINGS)}
+
+
+# --------------------------------------------------------------------------- boxes
+
+
+def box_faces(lo, hi, inward):
+    """The 6 faces of the axis-aligned box [lo, hi] as bilinear point lists P00 P10 P11 P01,
+    named x_min ... z_max, fronts pointing into the box (inward=True) or out of it."""
+    x0, y0, z0 = lo
+    x1, y1, z1 = hi
+    # Each listed counter-clockwise as seen from INSIDE the box, i.e. (P10-P00) x (P01-P00)
+    # points into the box.
+    faces = {
+        "x_min": [[x0, y0, z0], [x0, y1, z0], [x0, y1, z1], [x0, y0, z1]],
+        "x_max": [[x1, y0, z0], [x1, y0, z1], [x1, y1, z1], [x1, y1, z0]],
+        "y_min": [[x0, y0, z0], [x0, y0, z1], [x1, y0, z1], [x1, y0, z0]],
+        "y_max": [[x0, y1, z0], [x1, y1, z0], [x1, y1, z1], [x0, y1, z1]],
+        "z_min": [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0]],
+        "z_max": [[x0, y0, z1], [x0, y1, z1], [x1, y1, z1], [x1, y0, z1]],
+    }
+    if not inward:
+        faces = {k: [q[0], q[3], q[2], q[1]] for k, q in faces.items()}
+    return faces
+
+
+FURNACE_MATERIAL = {"furnace": {"type": "diffuse", "reflectance": [0.3, 0.6, 0.8], "emission": [1.0, 1.0, 1.0]}}
+
+
+def furnace_box():
+    faces = box_faces([0, 0, 0], [1, 1, 1], inward=True)
+    surfaces = [bilinear_surface(k, v, "furnace") for k, v in faces.items()]
+    camera = {"name": "inside", "position": [0.5, 0.5, 0.05], "focal_point": [0.5, 0.5, 1.0],
+              "view_up": [0, 1, 0], "view_angle": 90.0, "width": 256, "height": 256}
+    return {"version": 1, "materials": FURNACE_MATERIAL, "surfaces": surfaces,
+            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+
+
+def furnace_sphere():
+    # sphere.bpt's patches have dP/du x dP/dv pointing OUT of the sphere (checked by
+    # verify_scenes.py), so "flip" turns the fronts inward.
+    surfaces = [{"name": "sphere", "type": "bpt", "material": "furnace",
+                 "file": "../models/geonum2017/sphere.bpt", "flip": True}]
+    camera = {"name": "inside", "position": [0.0, 0.0, -0.5], "focal_point": [0.0, 0.0, 1.0],
+              "view_up": [0, 1, 0], "view_angle": 90.0, "width": 256, "height": 256}
+    return {"version": 1, "materials": FURNACE_MATERIAL, "surfaces": surfaces,
+            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+
+
+# --------------------------------------------------------------------------- teapot room
+
+ROOM_LO, ROOM_HI = [-6.0, 0.0, -6.0], [6.0, 8.0, 6.0]
+LAMP_Y, LAMP_HALF = 7.99, 1.5
+
+
+def teapot_room():
+    materials = {
+        "white": {"type": "diffuse", "reflectance": [0.75, 0.75, 0.75]},
+        "floor": {"type": "diffuse", "reflectance": [0.55, 0.45, 0.35]},
+        "red": {"type": "diffuse", "reflectance": [0.7, 0.15, 0.12]},
+        "blue": {"type": "diffuse", "reflectance": [0.15, 0.25, 0.65]},
+        "mirror": {"type": "mirror", "reflectance": [0.9, 0.9, 0.9]},
+        "glossy": {"type": "phong", "diffuse": [0.5, 0.35, 0.1], "specular": [0.3, 0.3, 0.3], "exponent": 40},
+        "lamp": {"type": "diffuse", "reflectance": [0.78, 0.78, 0.78], "emission": [12.0, 11.0, 9.5]},
+    }
+    f = box_faces(ROOM_LO, ROOM_HI, inward=True)
+    walls = [("floor", f["y_min"], "floor"), ("ceiling", f["y_max"], "white"),
+             ("mirror_wall", f["z_min"], "mirror"), ("front_wall", f["z_max"], "white"),
+             ("left_wall", f["x_min"], "red"), ("right_wall", f["x_max"], "blue")]
+    surfaces = [bilinear_surface(n, q, m) for n, q, m in walls]
+    h = LAMP_HALF
+    # Counter-clockwise seen from below: front faces -y (down into the room).
+    lamp = [[-h, LAMP_Y, -h], [h, LAMP_Y, -h], [h, LAMP_Y, h], [-h, LAMP_Y, h]]
+    surfaces.append(bilinear_surface("lamp", lamp, "lamp"))
+    # teapot.bpt is z-up with its base at z = 0: rotating by -90 deg about x maps (x, y, z) to
+    # (x, z, -y), so it stands on the floor y = 0 (touching it at the centre of its slightly
+    # domed bottom), spout toward +x; then turned 30 deg about y (spout toward +x, -z) so that
+    # the camera sees it in profile, spout to the right, and its other side in the mirror.
+    surfaces.append({"name": "teapot", "type": "bpt", "material": "glossy", "file": "../models/teapot.bpt",
+                     "transform": {"scale": 1.0, "rotate": [-90, 30, 0], "translate": [0, 0, 0]}})
+    camera = {"name": "corner", "position": [4.5, 4.5, 5.0], "focal_point": [-0.6, 1.2, -1.0],
+              "view_up": [0, 1, 0], "view_angle": 55.0, "width": 640, "height": 480}
+    return {"version": 1, "materials": materials, "surfaces": surfaces, "cameras": [camera],
+            "settings": dict(DEFAULT_SETTINGS)}
+
+
+# --------------------------------------------------------------------------- Howell
+
+
+HOWELL_MATERIALS = {
+    # A black emitter: nothing B reflects comes back, so B's mean irradiance is exactly
+    # pi * Le * F_BA (see README.md).
+    "lamp": {"type": "diffuse", "reflectance": [0.0, 0.0, 0.0], "emission": [1.0, 1.0, 1.0]},
+    "white": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5]},
+}
+
+
+def howell_parallel():
+    # C-11: two coaxial 1 x 2 rectangles (x in [0,1], z in [0,2]) at y = 0 and y = 1, facing each other.
+    A = [[0, 0, 0], [0, 0, 2], [1, 0, 2], [1, 0, 0]]  # front +y
+    B = [[0, 1, 0], [1, 1, 0], [1, 1, 2], [0, 1, 2]]  # front -y
+    camera = {"name": "side", "position": [3.2, 0.5, 3.6], "focal_point": [0.5, 0.5, 1.0],
+              "view_up": [0, 1, 0], "view_angle": 45.0, "width": 400, "height": 300}
+    return {"version": 1, "materials": HOWELL_MATERIALS,
+            "surfaces": [bilinear_surface("A", A, "lamp"), bilinear_surface("B", B, "white")],
+            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+
+
+def howell_perpendicular():
+    # C-14: A = floor 1 x 2 (x in [0,1], z in [0,2], y = 0, front +y);
+    #       B = wall 1 x 1.5 (x in [0,1], y in [0,1.5], z = 0, front +z); common edge x in [0,1].
+    A = [[0, 0, 0], [0, 0, 2], [1, 0, 2], [1, 0, 0]]      # front +y
+    B = [[0, 0, 0], [1, 0, 0], [1, 1.5, 0], [0, 1.5, 0]]  # front +z
+    camera = {"name": "wedge", "position": [3.0, 2.2, 3.8], "focal_point": [0.5, 0.5, 0.8],
+              "view_up": [0, 1, 0], "view_angle": 45.0, "width": 400, "height": 300}
+    return {"version": 1, "materials": HOWELL_MATERIALS,
+            "surfaces": [bilinear_surface("A", A, "lamp"), bilinear_surface("B", B, "white")],
+            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+
+
+ALL = {
+    "cornell_box.scene": cornell_box,
+    "cornell_box_meshes.scene": cornell_box_meshes,
+    "teapot_room.scene": teapot_room,
+    "furnace_box.scene": furnace_box,
+    "furnace_sphere.scene": furnace_sphere,
+    "howell_parallel.scene": howell_parallel,
+    "howell_perpendicular.scene": howell_perpendicular,
+}
+
+
+def main():
+    for name, make in ALL.items():
+        write_scene(os.path.join(SCENES, name), make())
+        print("wrote", os.path.join(SCENES, name))
+
+
+if __name__ == "__main__":
+    main()

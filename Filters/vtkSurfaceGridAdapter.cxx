@@ -1,0 +1,205 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSurfaceGridAdapter.h"
+
+#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSurfaceGridBuilder.h"
+
+#include "Scene.h"
+#include "SceneLoader.h"
+
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
+#include <vtkFieldData.h>
+#include <vtkGenericCell.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkStringArray.h>
+
+#include <cmath>
+#include <map>
+
+namespace names = vtkSphericalCoverArrayNames;
+
+namespace
+{
+std::string StringValue(vtkFieldData* fd, const char* name, vtkIdType index)
+{
+  auto* array = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
+  return (array && index >= 0 && index < array->GetNumberOfValues()) ? array->GetValue(index)
+                                                                      : std::string();
+}
+}
+
+bool vtkSurfaceGridAdapter::ToScene(
+  vtkDataSet* input, bool allowDefaultMaterials, sphcover::Scene& scene, std::string& error)
+{
+  scene = sphcover::Scene();
+  if (!input || input->GetNumberOfCells() == 0)
+  {
+    error = "the input has no surfaces (no cells)";
+    return false;
+  }
+  vtkCellData* cd = input->GetCellData();
+  vtkFieldData* fd = input->GetFieldData();
+  vtkDataArray* materialId = cd->GetArray(names::MaterialId);
+  vtkDataArray* materialType = cd->GetArray(names::MaterialType);
+  vtkDataArray* diffuse = cd->GetArray(names::Diffuse);
+  vtkDataArray* specular = cd->GetArray(names::Specular);
+  vtkDataArray* exponent = cd->GetArray(names::PhongExponent);
+  vtkDataArray* emission = cd->GetArray(names::Emission);
+  vtkDataArray* nameId = cd->GetArray(names::SurfaceNameId);
+  vtkDataArray* twoSided = cd->GetArray(names::TwoSided);
+  vtkDataArray* degrees = cd->GetHigherOrderDegrees();
+
+  const bool hasMaterials = materialId && diffuse && specular && emission;
+  if (!hasMaterials)
+  {
+    if (!allowDefaultMaterials)
+    {
+      error = std::string("the input lacks the material cell arrays (") + names::MaterialId + ", " +
+        names::Diffuse + ", " + names::Specular + ", " + names::Emission +
+        "); read scenes with vtkPatchSceneReader";
+      return false;
+    }
+    sphcover::Material white;
+    white.Name = "default";
+    white.Diffuse = glm::dvec3(0.8);
+    scene.Materials.push_back(white);
+  }
+  if (hasMaterials &&
+    (diffuse->GetNumberOfComponents() != 3 || specular->GetNumberOfComponents() != 3 ||
+      emission->GetNumberOfComponents() != 3))
+  {
+    error = "the Diffuse, Specular and Emission cell arrays must have 3 components";
+    return false;
+  }
+
+  std::map<int, int> materialIndexOf; // input MaterialId -> index in scene.Materials
+  std::map<int, int> nameIndexOf;     // input SurfaceNameId -> index in scene.SurfaceNames
+  vtkNew<vtkIdList> ids;
+  vtkNew<vtkPoints> cellPoints;
+  const vtkIdType numberOfCells = input->GetNumberOfCells();
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    const int type = input->GetCellType(c);
+    input->GetCellPoints(c, ids);
+    const vtkIdType n = ids->GetNumberOfIds();
+    auto point = [&](vtkIdType k) {
+      glm::dvec3 p;
+      input->GetPoint(ids->GetId(k), &p[0]);
+      return p;
+    };
+    std::vector<glm::dvec3> control;
+    int du = 1;
+    int dv = 1;
+    bool triangle = false;
+    if (type == VTK_QUAD && n == 4)
+    {
+      control = { point(0), point(1), point(3), point(2) };
+    }
+    else if (type == VTK_TRIANGLE && n == 3)
+    {
+      control = { point(0), point(1), point(2), point(2) };
+      triangle = true;
+    }
+    else if (type == VTK_BEZIER_QUADRILATERAL)
+    {
+      if (degrees && degrees->GetNumberOfComponents() >= 2)
+      {
+        du = static_cast<int>(degrees->GetComponent(c, 0));
+        dv = static_cast<int>(degrees->GetComponent(c, 1));
+      }
+      else
+      {
+        // Without HigherOrderDegrees VTK assumes equal degrees from the point count.
+        du = dv = static_cast<int>(std::lround(std::sqrt(double(n)))) - 1;
+      }
+      if (du < 1 || dv < 1 || du > sphcover::BezierPatch::MaxDegree ||
+        dv > sphcover::BezierPatch::MaxDegree || (du + 1) * (dv + 1) != n)
+      {
+        error = "cell " + std::to_string(c) + ": Bezier quadrilateral with " + std::to_string(n) +
+          " points does not match degrees " + std::to_string(du) + " x " + std::to_string(dv);
+        return false;
+      }
+      control.resize(static_cast<size_t>(n));
+      for (int j = 0; j <= dv; ++j)
+      {
+        for (int i = 0; i <= du; ++i)
+        {
+          control[static_cast<size_t>(j * (du + 1) + i)] =
+            point(vtkSurfaceGridBuilder::VTKPointIndex(i, j, du, dv));
+        }
+      }
+    }
+    else
+    {
+      error = "cell " + std::to_string(c) + ": unsupported cell type " + std::to_string(type) +
+        " (expected Bezier quadrilaterals, quads or triangles)";
+      return false;
+    }
+    for (const glm::dvec3& p : control)
+    {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      {
+        error = "cell " + std::to_string(c) + ": a point is not finite";
+        return false;
+      }
+    }
+    sphcover::BezierPatch patch(du, dv, std::move(control));
+    if (sphcover::IsDegeneratePatch(patch))
+    {
+      error = "cell " + std::to_string(c) + ": degenerate patch (no area)";
+      return false;
+    }
+
+    int materialIndex = 0;
+    if (hasMaterials)
+    {
+      const int id = static_cast<int>(materialId->GetComponent(c, 0));
+      auto found = materialIndexOf.find(id);
+      if (found == materialIndexOf.end())
+      {
+        sphcover::Material material;
+        material.Name = StringValue(fd, names::MaterialNames, id);
+        if (material.Name.empty())
+        {
+          material.Name = "material" + std::to_string(id);
+        }
+        material.Type = materialType
+          ? static_cast<sphcover::MaterialType>(static_cast<int>(materialType->GetComponent(c, 0)))
+          : sphcover::MaterialType::Diffuse;
+        diffuse->GetTuple(c, &material.Diffuse[0]);
+        specular->GetTuple(c, &material.Specular[0]);
+        emission->GetTuple(c, &material.Emission[0]);
+        material.PhongExponent = exponent ? exponent->GetComponent(c, 0) : 0.0;
+        material.TableFile = StringValue(fd, names::MaterialFiles, id);
+        found = materialIndexOf.emplace(id, static_cast<int>(scene.Materials.size())).first;
+        scene.Materials.push_back(material);
+      }
+      materialIndex = found->second;
+    }
+
+    const int inputNameId = nameId ? static_cast<int>(nameId->GetComponent(c, 0)) : 0;
+    auto name = nameIndexOf.find(inputNameId);
+    if (name == nameIndexOf.end())
+    {
+      std::string text = StringValue(fd, names::SurfaceNames, inputNameId);
+      if (text.empty())
+      {
+        text = "surface" + std::to_string(inputNameId);
+      }
+      name = nameIndexOf.emplace(inputNameId, static_cast<int>(scene.SurfaceNames.size())).first;
+      scene.SurfaceNames.push_back(text);
+    }
+
+    sphcover::Surface surface(std::move(patch), name->second, materialIndex);
+    surface.IsTriangle = triangle;
+    surface.TwoSided = twoSided && twoSided->GetComponent(c, 0) != 0.0;
+    scene.Surfaces.push_back(std::move(surface));
+  }
+  scene.SourceFile = StringValue(fd, names::SourceFile, 0);
+  return true;
+}

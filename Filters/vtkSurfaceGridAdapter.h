@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkSurfaceGridAdapter
+ * @brief Reads the surfaces of a dataset back into a Core scene: the input side of every
+ * stage of the method.
+ *
+ * Accepts what vtkPatchSceneReader writes and, more generally, any dataset of
+ * `VTK_BEZIER_QUADRILATERAL` (degrees from `HigherOrderDegrees`, or square degrees from the
+ * point count), `VTK_QUAD` and `VTK_TRIANGLE` cells. Materials come from the cell arrays
+ * `MaterialId`, `MaterialType`, `Diffuse`, `Specular`, `PhongExponent`, `Emission`; when the
+ * input carries none of them and defaults are allowed, every surface gets a white diffuse
+ * material (reflectance 0.8).
+ */
+#ifndef vtkSurfaceGridAdapter_h
+#define vtkSurfaceGridAdapter_h
+
+#include "SphericalCoverFiltersModule.h" // for export macro
+
+#include <string>
+
+class vtkDataSet;
+namespace sphcover
+{
+struct Scene;
+}
+
+class SPHERICALCOVERFILTERS_EXPORT vtkSurfaceGridAdapter
+{
+public:
+  /// False with a message in `error` when the input cannot be used (unsupported cell type,
+  /// inconsistent arrays, missing material arrays when defaults are not allowed, ...).
+  static bool ToScene(vtkDataSet* input, bool allowDefaultMaterials, sphcover::Scene& scene,
+    std::string& error);
+};
+
+#endif

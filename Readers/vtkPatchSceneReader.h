@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkPatchSceneReader
+ * @brief Reads a `.scene` file (SPEC §3): the surfaces of the environment as exact curved
+ * patches, their materials, cameras and solver settings.
+ *
+ * Output (SPEC §4.1): a vtkUnstructuredGrid with one cell per surface S_i of paper §4.3,
+ * `VTK_BEZIER_QUADRILATERAL` (with the `HigherOrderDegrees` cell array), `VTK_QUAD` for
+ * bilinear patches, `VTK_TRIANGLE` for mesh triangles. Cell data: `SurfaceId`,
+ * `SurfaceNameId`, `MaterialId`, `MaterialType`, `Emission` (3), `Diffuse` (3), `Specular` (3),
+ * `PhongExponent`, `TwoSided`. Field data: `SurfaceNames`, `MaterialNames`,
+ * `MaterialTypeNames`, `MaterialFiles`, `CameraNames`, `CameraParameters` (12 named
+ * components), `SceneSettings` (4 named components), `SourceFile`.
+ *
+ * A file with a `.bpt` extension is read as a .bpt file on its own (see vtkBPTReader).
+ * Bad input gives one error naming the file, the location (line or JSON pointer) and the
+ * problem, and an empty output with a failed request.
+ */
+#ifndef vtkPatchSceneReader_h
+#define vtkPatchSceneReader_h
+
+#include "SphericalCoverReadersModule.h" // for export macro
+#include "vtkUnstructuredGridAlgorithm.h"
+
+#include <string> // for std::string
+
+namespace sphcover
+{
+struct Scene;
+}
+
+class SPHERICALCOVERREADERS_EXPORT vtkPatchSceneReader : public vtkUnstructuredGridAlgorithm
+{
+public:
+  static vtkPatchSceneReader* New();
+  vtkTypeMacro(vtkPatchSceneReader, vtkUnstructuredGridAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /**
+   * The file to read. Relative paths inside a scene resolve against its folder. Default is
+   * empty.
+   */
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+protected:
+  vtkPatchSceneReader();
+  ~vtkPatchSceneReader() override;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  /// Reads the file into a Core scene; throws sphcover::InputError.
+  virtual sphcover::Scene LoadFile(const std::string& fileName);
+
+  std::string FileName;
+
+private:
+  vtkPatchSceneReader(const vtkPatchSceneReader&) = delete;
+  void operator=(const vtkPatchSceneReader&) = delete;
+};
+
+#endif

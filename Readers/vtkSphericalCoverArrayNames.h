@@ -1,0 +1,38 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file vtkSphericalCoverArrayNames.h
+ * @brief The names of the arrays every stage reads and writes (SPEC §4): one place for all.
+ *
+ * ParaView users colour by these names and scripts read them, so they are a contract.
+ */
+#ifndef vtkSphericalCoverArrayNames_h
+#define vtkSphericalCoverArrayNames_h
+
+namespace vtkSphericalCoverArrayNames
+{
+// Reader output, cell data (SPEC §4.1).
+constexpr const char* SurfaceId = "SurfaceId";
+constexpr const char* SurfaceNameId = "SurfaceNameId";
+constexpr const char* MaterialId = "MaterialId";
+constexpr const char* MaterialType = "MaterialType";
+constexpr const char* Emission = "Emission";
+constexpr const char* Diffuse = "Diffuse";
+constexpr const char* Specular = "Specular";
+constexpr const char* PhongExponent = "PhongExponent";
+constexpr const char* TwoSided = "TwoSided";
+constexpr const char* HigherOrderDegrees = "HigherOrderDegrees";
+
+// Reader output, field data.
+constexpr const char* SurfaceNames = "SurfaceNames";
+constexpr const char* MaterialNames = "MaterialNames";
+constexpr const char* MaterialTypeNames = "MaterialTypeNames";
+constexpr const char* MaterialFiles = "MaterialFiles";
+constexpr const char* CameraNames = "CameraNames";
+/// 12 components: position (3), focal point (3), view up (3), view angle, width, height.
+constexpr const char* CameraParameters = "CameraParameters";
+/// 4 named components: theta_bins, phi_bins, max_level, tolerance.
+constexpr const char* SceneSettings = "SceneSettings";
+constexpr const char* SourceFile = "SourceFile";
+}
+
+#endif

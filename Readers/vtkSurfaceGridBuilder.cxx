@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSurfaceGridBuilder.h"
+
+#include "vtkSphericalCoverArrayNames.h"
+
+#include "BezierPatch.h"
+#include "Scene.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkHigherOrderQuadrilateral.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+
+namespace names = vtkSphericalCoverArrayNames;
+
+namespace
+{
+vtkSmartPointer<vtkDoubleArray> NewDoubleArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+vtkSmartPointer<vtkIntArray> NewIntArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+vtkSmartPointer<vtkStringArray> NewStringArray(const char* name, vtkIdType values)
+{
+  auto array = vtkSmartPointer<vtkStringArray>::New();
+  array->SetName(name);
+  array->SetNumberOfValues(values);
+  return array;
+}
+}
+
+int vtkSurfaceGridBuilder::VTKPointIndex(int i, int j, int degreeU, int degreeV)
+{
+  const int order[3] = { degreeU, degreeV, 0 };
+  return vtkHigherOrderQuadrilateral::PointIndexFromIJK(i, j, order);
+}
+
+void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
+{
+  output->Initialize();
+  const vtkIdType numberOfCells = static_cast<vtkIdType>(scene.Surfaces.size());
+
+  vtkIdType numberOfPoints = 0;
+  for (const sphcover::Surface& surface : scene.Surfaces)
+  {
+    numberOfPoints += surface.IsTriangle ? 3 : static_cast<vtkIdType>(surface.Patch.ControlPoints().size());
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(numberOfPoints);
+
+  vtkNew<vtkCellArray> cells;
+  cells->AllocateExact(numberOfCells, numberOfPoints);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfValues(numberOfCells);
+
+  auto surfaceId = NewIntArray(names::SurfaceId, 1, numberOfCells);
+  auto surfaceNameId = NewIntArray(names::SurfaceNameId, 1, numberOfCells);
+  auto materialId = NewIntArray(names::MaterialId, 1, numberOfCells);
+  auto materialType = NewIntArray(names::MaterialType, 1, numberOfCells);
+  auto twoSided = NewIntArray(names::TwoSided, 1, numberOfCells);
+  auto degrees = NewIntArray(names::HigherOrderDegrees, 3, numberOfCells);
+  auto emission = NewDoubleArray(names::Emission, 3, numberOfCells);
+  auto diffuse = NewDoubleArray(names::Diffuse, 3, numberOfCells);
+  auto specular = NewDoubleArray(names::Specular, 3, numberOfCells);
+  auto exponent = NewDoubleArray(names::PhongExponent, 1, numberOfCells);
+
+  std::vector<vtkIdType> ids;
+  vtkIdType nextPoint = 0;
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    const sphcover::Surface& surface = scene.Surfaces[static_cast<size_t>(c)];
+    const sphcover::BezierPatch& patch = surface.Patch;
+    const int m = patch.DegreeU();
+    const int n = patch.DegreeV();
+    if (surface.IsTriangle)
+    {
+      // Stored as (P00, P10, P11, P01 = P11): the triangle is P00, P10, P11.
+      ids = { nextPoint, nextPoint + 1, nextPoint + 2 };
+      points->SetPoint(nextPoint, &patch.ControlPoint(0, 0)[0]);
+      points->SetPoint(nextPoint + 1, &patch.ControlPoint(1, 0)[0]);
+      points->SetPoint(nextPoint + 2, &patch.ControlPoint(1, 1)[0]);
+      types->SetValue(c, VTK_TRIANGLE);
+    }
+    else
+    {
+      ids.resize(static_cast<size_t>((m + 1) * (n + 1)));
+      for (int j = 0; j <= n; ++j)
+      {
+        for (int i = 0; i <= m; ++i)
+        {
+          const vtkIdType id = nextPoint + VTKPointIndex(i, j, m, n);
+          points->SetPoint(id, &patch.ControlPoint(i, j)[0]);
+        }
+      }
+      for (size_t k = 0; k < ids.size(); ++k)
+      {
+        ids[k] = nextPoint + static_cast<vtkIdType>(k);
+      }
+      // A bilinear patch's VTK ordering (corners counter-clockwise) is VTK_QUAD's.
+      types->SetValue(c, (m == 1 && n == 1) ? VTK_QUAD : VTK_BEZIER_QUADRILATERAL);
+    }
+    cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+    nextPoint += static_cast<vtkIdType>(ids.size());
+
+    const sphcover::Material& material = scene.Materials[static_cast<size_t>(surface.MaterialIndex)];
+    surfaceId->SetValue(c, static_cast<int>(c));
+    surfaceNameId->SetValue(c, surface.NameIndex);
+    materialId->SetValue(c, surface.MaterialIndex);
+    materialType->SetValue(c, static_cast<int>(material.Type));
+    twoSided->SetValue(c, surface.TwoSided ? 1 : 0);
+    const int degree[3] = { m, n, 0 };
+    degrees->SetTypedTuple(c, degree);
+    emission->SetTuple(c, &material.Emission[0]);
+    diffuse->SetTuple(c, &material.Diffuse[0]);
+    specular->SetTuple(c, &material.Specular[0]);
+    exponent->SetValue(c, material.PhongExponent);
+  }
+
+  output->SetPoints(points);
+  output->SetCells(types, cells);
+  vtkCellData* cd = output->GetCellData();
+  cd->AddArray(surfaceId);
+  cd->AddArray(surfaceNameId);
+  cd->AddArray(materialId);
+  cd->AddArray(materialType);
+  cd->AddArray(twoSided);
+  cd->AddArray(emission);
+  cd->AddArray(diffuse);
+  cd->AddArray(specular);
+  cd->AddArray(exponent);
+  cd->SetHigherOrderDegrees(degrees);
+
+  vtkFieldData* fd = output->GetFieldData();
+  auto surfaceNames = NewStringArray(names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()));
+  for (size_t k = 0; k < scene.SurfaceNames.size(); ++k)
+  {
+    surfaceNames->SetValue(static_cast<vtkIdType>(k), scene.SurfaceNames[k]);
+  }
+  fd->AddArray(surfaceNames);
+
+  const vtkIdType numberOfMaterials = static_cast<vtkIdType>(scene.Materials.size());
+  auto materialNames = NewStringArray(names::MaterialNames, numberOfMaterials);
+  auto materialTypes = NewStringArray(names::MaterialTypeNames, numberOfMaterials);
+  auto materialFiles = NewStringArray(names::MaterialFiles, numberOfMaterials);
+  for (vtkIdType k = 0; k < numberOfMaterials; ++k)
+  {
+    const sphcover::Material& material = scene.Materials[static_cast<size_t>(k)];
+    materialNames->SetValue(k, material.Name);
+    materialTypes->SetValue(k, sphcover::MaterialTypeName(material.Type));
+    materialFiles->SetValue(k, material.TableFile);
+  }
+  fd->AddArray(materialNames);
+  fd->AddArray(materialTypes);
+  fd->AddArray(materialFiles);
+
+  const vtkIdType numberOfCameras = static_cast<vtkIdType>(scene.Cameras.size());
+  auto cameraNames = NewStringArray(names::CameraNames, numberOfCameras);
+  auto cameraParameters = NewDoubleArray(names::CameraParameters, 12, numberOfCameras);
+  const char* cameraComponents[12] = { "PositionX", "PositionY", "PositionZ", "FocalPointX",
+    "FocalPointY", "FocalPointZ", "ViewUpX", "ViewUpY", "ViewUpZ", "ViewAngle", "Width", "Height" };
+  for (int k = 0; k < 12; ++k)
+  {
+    cameraParameters->SetComponentName(k, cameraComponents[k]);
+  }
+  for (vtkIdType k = 0; k < numberOfCameras; ++k)
+  {
+    const sphcover::Camera& camera = scene.Cameras[static_cast<size_t>(k)];
+    cameraNames->SetValue(k, camera.Name);
+    const double values[12] = { camera.Position.x, camera.Position.y, camera.Position.z,
+      camera.FocalPoint.x, camera.FocalPoint.y, camera.FocalPoint.z, camera.ViewUp.x,
+      camera.ViewUp.y, camera.ViewUp.z, camera.ViewAngle, double(camera.Width),
+      double(camera.Height) };
+    cameraParameters->SetTuple(k, values);
+  }
+  fd->AddArray(cameraNames);
+  fd->AddArray(cameraParameters);
+
+  auto settings = NewDoubleArray(names::SceneSettings, 4, 1);
+  settings->SetComponentName(0, "theta_bins");
+  settings->SetComponentName(1, "phi_bins");
+  settings->SetComponentName(2, "max_level");
+  settings->SetComponentName(3, "tolerance");
+  const double settingValues[4] = { double(scene.Settings.ThetaBins), double(scene.Settings.PhiBins),
+    double(scene.Settings.MaxLevel), scene.Settings.Tolerance };
+  settings->SetTuple(0, settingValues);
+  fd->AddArray(settings);
+
+  auto sourceFile = NewStringArray(names::SourceFile, 1);
+  sourceFile->SetValue(0, scene.SourceFile);
+  fd->AddArray(sourceFile);
+}

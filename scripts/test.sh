@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Sets up and builds (scripts/setup.sh), runs the whole test suite (CTest, under a virtual X
+# server for the rendering tests), then builds Core and its unit tests with AddressSanitizer
+# and UndefinedBehaviorSanitizer in build-asan/ and runs them there.
+set -euo pipefail
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$root/scripts/setup.sh"
+build="${SPHCOVER_BUILD_DIR:-$root/build}"
+jobs="${SPHCOVER_JOBS:-$(nproc)}"
+
+xvfb-run -a -s "-screen 0 1280x1024x24" \
+  ctest --test-dir "$build" --output-on-failure -j "$jobs"
+
+asan="${SPHCOVER_ASAN_BUILD_DIR:-$root/build-asan}"
+if [[ ! -f "$asan/CMakeCache.txt" ]]; then
+  cmake -S "$root" -B "$asan" -G Ninja \
+    -DSPHCOVER_CORE_ONLY=ON \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+fi
+cmake --build "$asan" -j "$jobs"
+ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --test-dir "$asan" --output-on-failure -j "$jobs"
