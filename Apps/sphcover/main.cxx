@@ -12,6 +12,7 @@
 #include "Scene.h"
 
 #include <CLI/CLI.hpp>
+#include <vtkSMPTools.h>
 
 #include <exception>
 #include <iostream>
@@ -31,6 +32,11 @@ int main(int argc, char** argv)
   CLI::App app{ "sphcover: view-independent global illumination of Bezier-patch scenes by the "
                 "spherical cover of Mudur and Pattanaik (1990)" };
   app.require_subcommand(1);
+  // Global options may also follow the subcommand: `sphcover info X --threads 2`.
+  app.fallthrough();
+  int threads = 0;
+  app.add_option("--threads", threads, "Worker threads for the parallel stages (0: one per core)")
+    ->check(CLI::Range(0, 4096));
 
   std::string sceneFile;
   CLI::App* info = app.add_subcommand("info", "Print a scene's summary: surfaces, patch degrees, "
@@ -45,6 +51,10 @@ int main(int argc, char** argv)
   {
     return app.exit(e);
   }
+
+  // ParaView's VTK selects the Sequential SMP backend unless told otherwise (SPEC §2).
+  vtkSMPTools::SetBackend("STDThread");
+  vtkSMPTools::Initialize(threads);
 
   try
   {
