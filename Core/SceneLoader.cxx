@@ -88,6 +88,10 @@ public:
   }
 
   Scene Parse(const Json& root);
+  SceneSettings Override(const SceneSettings& base, const Json& assignment) const
+  {
+    return this->ParseSettings(assignment, "", base);
+  }
 
 private:
   [[noreturn]] void Fail(const std::string& pointer, const std::string& problem) const
@@ -267,7 +271,8 @@ private:
   glm::dmat4 ParseTransform(const Json& j, const std::string& pointer) const;
   void ParseSurface(const Json& j, const std::string& pointer, Scene& scene) const;
   Camera ParseCamera(const Json& j, const std::string& pointer) const;
-  SceneSettings ParseSettings(const Json& j, const std::string& pointer) const;
+  SceneSettings ParseSettings(
+    const Json& j, const std::string& pointer, SceneSettings settings = SceneSettings()) const;
   std::vector<BezierPatch> ParsePoints(
     const Json& j, const std::string& pointer, int degreeU, int degreeV) const;
 
@@ -595,11 +600,11 @@ Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
   return camera;
 }
 
-SceneSettings SceneParser::ParseSettings(const Json& j, const std::string& pointer) const
+SceneSettings SceneParser::ParseSettings(
+  const Json& j, const std::string& pointer, SceneSettings settings) const
 {
   this->ExpectObject(j, pointer);
   this->CheckKeys(j, pointer, { "theta_bins", "phi_bins", "max_level", "tolerance" });
-  SceneSettings settings;
   if (j.contains("theta_bins"))
   {
     settings.ThetaBins = this->PositiveInteger(j["theta_bins"], Child(pointer, "theta_bins"), 4096);
@@ -868,6 +873,30 @@ Scene ParseScene(const std::string& text, const std::string& path, const MeshFac
 Scene LoadSceneFile(const std::string& path, const MeshFaceReader& readMesh)
 {
   return ParseScene(ReadWholeFile(path), path, readMesh);
+}
+
+SceneSettings OverrideSetting(const SceneSettings& base, const std::string& assignment)
+{
+  const size_t equals = assignment.find('=');
+  if (equals == std::string::npos || equals == 0)
+  {
+    throw InputError("--set", assignment, "expected key=value, e.g. theta_bins=64");
+  }
+  const std::string key = assignment.substr(0, equals);
+  const std::string value = assignment.substr(equals + 1);
+  // The value is read as JSON and checked exactly as in a scene file's settings block.
+  Json parsed;
+  LocatingDomParser dom(parsed);
+  if (!Json::sax_parse(value, &dom) || dom.Failed)
+  {
+    throw InputError("--set", key, "not a JSON value: '" + value + "'");
+  }
+  Json object = Json::object();
+  object[key] = parsed;
+  const std::string source = "--set";
+  const MeshFaceReader none;
+  SceneParser parser(source, none);
+  return parser.Override(base, object);
 }
 
 Scene LoadBptAsScene(const std::string& path)

@@ -38,6 +38,11 @@ Scene ParseScene(
 /// white diffuse material (reflectance 0.8) and default settings.
 Scene LoadBptAsScene(const std::string& path);
 
+/// The settings with one "key=value" assignment applied (the command line's --set), the value
+/// read as JSON and checked as in a scene file's "settings" block. Throws InputError naming
+/// "--set", the key and the problem.
+SceneSettings OverrideSetting(const SceneSettings& base, const std::string& assignment);
+
 /// True when the patch has (numerically) no area: every sampled Pu x Pv vanishes relative to
 /// the patch size. A triangle stored as a degenerate bilinear patch is not degenerate.
 bool IsDegeneratePatch(const BezierPatch& patch);

@@ -33,6 +33,19 @@ constexpr const char* CameraParameters = "CameraParameters";
 /// 4 named components: theta_bins, phi_bins, max_level, tolerance.
 constexpr const char* SceneSettings = "SceneSettings";
 constexpr const char* SourceFile = "SourceFile";
+
+// Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
+constexpr const char* PatchId = "PatchId";
+constexpr const char* Level = "Level";
+/// 4 components: u0, u1, v0, v1 of the patch in its surface's parameters.
+constexpr const char* UVRange = "UVRange";
+constexpr const char* Area = "Area";
+constexpr const char* SplitReason = "SplitReason";
+constexpr const char* SplitReasonNames = "SplitReasonNames";
+constexpr const char* Normals = "Normals";
+constexpr const char* UV = "UV";
+/// Field data, named components: pair tests, sweeps.
+constexpr const char* SubdivisionStatistics = "SubdivisionStatistics";
 }
 
 #endif

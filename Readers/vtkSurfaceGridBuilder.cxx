@@ -57,45 +57,38 @@ int vtkSurfaceGridBuilder::VTKPointIndex(int i, int j, int degreeU, int degreeV)
   return vtkHigherOrderQuadrilateral::PointIndexFromIJK(i, j, order);
 }
 
-void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
+bool vtkSurfaceGridBuilder::IsTriangle(const sphcover::BezierPatch& patch)
 {
-  output->Initialize();
-  const vtkIdType numberOfCells = static_cast<vtkIdType>(scene.Surfaces.size());
+  return patch.DegreeU() == 1 && patch.DegreeV() == 1 &&
+    patch.ControlPoint(1, 1) == patch.ControlPoint(0, 1);
+}
 
+void vtkSurfaceGridBuilder::BuildCells(
+  const std::vector<const sphcover::BezierPatch*>& patches, vtkUnstructuredGrid* output)
+{
+  const vtkIdType numberOfCells = static_cast<vtkIdType>(patches.size());
   vtkIdType numberOfPoints = 0;
-  for (const sphcover::Surface& surface : scene.Surfaces)
+  for (const sphcover::BezierPatch* patch : patches)
   {
-    numberOfPoints += surface.IsTriangle ? 3 : static_cast<vtkIdType>(surface.Patch.ControlPoints().size());
+    numberOfPoints += IsTriangle(*patch) ? 3 : static_cast<vtkIdType>(patch->ControlPoints().size());
   }
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
   points->SetNumberOfPoints(numberOfPoints);
-
   vtkNew<vtkCellArray> cells;
   cells->AllocateExact(numberOfCells, numberOfPoints);
   vtkNew<vtkUnsignedCharArray> types;
   types->SetNumberOfValues(numberOfCells);
-
-  auto surfaceId = NewIntArray(names::SurfaceId, 1, numberOfCells);
-  auto surfaceNameId = NewIntArray(names::SurfaceNameId, 1, numberOfCells);
-  auto materialId = NewIntArray(names::MaterialId, 1, numberOfCells);
-  auto materialType = NewIntArray(names::MaterialType, 1, numberOfCells);
-  auto twoSided = NewIntArray(names::TwoSided, 1, numberOfCells);
   auto degrees = NewIntArray(names::HigherOrderDegrees, 3, numberOfCells);
-  auto emission = NewDoubleArray(names::Emission, 3, numberOfCells);
-  auto diffuse = NewDoubleArray(names::Diffuse, 3, numberOfCells);
-  auto specular = NewDoubleArray(names::Specular, 3, numberOfCells);
-  auto exponent = NewDoubleArray(names::PhongExponent, 1, numberOfCells);
 
   std::vector<vtkIdType> ids;
   vtkIdType nextPoint = 0;
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
-    const sphcover::Surface& surface = scene.Surfaces[static_cast<size_t>(c)];
-    const sphcover::BezierPatch& patch = surface.Patch;
+    const sphcover::BezierPatch& patch = *patches[static_cast<size_t>(c)];
     const int m = patch.DegreeU();
     const int n = patch.DegreeV();
-    if (surface.IsTriangle)
+    if (IsTriangle(patch))
     {
       // Stored as (P00, P10, P11, P01 = P11): the triangle is P00, P10, P11.
       ids = { nextPoint, nextPoint + 1, nextPoint + 2 };
@@ -124,25 +117,40 @@ void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredG
     }
     cells->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
     nextPoint += static_cast<vtkIdType>(ids.size());
+    const int degree[3] = { m, n, 0 };
+    degrees->SetTypedTuple(c, degree);
+  }
+  output->SetPoints(points);
+  output->SetCells(types, cells);
+  output->GetCellData()->SetHigherOrderDegrees(degrees);
+}
 
+void vtkSurfaceGridBuilder::AddMaterialArrays(
+  const sphcover::Scene& scene, const std::vector<int>& surfaceOfCell, vtkUnstructuredGrid* output)
+{
+  const vtkIdType numberOfCells = static_cast<vtkIdType>(surfaceOfCell.size());
+  auto surfaceNameId = NewIntArray(names::SurfaceNameId, 1, numberOfCells);
+  auto materialId = NewIntArray(names::MaterialId, 1, numberOfCells);
+  auto materialType = NewIntArray(names::MaterialType, 1, numberOfCells);
+  auto twoSided = NewIntArray(names::TwoSided, 1, numberOfCells);
+  auto emission = NewDoubleArray(names::Emission, 3, numberOfCells);
+  auto diffuse = NewDoubleArray(names::Diffuse, 3, numberOfCells);
+  auto specular = NewDoubleArray(names::Specular, 3, numberOfCells);
+  auto exponent = NewDoubleArray(names::PhongExponent, 1, numberOfCells);
+  for (vtkIdType c = 0; c < numberOfCells; ++c)
+  {
+    const sphcover::Surface& surface = scene.Surfaces[static_cast<size_t>(surfaceOfCell[static_cast<size_t>(c)])];
     const sphcover::Material& material = scene.Materials[static_cast<size_t>(surface.MaterialIndex)];
-    surfaceId->SetValue(c, static_cast<int>(c));
     surfaceNameId->SetValue(c, surface.NameIndex);
     materialId->SetValue(c, surface.MaterialIndex);
     materialType->SetValue(c, static_cast<int>(material.Type));
     twoSided->SetValue(c, surface.TwoSided ? 1 : 0);
-    const int degree[3] = { m, n, 0 };
-    degrees->SetTypedTuple(c, degree);
     emission->SetTuple(c, &material.Emission[0]);
     diffuse->SetTuple(c, &material.Diffuse[0]);
     specular->SetTuple(c, &material.Specular[0]);
     exponent->SetValue(c, material.PhongExponent);
   }
-
-  output->SetPoints(points);
-  output->SetCells(types, cells);
   vtkCellData* cd = output->GetCellData();
-  cd->AddArray(surfaceId);
   cd->AddArray(surfaceNameId);
   cd->AddArray(materialId);
   cd->AddArray(materialType);
@@ -151,8 +159,31 @@ void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredG
   cd->AddArray(diffuse);
   cd->AddArray(specular);
   cd->AddArray(exponent);
-  cd->SetHigherOrderDegrees(degrees);
+}
 
+void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
+{
+  output->Initialize();
+  std::vector<const sphcover::BezierPatch*> patches;
+  std::vector<int> surfaceOfCell;
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    patches.push_back(&scene.Surfaces[s].Patch);
+    surfaceOfCell.push_back(static_cast<int>(s));
+  }
+  BuildCells(patches, output);
+  auto surfaceId = NewIntArray(names::SurfaceId, 1, static_cast<vtkIdType>(patches.size()));
+  for (size_t s = 0; s < patches.size(); ++s)
+  {
+    surfaceId->SetValue(static_cast<vtkIdType>(s), static_cast<int>(s));
+  }
+  output->GetCellData()->AddArray(surfaceId);
+  AddMaterialArrays(scene, surfaceOfCell, output);
+  AddFieldData(scene, output);
+}
+
+void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
+{
   vtkFieldData* fd = output->GetFieldData();
   auto surfaceNames = NewStringArray(names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()));
   for (size_t k = 0; k < scene.SurfaceNames.size(); ++k)

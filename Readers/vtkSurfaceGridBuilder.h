@@ -14,6 +14,8 @@
 
 #include "SphericalCoverReadersModule.h" // for export macro
 
+#include <vector> // for std::vector
+
 class vtkUnstructuredGrid;
 namespace sphcover
 {
@@ -24,8 +26,25 @@ class BezierPatch;
 class SPHERICALCOVERREADERS_EXPORT vtkSurfaceGridBuilder
 {
 public:
-  /// Replaces the contents of `output` with the scene's surfaces.
+  /// Replaces the contents of `output` with the scene's surfaces: cells, cell data
+  /// (SurfaceId and the material arrays) and field data.
   static void Build(const sphcover::Scene& scene, vtkUnstructuredGrid* output);
+
+  /// Replaces the points and cells of `output` with one cell per patch (with the
+  /// HigherOrderDegrees cell array). A bilinear patch with P(1,1) = P(0,1) is a triangle.
+  static void BuildCells(
+    const std::vector<const sphcover::BezierPatch*>& patches, vtkUnstructuredGrid* output);
+
+  /// Adds the cell arrays SurfaceNameId, MaterialId, MaterialType, TwoSided, Emission, Diffuse,
+  /// Specular and PhongExponent of the surface each cell belongs to.
+  static void AddMaterialArrays(
+    const sphcover::Scene& scene, const std::vector<int>& surfaceOfCell, vtkUnstructuredGrid* output);
+
+  /// Adds the field data: surface and material names, cameras, settings, source file.
+  static void AddFieldData(const sphcover::Scene& scene, vtkUnstructuredGrid* output);
+
+  /// True for the bilinear patch (P00, P10, P11, P01 = P11) that stores a triangle.
+  static bool IsTriangle(const sphcover::BezierPatch& patch);
 
   /// Index in VTK's Bezier quadrilateral point list of control point P_ij of a patch of
   /// degree (degreeU, degreeV).

@@ -11,6 +11,8 @@ find_package(VTK REQUIRED
     CommonExecutionModel
     CommonSystem
     FiltersCore
+    FiltersGeometry
+    FiltersSources
     IOCore
     IOGeometry
     IOPLY

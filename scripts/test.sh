@@ -16,7 +16,7 @@ if [[ ! -f "$asan/CMakeCache.txt" ]]; then
   cmake -S "$root" -B "$asan" -G Ninja \
     -DSPHCOVER_CORE_ONLY=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-    -DCMAKE_CXX_FLAGS="-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer"
+    -DSPHCOVER_SANITIZE=ON
 fi
 cmake --build "$asan" -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

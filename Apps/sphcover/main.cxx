@@ -3,26 +3,185 @@
  * @file main.cxx
  * @brief `sphcover`: the command-line program (SPEC §5).
  *
- * Every error is one line on stderr and a non-zero exit status.
+ *   sphcover info SCENE
+ *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
+ *
+ * Every error is one line on stderr and a non-zero exit status; no output file is left
+ * half-written (files are written under a temporary name and renamed when complete).
  */
+#include "ErrorCollector.h"
+#include "ProgressBar.h"
 #include "SceneSummary.h"
+
+#include "vtkIntervalSubdivisionFilter.h"
+#include "vtkPatchSceneReader.h"
 #include "vtkSceneFileLoader.h"
+#include "vtkSphericalCoverArrayNames.h"
 
 #include "InputError.h"
 #include "Scene.h"
+#include "SceneLoader.h"
 
 #include <CLI/CLI.hpp>
+#include <vtkDataArray.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
 #include <vtkSMPTools.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLMultiBlockDataWriter.h>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <stdexcept>
 
 namespace
 {
-int RunInfo(const std::string& sceneFile)
+struct Options
 {
-  const sphcover::Scene scene = vtkSceneFileLoader::Load(sceneFile);
+  std::string Scene;
+  std::string Output;
+  std::string RangeMethod = "bernstein";
+  std::vector<std::string> Settings;
+  int Threads = 0;
+  bool Quiet = false;
+};
+
+/// Updates an algorithm; on failure throws its first error as one line.
+void Run(vtkAlgorithm* algorithm, ErrorCollector& errors)
+{
+  errors.Watch(algorithm);
+  if (algorithm->GetExecutive()->Update() != 1)
+  {
+    throw std::runtime_error(errors.First());
+  }
+}
+
+/// The scene's settings block as the reader passed it on, with the --set overrides applied.
+sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<std::string>& sets)
+{
+  sphcover::SceneSettings settings;
+  vtkDataArray* values = surfaces->GetFieldData()->GetArray(vtkSphericalCoverArrayNames::SceneSettings);
+  if (values && values->GetNumberOfComponents() == 4)
+  {
+    settings.ThetaBins = static_cast<int>(values->GetComponent(0, 0));
+    settings.PhiBins = static_cast<int>(values->GetComponent(0, 1));
+    settings.MaxLevel = static_cast<int>(values->GetComponent(0, 2));
+    settings.Tolerance = values->GetComponent(0, 3);
+  }
+  for (const std::string& assignment : sets)
+  {
+    settings = sphcover::OverrideSetting(settings, assignment);
+  }
+  return settings;
+}
+
+/// Writes a dataset with VTK's XML writer so that no half-written output is ever visible: into
+/// a temporary folder beside the target, then renamed into place (a multiblock file's folder of
+/// pieces first, the file that refers to them last).
+void WriteAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path)
+{
+  namespace fs = std::filesystem;
+  const fs::path target = fs::absolute(path);
+  const fs::path folder = target.parent_path();
+  if (!fs::is_directory(folder))
+  {
+    throw std::runtime_error("cannot write '" + path + "': no folder " + folder.string());
+  }
+  std::string pattern = (folder / ("." + target.filename().string() + ".XXXXXX")).string();
+  if (!mkdtemp(pattern.data()))
+  {
+    throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
+  }
+  const fs::path staging(pattern);
+  const fs::path staged = staging / target.filename();
+  writer->SetInputData(data);
+  writer->SetFileName(staged.string().c_str());
+  ErrorCollector errors;
+  errors.Watch(writer);
+  const bool written = writer->Write() == 1 && writer->GetErrorCode() == 0;
+  std::error_code failure;
+  if (written)
+  {
+    // A multiblock writer puts its pieces in a folder named after the file's stem.
+    const fs::path pieces = staging / target.stem();
+    if (fs::is_directory(pieces))
+    {
+      fs::remove_all(folder / target.stem(), failure);
+      fs::rename(pieces, folder / target.stem(), failure);
+    }
+    if (!failure)
+    {
+      fs::rename(staged, target, failure);
+    }
+  }
+  fs::remove_all(staging);
+  if (!written || failure)
+  {
+    throw std::runtime_error("cannot write '" + path + "': " +
+      (written ? failure.message() : errors.First()));
+  }
+}
+
+int RunInfo(const Options& options)
+{
+  const sphcover::Scene scene = vtkSceneFileLoader::Load(options.Scene);
   sphcover::PrintSceneSummary(scene, std::cout);
+  return 0;
+}
+
+int RunSubdivide(const Options& options)
+{
+  ErrorCollector errors;
+  vtkNew<vtkPatchSceneReader> reader;
+  reader->SetFileName(options.Scene.c_str());
+  {
+    ProgressBar bar(reader, "read", options.Quiet);
+    Run(reader, errors);
+  }
+  const sphcover::SceneSettings settings = SettingsOf(reader->GetOutput(), options.Settings);
+
+  vtkNew<vtkIntervalSubdivisionFilter> subdivision;
+  subdivision->SetInputConnection(reader->GetOutputPort());
+  subdivision->SetThetaBins(settings.ThetaBins);
+  subdivision->SetPhiBins(settings.PhiBins);
+  subdivision->SetMaxLevel(settings.MaxLevel);
+  subdivision->SetTolerance(settings.Tolerance);
+  if (options.RangeMethod == "natural")
+  {
+    subdivision->SetRangeMethodToNaturalInterval();
+  }
+  double seconds = 0.0;
+  {
+    ProgressBar bar(subdivision, "subdivide", options.Quiet);
+    Run(subdivision, errors);
+    seconds = bar.Seconds();
+  }
+  vtkUnstructuredGrid* patches = subdivision->GetOutput();
+  auto* points = vtkPolyData::SafeDownCast(subdivision->GetOutputDataObject(1));
+
+  vtkNew<vtkMultiBlockDataSet> blocks;
+  blocks->SetNumberOfBlocks(2);
+  blocks->SetBlock(0, patches);
+  blocks->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "Patches");
+  blocks->SetBlock(1, points);
+  blocks->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "CharacteristicPoints");
+  vtkNew<vtkXMLMultiBlockDataWriter> writer;
+  WriteAtomically(writer, blocks, options.Output);
+
+  std::cout << "patches: " << patches->GetNumberOfCells() << "\n"
+            << "characteristic points: " << points->GetNumberOfPoints() << "\n"
+            << "pair tests: " << subdivision->GetPairTests() << "\n"
+            << "seconds: " << seconds << "\n"
+            << "written: " << options.Output << "\n";
   return 0;
 }
 }
@@ -34,14 +193,25 @@ int main(int argc, char** argv)
   app.require_subcommand(1);
   // Global options may also follow the subcommand: `sphcover info X --threads 2`.
   app.fallthrough();
-  int threads = 0;
-  app.add_option("--threads", threads, "Worker threads for the parallel stages (0: one per core)")
+  Options options;
+  app.add_option("--threads", options.Threads, "Worker threads for the parallel stages (0: one per core)")
     ->check(CLI::Range(0, 4096));
+  app.add_flag("--quiet,-q", options.Quiet, "No progress bars");
 
-  std::string sceneFile;
   CLI::App* info = app.add_subcommand("info", "Print a scene's summary: surfaces, patch degrees, "
                                               "materials, cameras, bounds and settings");
-  info->add_option("SCENE", sceneFile, "A .scene or .bpt file")->required();
+  info->add_option("SCENE", options.Scene, "A .scene or .bpt file")->required();
+
+  CLI::App* subdivide = app.add_subcommand("subdivide",
+    "Subdivide a scene into patches and characteristic points (paper section 4) and write both "
+    "as a VTK multiblock file (.vtm) for inspection in ParaView");
+  subdivide->add_option("SCENE", options.Scene, "A .scene or .bpt file")->required();
+  subdivide->add_option("-o,--output", options.Output, "Output file (.vtm)")->required();
+  subdivide->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
+    ->check(CLI::IsMember({ "bernstein", "natural" }));
+  subdivide->add_option("--set", options.Settings,
+    "Override a setting of the scene file, e.g. --set max_level=3 (theta_bins, phi_bins, "
+    "max_level, tolerance)");
 
   try
   {
@@ -54,13 +224,17 @@ int main(int argc, char** argv)
 
   // ParaView's VTK selects the Sequential SMP backend unless told otherwise (SPEC §2).
   vtkSMPTools::SetBackend("STDThread");
-  vtkSMPTools::Initialize(threads);
+  vtkSMPTools::Initialize(options.Threads);
 
   try
   {
     if (info->parsed())
     {
-      return RunInfo(sceneFile);
+      return RunInfo(options);
+    }
+    if (subdivide->parsed())
+    {
+      return RunSubdivide(options);
     }
   }
   catch (const std::exception& e)

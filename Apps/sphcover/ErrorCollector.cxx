@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "ErrorCollector.h"
+
+#include <vtkAlgorithm.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCommand.h>
+#include <vtkExecutive.h>
+
+ErrorCollector::ErrorCollector()
+  : Callback(vtkSmartPointer<vtkCallbackCommand>::New())
+{
+  this->Callback->SetCallback(&ErrorCollector::OnError);
+  this->Callback->SetClientData(this);
+}
+
+void ErrorCollector::Watch(vtkAlgorithm* algorithm)
+{
+  algorithm->AddObserver(vtkCommand::ErrorEvent, this->Callback);
+  // The executive's "returned failure for request" repeats what the algorithm said: observing
+  // it keeps it off the terminal; it is never the first message of interest.
+  algorithm->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, this->Callback);
+}
+
+void ErrorCollector::OnError(vtkObject* caller, unsigned long, void* clientData, void* callData)
+{
+  auto* self = static_cast<ErrorCollector*>(clientData);
+  if (vtkExecutive::SafeDownCast(caller) || !callData)
+  {
+    return;
+  }
+  // "ERROR: In <file>, line <n>\n<class> (<address>): <message>\n\n" -> "<message>".
+  std::string message = static_cast<const char*>(callData);
+  const size_t newline = message.find('\n');
+  if (newline != std::string::npos)
+  {
+    message = message.substr(newline + 1);
+  }
+  const size_t address = message.find("): ");
+  if (address != std::string::npos)
+  {
+    message = message.substr(address + 3);
+  }
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
+  {
+    message.pop_back();
+  }
+  self->Messages.push_back(message);
+}
+
+std::string ErrorCollector::First() const
+{
+  return this->Messages.empty() ? std::string("the pipeline failed without a message")
+                                : this->Messages.front();
+}

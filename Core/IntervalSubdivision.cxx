@@ -1,0 +1,278 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "IntervalSubdivision.h"
+
+#include "BoundingBoxTree.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <climits>
+#include <stdexcept>
+
+namespace sphcover
+{
+namespace
+{
+Box BoxOf(const Patch& patch)
+{
+  // The control net's box encloses the patch (convex hull property): the interval box of §4.1.
+  const IntervalVec3& bounds = patch.Geometry.Bounds();
+  return { bounds.Lower(), bounds.Upper() };
+}
+
+/// Lengths in 3-D of the patch along u and along v, from its control net (mean polygon length
+/// of the rows and of the columns): what "square in Euclidean space" compares (§4.3 note 3).
+void NetLengths(const BezierPatch& patch, double& alongU, double& alongV)
+{
+  const int m = patch.DegreeU();
+  const int n = patch.DegreeV();
+  alongU = 0.0;
+  alongV = 0.0;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i < m; ++i)
+    {
+      alongU += glm::length(patch.ControlPoint(i + 1, j) - patch.ControlPoint(i, j));
+    }
+  }
+  for (int i = 0; i <= m; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      alongV += glm::length(patch.ControlPoint(i, j + 1) - patch.ControlPoint(i, j));
+    }
+  }
+  alongU /= (n + 1);
+  alongV /= (m + 1);
+}
+
+/// Receivers per progress report / abort check.
+constexpr std::size_t BatchSize = 64;
+}
+
+IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSettings& settings)
+  : Environment(scene)
+  , Settings(settings)
+{
+  const std::string problem = settings.Problem();
+  if (!problem.empty())
+  {
+    throw std::invalid_argument(problem);
+  }
+  // Step 0: Q = S, each surface one patch over its whole domain.
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    this->Nodes.emplace_back(static_cast<int>(s), UVRect::Unit(), 0, scene.Surfaces[s].Patch);
+    this->Leaves.push_back(static_cast<int>(s));
+    this->LeafIsNew.push_back(true);
+  }
+}
+
+PatchView IntervalSubdivision::ViewOfPatch(const Patch& patch) const
+{
+  const Surface& surface = this->Environment.Surfaces[static_cast<size_t>(patch.SurfaceIndex)];
+  const Material& material = this->Environment.Materials[static_cast<size_t>(surface.MaterialIndex)];
+  return ViewOf(patch, material.Type == MaterialType::Diffuse, surface.TwoSided);
+}
+
+void IntervalSubdivision::Split(int node, SplitReason reason)
+{
+  const Patch& parent = this->Nodes[static_cast<size_t>(node)];
+  double alongU = 0.0;
+  double alongV = 0.0;
+  NetLengths(parent.Geometry, alongU, alongV);
+  const bool splitU = alongU >= alongV;
+  const UVRect d = parent.Domain;
+  const double lo = splitU ? d.U0 : d.V0;
+  const double hi = splitU ? d.U1 : d.V1;
+  // The cut values are computed once and shared by neighbouring pieces, so the pieces tile the
+  // parent's domain exactly.
+  const double cuts[4] = { lo, lo + (hi - lo) / 3.0, lo + 2.0 * (hi - lo) / 3.0, hi };
+  const int surface = parent.SurfaceIndex;
+  const int level = parent.Level + 1;
+  const BezierPatch& whole = this->Environment.Surfaces[static_cast<size_t>(surface)].Patch;
+  for (int k = 0; k < 3; ++k)
+  {
+    const UVRect piece = splitU ? UVRect{ cuts[k], cuts[k + 1], d.V0, d.V1 }
+                                : UVRect{ d.U0, d.U1, cuts[k], cuts[k + 1] };
+    // From the original surface, not the parent: no rounding accumulates over the levels.
+    this->Nodes.emplace_back(surface, piece, level, whole.SubPatch(piece));
+    this->Nodes.back().Reason = reason;
+  }
+}
+
+bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFor& parallelFor)
+{
+  const double cellAngle = this->Settings.CellAngle();
+  const int maxLevel = this->Settings.MaxLevel;
+  // Sweeps needed is unknown in advance; every sweep deepens by at most one level.
+  const double expectedSweeps = maxLevel + 1.0;
+
+  while (true)
+  {
+    const size_t count = this->Leaves.size();
+    std::vector<PatchView> views;
+    std::vector<Box> boxes;
+    views.reserve(count);
+    boxes.reserve(count);
+    for (int node : this->Leaves)
+    {
+      views.push_back(this->ViewOfPatch(this->Nodes[static_cast<size_t>(node)]));
+      boxes.push_back(BoxOf(this->Nodes[static_cast<size_t>(node)]));
+    }
+    BoundingBoxTree tree(boxes);
+    tree.MarkItems(this->LeafIsNew);
+
+    // A split of patch k is allowed when it is not at MaxLevel and projects, from the point
+    // that asks, to more than about one cell (§4.3 note 2).
+    auto canSplit = [&](size_t k, const glm::dvec3& from) {
+      if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= maxLevel)
+      {
+        return false;
+      }
+      const double distance = boxes[k].DistanceTo(from);
+      return distance <= 0.0 || boxes[k].Diagonal() > cellAngle * distance;
+    };
+
+    // Split requests: the highest-priority (lowest) reason per leaf, so that the merge does not
+    // depend on the order in which threads report.
+    std::vector<std::atomic<int>> requested(count);
+    for (auto& r : requested)
+    {
+      r.store(INT_MAX, std::memory_order_relaxed);
+    }
+    auto request = [&](size_t k, SplitReason reason) {
+      int current = requested[k].load(std::memory_order_relaxed);
+      const int value = static_cast<int>(reason);
+      while (value < current &&
+        !requested[k].compare_exchange_weak(current, value, std::memory_order_relaxed))
+      {
+      }
+    };
+    std::atomic<size_t> pairTests{ 0 };
+    std::atomic<size_t> limited{ 0 };
+
+    auto examineReceiver = [&](size_t i) {
+      const PatchView& receiver = views[i];
+      const bool receiverIsNew = this->LeafIsNew[i];
+      size_t localPairs = 0;
+      size_t localLimited = 0;
+      tree.Traverse(
+        [&](const BoundingBoxTree::Node& node) {
+          // Pairs of two old patches were settled in an earlier sweep.
+          if (!receiverIsNew && !node.Flag)
+          {
+            return false;
+          }
+          // A group wholly below the tangent plane sends no light to P_i: classified at once.
+          return receiver.TwoSided || node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
+        },
+        [&](int32_t item) {
+          const size_t j = static_cast<size_t>(item);
+          if (j == i || (!receiverIsNew && !this->LeafIsNew[j]))
+          {
+            return;
+          }
+          // The limits first: a pair whose patches may not be split either way cannot change Q.
+          const bool sourceMaySplit = canSplit(j, receiver.Point);
+          const bool receiverMaySplit = canSplit(i, views[j].Point);
+          if (!sourceMaySplit && !receiverMaySplit)
+          {
+            ++localLimited;
+            return;
+          }
+          ++localPairs;
+          const PairAssessment assessment =
+            AssessPair(receiver, views[j], this->Settings, sourceMaySplit, receiverMaySplit);
+          if (assessment.SplitSource != SplitReason::None)
+          {
+            request(j, assessment.SplitSource);
+          }
+          if (assessment.SplitReceiver != SplitReason::None)
+          {
+            request(i, assessment.SplitReceiver);
+          }
+        });
+      pairTests.fetch_add(localPairs, std::memory_order_relaxed);
+      limited.fetch_add(localLimited, std::memory_order_relaxed);
+    };
+
+    // Receivers in batches, so progress is reported (and abort honoured) from this thread.
+    for (size_t first = 0; first < count; first += BatchSize)
+    {
+      const size_t batch = std::min(BatchSize, count - first);
+      parallelFor(batch, [&](size_t begin, size_t end) {
+        for (size_t k = begin; k < end; ++k)
+        {
+          examineReceiver(first + k);
+        }
+      });
+      if (progress &&
+        !progress(std::min(1.0, (this->Stats.Sweeps + double(first + batch) / count) / expectedSweeps)))
+      {
+        return false;
+      }
+    }
+    this->Stats.PairTests += pairTests.load();
+    this->Stats.LimitedPairs += limited.load();
+    ++this->Stats.Sweeps;
+
+    std::vector<int> nextLeaves;
+    std::vector<bool> nextIsNew;
+    for (size_t k = 0; k < count; ++k)
+    {
+      const int reason = requested[k].load();
+      if (reason == INT_MAX)
+      {
+        nextLeaves.push_back(this->Leaves[k]);
+        nextIsNew.push_back(false);
+        continue;
+      }
+      const int firstChild = static_cast<int>(this->Nodes.size());
+      this->Split(this->Leaves[k], static_cast<SplitReason>(reason));
+      ++this->Stats.Splits[static_cast<size_t>(reason)];
+      for (int c = 0; c < 3; ++c)
+      {
+        nextLeaves.push_back(firstChild + c);
+        nextIsNew.push_back(true);
+      }
+    }
+    const bool splitAny = nextLeaves.size() != count;
+    this->Leaves = std::move(nextLeaves);
+    this->LeafIsNew = std::move(nextIsNew);
+    if (!splitAny)
+    {
+      break;
+    }
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+std::vector<Patch> IntervalSubdivision::Patches() const
+{
+  std::vector<Patch> patches;
+  patches.reserve(this->Leaves.size());
+  for (int node : this->Leaves)
+  {
+    patches.push_back(this->Nodes[static_cast<size_t>(node)]);
+  }
+  std::sort(patches.begin(), patches.end(), [](const Patch& a, const Patch& b) {
+    if (a.SurfaceIndex != b.SurfaceIndex)
+    {
+      return a.SurfaceIndex < b.SurfaceIndex;
+    }
+    if (a.Domain.V0 != b.Domain.V0)
+    {
+      return a.Domain.V0 < b.Domain.V0;
+    }
+    return a.Domain.U0 < b.Domain.U0;
+  });
+  return patches;
+}
+
+} // namespace sphcover

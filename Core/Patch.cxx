@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Patch.h"
+
+#include <glm/geometric.hpp>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+namespace sphcover
+{
+namespace
+{
+/// Nodes and weights of n-point Gauss-Legendre quadrature on [0,1] (Newton on P_n).
+struct GaussLegendre
+{
+  std::vector<double> Nodes;
+  std::vector<double> Weights;
+
+  explicit GaussLegendre(int n)
+  {
+    const double pi = 3.14159265358979323846;
+    for (int k = 0; k < n; ++k)
+    {
+      double x = std::cos(pi * (k + 0.75) / (n + 0.5));
+      double derivative = 0.0;
+      for (int iteration = 0; iteration < 100; ++iteration)
+      {
+        double p0 = 1.0;
+        double p1 = x;
+        for (int j = 2; j <= n; ++j)
+        {
+          const double p2 = ((2.0 * j - 1.0) * x * p1 - (j - 1.0) * p0) / j;
+          p0 = p1;
+          p1 = p2;
+        }
+        derivative = n * (x * p1 - p0) / (x * x - 1.0);
+        const double step = p1 / derivative;
+        x -= step;
+        if (std::fabs(step) < 1e-16)
+        {
+          break;
+        }
+      }
+      this->Nodes.push_back(0.5 * (1.0 - x));
+      this->Weights.push_back(1.0 / ((1.0 - x * x) * derivative * derivative));
+    }
+  }
+};
+
+const GaussLegendre& RuleOfOrder(int n)
+{
+  static std::array<std::unique_ptr<GaussLegendre>, 64> rules;
+  static std::once_flag once[64];
+  std::call_once(once[n], [n] { rules[static_cast<size_t>(n)] = std::make_unique<GaussLegendre>(n); });
+  return *rules[static_cast<size_t>(n)];
+}
+}
+
+double PatchArea(const BezierPatch& patch)
+{
+  // |N| is a square root of a polynomial of degree (4m-2, 4n-2): smooth wherever N does not
+  // vanish. A composite 2 x 2 rule of order 2*max(m,n)+6 per cell integrates the patches of
+  // the scenes (and the collapsed poles, where |N| goes to zero linearly) to ~1e-14.
+  const int order = std::min(2 * std::max(patch.DegreeU(), patch.DegreeV()) + 6, 63);
+  const GaussLegendre& rule = RuleOfOrder(order);
+  double area = 0.0;
+  for (int cellV = 0; cellV < 2; ++cellV)
+  {
+    for (int cellU = 0; cellU < 2; ++cellU)
+    {
+      for (int b = 0; b < order; ++b)
+      {
+        const double v = 0.5 * (cellV + rule.Nodes[static_cast<size_t>(b)]);
+        double row = 0.0;
+        for (int a = 0; a < order; ++a)
+        {
+          const double u = 0.5 * (cellU + rule.Nodes[static_cast<size_t>(a)]);
+          row += rule.Weights[static_cast<size_t>(a)] * glm::length(patch.UnnormalizedNormal(u, v));
+        }
+        area += rule.Weights[static_cast<size_t>(b)] * row;
+      }
+    }
+  }
+  return 0.25 * area;
+}
+
+Patch::Patch(int surfaceIndex, const UVRect& domain, int level, BezierPatch geometry)
+  : SurfaceIndex(surfaceIndex)
+  , Domain(domain)
+  , Level(level)
+  , Geometry(std::move(geometry))
+  , Point(this->Geometry.Evaluate(0.5, 0.5))
+  , Normal(this->Geometry.Normal(0.5, 0.5))
+  , Area(PatchArea(this->Geometry))
+{
+}
+
+const char* SplitReasonName(SplitReason reason)
+{
+  switch (reason)
+  {
+    case SplitReason::None:
+      return "None";
+    case SplitReason::SelfShadowing:
+      return "SelfShadowing";
+    case SplitReason::HemisphericalContainment:
+      return "HemisphericalContainment";
+    case SplitReason::SphericalShape:
+      return "SphericalShape";
+    case SplitReason::Characterisability:
+      return "Characterisability";
+    case SplitReason::RBuffer:
+      return "RBuffer";
+  }
+  return "Unknown";
+}
+
+} // namespace sphcover

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file RayCastFill.h
+ * @brief The second R-buffer fill (SPEC §4.3): the sample rays of every cell are cast from
+ * P_i through a tessellation of the exact patches with Intel Embree 3, and the first front
+ * side hit is mapped back to its patch.
+ *
+ * Tessellation: each patch is a grid of n_u x n_v quads (two triangles each), n even so that
+ * the parametric centre, the characteristic point, is a vertex (rays from P_i then never
+ * start inside one of its own triangles). n is chosen from the second-derivative bound of the
+ * control net so that the piecewise linear surface deviates from the patch by at most
+ * TessellationTolerance * Size(): the deviation of the linear interpolant over a triangle of
+ * a cell h_u x h_v is at most (h_u^2 M_uu + 2 h_u h_v M_uv + h_v^2 M_vv) / 8, M the largest
+ * second partials (convex hull of the second-difference nets). Patches of one surface with the
+ * same degrees share the largest n of them, so that uniformly split surfaces are tessellated
+ * without T-junctions (cracks) along their shared edges. n <= 256.
+ *
+ * One Embree scene holds the whole environment, one triangle geometry per patch (geometry id =
+ * patch index). Rays are single precision: origin P_i, the sample directions of
+ * HemisphereGrid in world coordinates. A context filter implements the visibility semantics of
+ * RBuffer.h: hits on a triangle's back side are skipped (traversal goes on behind them), and
+ * hits on the receiver's own patch nearer than the self-exclusion distance (or all of them when
+ * CountSelfVisibility is off).
+ *
+ * Refinement (RefineHits, default on): the hit's triangle and barycentric coordinates give the
+ * patch's (u, v); Newton's method on the exact Bezier patch (RayPatchIntersection) then gives
+ * the exact R and normal, from which a grazing hit (|cos| < GrazingCosine) is flagged. Without
+ * refinement R and the normal come from the triangle.
+ *
+ * The Embree device runs its BVH build in one thread (the environment is built once; results
+ * must not depend on a thread count), and rtcIntersect1 is called concurrently from the
+ * caller's threads, which Embree supports on a committed scene.
+ */
+#ifndef SPHCOVER_RAYCASTFILL_H
+#define SPHCOVER_RAYCASTFILL_H
+
+#include "RBuffer.h"
+
+#include <memory>
+#include <vector>
+
+namespace sphcover
+{
+
+class RayCastFiller : public RBufferFiller
+{
+public:
+  RayCastFiller(const std::vector<Patch>& patches,
+    const HemisphereGrid& grid,
+    const RBufferFillOptions& options);
+  ~RayCastFiller() override;
+  RayCastFiller(const RayCastFiller&) = delete;
+  RayCastFiller& operator=(const RayCastFiller&) = delete;
+
+  RBufferFill Kind() const override { return RBufferFill::RayCasting; }
+  void Fill(std::size_t receiver, RBuffer& buffer, CullingStatistics* culling) const override;
+  std::size_t EnvironmentBytes() const override;
+
+  /// Number of triangles of the tessellation.
+  std::size_t TriangleCount() const;
+  /// Tessellation resolution of a patch.
+  void Resolution(std::size_t patch, int& quadsU, int& quadsV) const;
+
+private:
+  struct Implementation;
+  std::unique_ptr<Implementation> Impl;
+};
+
+} // namespace sphcover
+
+#endif

@@ -1,0 +1,246 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkIntervalSubdivisionFilter.h"
+
+#include "vtkSMPParallelFor.h"
+#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSurfaceGridAdapter.h"
+#include "vtkSurfaceGridBuilder.h"
+
+#include "IntervalSubdivision.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataSet.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <exception>
+
+namespace names = vtkSphericalCoverArrayNames;
+
+vtkStandardNewMacro(vtkIntervalSubdivisionFilter);
+
+vtkIntervalSubdivisionFilter::vtkIntervalSubdivisionFilter()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkIntervalSubdivisionFilter::~vtkIntervalSubdivisionFilter() = default;
+
+void vtkIntervalSubdivisionFilter::SetTolerance(double tolerance)
+{
+  this->SetSelfShadowingTolerance(tolerance);
+  this->SetHemisphericalContainmentTolerance(tolerance);
+  this->SetSphericalShapeTolerance(tolerance);
+  this->SetCharacterisabilityTolerance(tolerance);
+}
+
+int vtkIntervalSubdivisionFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+int vtkIntervalSubdivisionFilter::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkUnstructuredGrid" : "vtkPolyData");
+  return 1;
+}
+
+namespace
+{
+vtkSmartPointer<vtkIntArray> IntArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<vtkIntArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+
+vtkSmartPointer<vtkDoubleArray> DoubleArray(const char* name, int components, vtkIdType tuples)
+{
+  auto array = vtkSmartPointer<vtkDoubleArray>::New();
+  array->SetName(name);
+  array->SetNumberOfComponents(components);
+  array->SetNumberOfTuples(tuples);
+  return array;
+}
+}
+
+int vtkIntervalSubdivisionFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  vtkUnstructuredGrid* patchesOut = vtkUnstructuredGrid::GetData(outputVector, 0);
+  vtkPolyData* pointsOut = vtkPolyData::GetData(outputVector, 1);
+  this->PairTests = 0;
+
+  sphcover::SubdivisionSettings settings;
+  settings.Method = this->RangeMethod == NATURAL_INTERVAL ? sphcover::RangeMethod::NaturalInterval
+                                                          : sphcover::RangeMethod::Bernstein;
+  settings.MaxLevel = this->MaxLevel;
+  settings.ThetaBins = this->ThetaBins;
+  settings.PhiBins = this->PhiBins;
+  const bool enabled[4] = { this->SelfShadowing, this->HemisphericalContainment,
+    this->SphericalShape, this->Characterisability };
+  const double tolerances[4] = { this->SelfShadowingTolerance,
+    this->HemisphericalContainmentTolerance, this->SphericalShapeTolerance,
+    this->CharacterisabilityTolerance };
+  for (int c = 0; c < sphcover::NumberOfCriteria; ++c)
+  {
+    settings.Enabled[c] = enabled[c];
+    settings.Tolerance[c] = tolerances[c];
+  }
+  const std::string problem = settings.Problem();
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< problem);
+    return 0;
+  }
+
+  sphcover::Scene scene;
+  std::string error;
+  if (!vtkSurfaceGridAdapter::ToScene(input, false, scene, error))
+  {
+    vtkErrorMacro(<< "Cannot subdivide this input: " << error);
+    return 0;
+  }
+
+  std::vector<sphcover::Patch> patches;
+  int sweeps = 0;
+  try
+  {
+    sphcover::IntervalSubdivision subdivision(scene, settings);
+    const bool completed = subdivision.Run(
+      [this](double fraction) {
+        this->UpdateProgress(0.95 * fraction);
+        return !this->GetAbortExecute();
+      },
+      vtkSMPParallelFor::Make());
+    if (!completed)
+    {
+      vtkWarningMacro("Subdivision aborted.");
+      return 0;
+    }
+    patches = subdivision.Patches();
+    this->PairTests = static_cast<vtkIdType>(subdivision.Statistics().PairTests);
+    sweeps = subdivision.Statistics().Sweeps;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Subdivision failed: " << e.what());
+    return 0;
+  }
+
+  // Output 0: the patches with their exact geometry.
+  const vtkIdType count = static_cast<vtkIdType>(patches.size());
+  std::vector<const sphcover::BezierPatch*> geometry;
+  std::vector<int> surfaceOfPatch;
+  for (const sphcover::Patch& patch : patches)
+  {
+    geometry.push_back(&patch.Geometry);
+    surfaceOfPatch.push_back(patch.SurfaceIndex);
+  }
+  patchesOut->Initialize();
+  vtkSurfaceGridBuilder::BuildCells(geometry, patchesOut);
+  vtkSurfaceGridBuilder::AddMaterialArrays(scene, surfaceOfPatch, patchesOut);
+  patchesOut->GetFieldData()->PassData(input->GetFieldData());
+  auto statistics = DoubleArray(names::SubdivisionStatistics, 2, 1);
+  statistics->SetComponentName(0, "PairTests");
+  statistics->SetComponentName(1, "Sweeps");
+  statistics->SetComponent(0, 0, static_cast<double>(this->PairTests));
+  statistics->SetComponent(0, 1, sweeps);
+  patchesOut->GetFieldData()->AddArray(statistics);
+
+  auto surfaceId = IntArray(names::SurfaceId, 1, count);
+  auto patchId = IntArray(names::PatchId, 1, count);
+  auto level = IntArray(names::Level, 1, count);
+  auto reason = IntArray(names::SplitReason, 1, count);
+  auto uvRange = DoubleArray(names::UVRange, 4, count);
+  auto area = DoubleArray(names::Area, 1, count);
+  for (int k = 0; k < 4; ++k)
+  {
+    uvRange->SetComponentName(k, k == 0 ? "u0" : k == 1 ? "u1" : k == 2 ? "v0" : "v1");
+  }
+  // Points: characteristic points and their attributes.
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(count);
+  vtkNew<vtkCellArray> vertices;
+  vertices->AllocateExact(count, count);
+  auto normals = DoubleArray(names::Normals, 3, count);
+  auto uv = DoubleArray(names::UV, 2, count);
+  for (vtkIdType p = 0; p < count; ++p)
+  {
+    const sphcover::Patch& patch = patches[static_cast<size_t>(p)];
+    surfaceId->SetValue(p, patch.SurfaceIndex);
+    patchId->SetValue(p, static_cast<int>(p));
+    level->SetValue(p, patch.Level);
+    reason->SetValue(p, static_cast<int>(patch.Reason));
+    const double range[4] = { patch.Domain.U0, patch.Domain.U1, patch.Domain.V0, patch.Domain.V1 };
+    uvRange->SetTuple(p, range);
+    area->SetValue(p, patch.Area);
+    points->SetPoint(p, &patch.Point[0]);
+    vertices->InsertNextCell(1, &p);
+    normals->SetTuple(p, &patch.Normal[0]);
+    const double centre[2] = { patch.Domain.CenterU(), patch.Domain.CenterV() };
+    uv->SetTuple(p, centre);
+  }
+  vtkCellData* cd = patchesOut->GetCellData();
+  cd->AddArray(surfaceId);
+  cd->AddArray(patchId);
+  cd->AddArray(level);
+  cd->AddArray(uvRange);
+  cd->AddArray(area);
+  cd->AddArray(reason);
+  cd->SetActiveScalars(names::SplitReason);
+  vtkNew<vtkStringArray> reasonNames;
+  reasonNames->SetName(names::SplitReasonNames);
+  for (int r = 0; r <= static_cast<int>(sphcover::SplitReason::RBuffer); ++r)
+  {
+    reasonNames->InsertNextValue(sphcover::SplitReasonName(static_cast<sphcover::SplitReason>(r)));
+  }
+  patchesOut->GetFieldData()->AddArray(reasonNames);
+
+  pointsOut->Initialize();
+  pointsOut->SetPoints(points);
+  pointsOut->SetVerts(vertices);
+  vtkPointData* pd = pointsOut->GetPointData();
+  pd->SetNormals(normals);
+  pd->AddArray(patchId);
+  pd->AddArray(surfaceId);
+  pd->AddArray(uv);
+  pd->AddArray(area);
+  pd->AddArray(level);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkIntervalSubdivisionFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "RangeMethod: " << (this->RangeMethod == BERNSTEIN ? "Bernstein" : "NaturalInterval")
+     << "\n";
+  os << indent << "MaxLevel: " << this->MaxLevel << "\n";
+  os << indent << "ThetaBins: " << this->ThetaBins << "\n";
+  os << indent << "PhiBins: " << this->PhiBins << "\n";
+  os << indent << "SelfShadowing: " << this->SelfShadowing << " (" << this->SelfShadowingTolerance << ")\n";
+  os << indent << "HemisphericalContainment: " << this->HemisphericalContainment << " ("
+     << this->HemisphericalContainmentTolerance << ")\n";
+  os << indent << "SphericalShape: " << this->SphericalShape << " (" << this->SphericalShapeTolerance
+     << ")\n";
+  os << indent << "Characterisability: " << this->Characterisability << " ("
+     << this->CharacterisabilityTolerance << ")\n";
+  os << indent << "PairTests: " << this->PairTests << "\n";
+}

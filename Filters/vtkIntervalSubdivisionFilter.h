@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkIntervalSubdivisionFilter
+ * @brief The environment-dependent subdivision of paper §4: the patch list Q and its
+ * characteristic points, by interval range tests over whole patches.
+ *
+ * Input: surfaces as vtkPatchSceneReader writes them (any dataset of Bezier quadrilaterals,
+ * quads and triangles with the material cell arrays of SPEC §4.1).
+ *
+ * Every pair (characteristic point P_i, patch Q_j) is tested against the criteria of paper
+ * §4.2: self-shadowing (§4.2.1), hemispherical containment (§4.2.2), spherical shape (§4.2.3:
+ * distance form for diffuse sources, normal form for the others) and characterisability
+ * (§4.2.4), each with its own switch and tolerance. A patch that fails is split in three along
+ * u or v (§4.3 note 3), exactly, until the criteria hold, MaxLevel is reached, or the patch
+ * projects to about one cell of the ThetaBins x PhiBins grid (§4.3 note 2). Pairs fully below
+ * the horizon or back-facing are classified, not split. The range estimates use Bernstein
+ * (convex hull) bounds or natural interval arithmetic (RangeMethod). See
+ * Core/SubdivisionCriteria.h for the exact tests and tolerances.
+ *
+ * Output 0 (vtkUnstructuredGrid): one cell per patch, its exact geometry (Bezier
+ * quadrilateral, quad or triangle), cell data `SurfaceId`, `PatchId`, `Level`, `UVRange`
+ * (u0, u1, v0, v1), `Area`, `SplitReason` (the criterion that caused the last split; names in
+ * the field array `SplitReasonNames`), and the material arrays of the input. Field data: the
+ * input's, plus `SubdivisionStatistics` (pair tests, sweeps).
+ *
+ * Output 1 (vtkPolyData): the characteristic points, one vertex each, at the parametric centre
+ * of each patch, with point data `Normals`, `PatchId`, `SurfaceId`, `UV`, `Area`, `Level`.
+ *
+ * @warning The work is parallel over receivers (vtkSMPTools); the result does not depend on the
+ * number of threads.
+ */
+#ifndef vtkIntervalSubdivisionFilter_h
+#define vtkIntervalSubdivisionFilter_h
+
+#include "SphericalCoverFiltersModule.h" // for export macro
+#include "vtkUnstructuredGridAlgorithm.h"
+
+class SPHERICALCOVERFILTERS_EXPORT vtkIntervalSubdivisionFilter : public vtkUnstructuredGridAlgorithm
+{
+public:
+  static vtkIntervalSubdivisionFilter* New();
+  vtkTypeMacro(vtkIntervalSubdivisionFilter, vtkUnstructuredGridAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum RangeMethods
+  {
+    BERNSTEIN = 0,
+    NATURAL_INTERVAL = 1
+  };
+
+  ///@{
+  /**
+   * How ranges of the criteria's polynomials are bounded: Bernstein (convex-hull) bounds of the
+   * exact sub-patch, or natural interval evaluation. Default is BERNSTEIN.
+   */
+  vtkSetClampMacro(RangeMethod, int, BERNSTEIN, NATURAL_INTERVAL);
+  vtkGetMacro(RangeMethod, int);
+  void SetRangeMethodToBernstein() { this->SetRangeMethod(BERNSTEIN); }
+  void SetRangeMethodToNaturalInterval() { this->SetRangeMethod(NATURAL_INTERVAL); }
+  ///@}
+
+  ///@{
+  /**
+   * The deepest subdivision level (ternary splits from a surface). Default is 5.
+   */
+  vtkSetMacro(MaxLevel, int);
+  vtkGetMacro(MaxLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * The (theta, phi) grid of the spherical cover: no patch is split once it projects to about
+   * one cell. Defaults are 32 and 128.
+   */
+  vtkSetMacro(ThetaBins, int);
+  vtkGetMacro(ThetaBins, int);
+  vtkSetMacro(PhiBins, int);
+  vtkGetMacro(PhiBins, int);
+  ///@}
+
+  ///@{
+  /**
+   * Self-shadowing criterion (paper §4.2.1): split a patch with a silhouette as seen from a
+   * characteristic point. Tolerance in units of |N| d (a cosine). Defaults are on and 0.02.
+   */
+  vtkSetMacro(SelfShadowing, bool);
+  vtkGetMacro(SelfShadowing, bool);
+  vtkBooleanMacro(SelfShadowing, bool);
+  vtkSetMacro(SelfShadowingTolerance, double);
+  vtkGetMacro(SelfShadowingTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Hemispherical containment criterion (paper §4.2.2): split a patch that straddles the
+   * horizon of a characteristic point. Tolerance relative to the distance. Defaults are on and
+   * 0.02.
+   */
+  vtkSetMacro(HemisphericalContainment, bool);
+  vtkGetMacro(HemisphericalContainment, bool);
+  vtkBooleanMacro(HemisphericalContainment, bool);
+  vtkSetMacro(HemisphericalContainmentTolerance, double);
+  vtkGetMacro(HemisphericalContainmentTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Spherical shape criterion (paper §4.2.3): split a source patch whose distance (diffuse) or
+   * projected normal (other materials) varies by more than the relative tolerance as seen from
+   * a characteristic point. Defaults are on and 0.02.
+   */
+  vtkSetMacro(SphericalShape, bool);
+  vtkGetMacro(SphericalShape, bool);
+  vtkBooleanMacro(SphericalShape, bool);
+  vtkSetMacro(SphericalShapeTolerance, double);
+  vtkGetMacro(SphericalShapeTolerance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Characterisability criterion (paper §4.2.4): split a receiving patch whose normal varies
+   * by more than the relative tolerance with respect to the direction to a source point.
+   * Defaults are on and 0.02.
+   */
+  vtkSetMacro(Characterisability, bool);
+  vtkGetMacro(Characterisability, bool);
+  vtkBooleanMacro(Characterisability, bool);
+  vtkSetMacro(CharacterisabilityTolerance, double);
+  vtkGetMacro(CharacterisabilityTolerance, double);
+  ///@}
+
+  /// Sets all four tolerances (the scene file's single "tolerance").
+  void SetTolerance(double tolerance);
+
+  /// Pair tests of the last update (pairs whose criteria were range-tested).
+  vtkGetMacro(PairTests, vtkIdType);
+
+protected:
+  vtkIntervalSubdivisionFilter();
+  ~vtkIntervalSubdivisionFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int RangeMethod = BERNSTEIN;
+  int MaxLevel = 5;
+  int ThetaBins = 32;
+  int PhiBins = 128;
+  bool SelfShadowing = true;
+  double SelfShadowingTolerance = 0.02;
+  bool HemisphericalContainment = true;
+  double HemisphericalContainmentTolerance = 0.02;
+  bool SphericalShape = true;
+  double SphericalShapeTolerance = 0.02;
+  bool Characterisability = true;
+  double CharacterisabilityTolerance = 0.02;
+  vtkIdType PairTests = 0;
+
+private:
+  vtkIntervalSubdivisionFilter(const vtkIntervalSubdivisionFilter&) = delete;
+  void operator=(const vtkIntervalSubdivisionFilter&) = delete;
+};
+
+#endif

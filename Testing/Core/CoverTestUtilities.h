@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file CoverTestUtilities.h
+ * @brief Shared fixtures of the hemisphere, R-buffer and spherical cover tests: patch lists
+ * made by splitting every surface of a scene uniformly (the interval subdivision engine is not
+ * used, so the tests exercise the cover alone), rectangles for Howell's configurations, and
+ * Howell's closed forms (Data/scenes/tools/howell.py).
+ */
+#ifndef SPHCOVER_COVERTESTUTILITIES_H
+#define SPHCOVER_COVERTESTUTILITIES_H
+
+#include "BezierPatch.h"
+#include "Patch.h"
+#include "Scene.h"
+#include "SceneLoader.h"
+
+#include <glm/vec3.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace sphcover_test
+{
+
+/// A problem-size factor: sanitizer builds run smaller problems, same tolerances.
+#ifdef SPHCOVER_SANITIZED
+constexpr bool Sanitized = true;
+#else
+constexpr bool Sanitized = false;
+#endif
+
+inline std::string ScenePath(const std::string& name)
+{
+  return std::string(SPHCOVER_DATA_DIR) + "/scenes/" + name;
+}
+
+/// Appends the uniform splitCount x splitCount sub-patches of a surface.
+inline void AppendSplit(std::vector<sphcover::Patch>& patches,
+  const sphcover::BezierPatch& surface,
+  int surfaceIndex,
+  int splitU,
+  int splitV)
+{
+  for (int b = 0; b < splitV; ++b)
+  {
+    for (int a = 0; a < splitU; ++a)
+    {
+      const sphcover::UVRect rect{ static_cast<double>(a) / splitU,
+        a + 1 == splitU ? 1.0 : static_cast<double>(a + 1) / splitU,
+        static_cast<double>(b) / splitV,
+        b + 1 == splitV ? 1.0 : static_cast<double>(b + 1) / splitV };
+      patches.emplace_back(surfaceIndex, rect, 0, surface.SubPatch(rect));
+    }
+  }
+}
+
+/// Every surface of the scene split into split x split patches.
+inline std::vector<sphcover::Patch> SplitScene(const sphcover::Scene& scene, int split)
+{
+  std::vector<sphcover::Patch> patches;
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    AppendSplit(patches, scene.Surfaces[s].Patch, static_cast<int>(s), split, split);
+  }
+  return patches;
+}
+
+/// A bilinear patch with corners origin, origin + e1, origin + e1 + e2, origin + e2: its front
+/// side is e1 x e2.
+inline sphcover::BezierPatch Parallelogram(const glm::dvec3& origin,
+  const glm::dvec3& e1,
+  const glm::dvec3& e2)
+{
+  return sphcover::BezierPatch(1, 1, { origin, origin + e1, origin + e2, origin + e1 + e2 });
+}
+
+/// Howell C-11: parallel, directly opposed, equal a x b rectangles at distance c.
+inline double HowellParallel(double a, double b, double c)
+{
+  const double x = a / c;
+  const double y = b / c;
+  const double x1 = 1 + x * x;
+  const double y1 = 1 + y * y;
+  const double pi = 3.14159265358979323846;
+  return 2.0 / (pi * x * y) *
+    (std::log(std::sqrt(x1 * y1 / (x1 + y * y))) +
+      x * std::sqrt(y1) * std::atan(x / std::sqrt(y1)) +
+      y * std::sqrt(x1) * std::atan(y / std::sqrt(x1)) - x * std::atan(x) - y * std::atan(y));
+}
+
+/// Howell C-14: from plate A (l x w) to plate B (l x h), perpendicular, common edge l.
+inline double HowellPerpendicular(double l, double w, double h)
+{
+  const double H = h / l;
+  const double W = w / l;
+  const double h2 = H * H;
+  const double w2 = W * W;
+  const double s = std::sqrt(h2 + w2);
+  const double logTerm = std::log((1 + w2) * (1 + h2) / (1 + w2 + h2)) +
+    w2 * std::log(w2 * (1 + w2 + h2) / ((1 + w2) * (w2 + h2))) +
+    h2 * std::log(h2 * (1 + h2 + w2) / ((1 + h2) * (h2 + w2)));
+  const double pi = 3.14159265358979323846;
+  return 1.0 / (pi * W) *
+    (W * std::atan(1 / W) + H * std::atan(1 / H) - s * std::atan(1 / s) + 0.25 * logTerm);
+}
+
+} // namespace sphcover_test
+
+#endif

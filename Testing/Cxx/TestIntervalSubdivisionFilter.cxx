@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// vtkIntervalSubdivisionFilter:
+// - a regression image (VTK-style baseline) of the paper's Fig. 9 situation: a doubly curved
+//   patch seen from a point near it, its patches coloured by SplitReason with their edges;
+// - bad properties and inputs give one clear error and a failed request, never a crash.
+#include "vtkIntervalSubdivisionFilter.h"
+#include "vtkPatchSceneReader.h"
+#include "vtkSurfaceGridAdapter.h"
+
+#include "Scene.h"
+
+#include <vtkActor.h>
+#include <vtkCallbackCommand.h>
+#include <vtkCamera.h>
+#include <vtkCellData.h>
+#include <vtkCellArray.h>
+#include <vtkCommand.h>
+#include <vtkDataSetMapper.h>
+#include <vtkDataSetSurfaceFilter.h>
+#include <vtkPoints.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkSphereSource.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkLookupTable.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkProperty.h>
+#include <vtkRegressionTestImage.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <iostream>
+#include <string>
+#include <vector>
+
+namespace
+{
+void Record(vtkObject*, unsigned long, void* clientData, void* callData)
+{
+  std::string message = callData ? static_cast<const char*>(callData) : "";
+  // Keep the message itself, not VTK's "ERROR: In file, line" header (CTest would fail on it).
+  static_cast<std::vector<std::string>*>(clientData)->push_back(message.substr(message.find('\n') + 1));
+}
+
+/// Updates the filter expecting a failure with one error that contains `fragment`.
+int ExpectFailure(vtkIntervalSubdivisionFilter* filter, const std::string& fragment)
+{
+  std::vector<std::string> errors;
+  std::vector<std::string> executiveErrors;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetCallback(Record);
+  onError->SetClientData(&errors);
+  vtkNew<vtkCallbackCommand> onExecutiveError;
+  onExecutiveError->SetCallback(Record);
+  onExecutiveError->SetClientData(&executiveErrors);
+  filter->AddObserver(vtkCommand::ErrorEvent, onError);
+  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, onExecutiveError);
+  const int status = filter->GetExecutive()->Update();
+  filter->RemoveAllObservers();
+  filter->GetExecutive()->RemoveAllObservers();
+  if (status != 0 || errors.size() != 1 || errors[0].find(fragment) == std::string::npos)
+  {
+    std::cerr << "FAILED: expected one error with '" << fragment << "', got status " << status
+              << " and " << errors.size() << " errors" << (errors.empty() ? "" : ": " + errors[0])
+              << "\n";
+    return 1;
+  }
+  std::cout << "as expected: " << errors[0];
+  return 0;
+}
+
+/// The outlines of the patches: their exact boundary curves, sampled.
+vtkSmartPointer<vtkPolyData> PatchOutlines(vtkUnstructuredGrid* patches)
+{
+  sphcover::Scene scene;
+  std::string error;
+  vtkSurfaceGridAdapter::ToScene(patches, true, scene, error);
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkCellArray> lines;
+  constexpr int samples = 16;
+  for (const sphcover::Surface& surface : scene.Surfaces)
+  {
+    std::vector<vtkIdType> ids;
+    for (int side = 0; side < 4; ++side)
+    {
+      for (int k = 0; k < samples; ++k)
+      {
+        const double t = double(k) / samples;
+        const double uv[4][2] = { { t, 0 }, { 1, t }, { 1 - t, 1 }, { 0, 1 - t } };
+        const glm::dvec3 p = surface.Patch.Evaluate(uv[side][0], uv[side][1]);
+        ids.push_back(points->InsertNextPoint(p.x, p.y, p.z));
+      }
+    }
+    ids.push_back(ids.front());
+    lines->InsertNextCell(static_cast<vtkIdType>(ids.size()), ids.data());
+  }
+  auto outlines = vtkSmartPointer<vtkPolyData>::New();
+  outlines->SetPoints(points);
+  outlines->SetLines(lines);
+  return outlines;
+}
+}
+
+int TestIntervalSubdivisionFilter(int argc, char* argv[])
+{
+  int failures = 0;
+  vtkNew<vtkPatchSceneReader> reader;
+  reader->SetFileName(SPHCOVER_DATA_DIR "/scenes/fig9_dome.scene");
+
+  // Bad properties.
+  {
+    vtkNew<vtkIntervalSubdivisionFilter> filter;
+    filter->SetInputConnection(reader->GetOutputPort());
+    filter->SetSphericalShapeTolerance(-0.5);
+    failures += ExpectFailure(filter, "SphericalShapeTolerance must be");
+    filter->SetSphericalShapeTolerance(0.02);
+    filter->SetMaxLevel(-1);
+    failures += ExpectFailure(filter, "MaxLevel must be >= 0");
+    filter->SetMaxLevel(2);
+    filter->SetPhiBins(0);
+    failures += ExpectFailure(filter, "PhiBins");
+  }
+  // Bad inputs: empty, and surfaces without the material arrays.
+  {
+    vtkNew<vtkUnstructuredGrid> empty;
+    vtkNew<vtkIntervalSubdivisionFilter> filter;
+    filter->SetInputData(empty);
+    failures += ExpectFailure(filter, "no surfaces");
+
+    reader->Update();
+    vtkNew<vtkUnstructuredGrid> bare;
+    bare->ShallowCopy(reader->GetOutput());
+    bare->GetCellData()->RemoveArray("Diffuse");
+    filter->SetInputData(bare);
+    failures += ExpectFailure(filter, "lacks the material cell arrays");
+  }
+
+  // The Fig. 9 dome with the scene's settings, coloured by SplitReason.
+  vtkNew<vtkIntervalSubdivisionFilter> subdivision;
+  subdivision->SetInputConnection(reader->GetOutputPort());
+  subdivision->Update();
+  vtkUnstructuredGrid* patches = subdivision->GetOutput();
+  std::cout << patches->GetNumberOfCells() << " patches, " << subdivision->GetPairTests()
+            << " pair tests\n";
+  if (patches->GetNumberOfCells() <= 2 ||
+    vtkPolyData::SafeDownCast(subdivision->GetOutputDataObject(1))->GetNumberOfPoints() !=
+      patches->GetNumberOfCells())
+  {
+    std::cerr << "FAILED: the dome was not subdivided into patches and points\n";
+    ++failures;
+  }
+
+  vtkNew<vtkLookupTable> reasons;
+  reasons->SetNumberOfTableValues(6);
+  reasons->SetTableRange(0, 5);
+  const double colours[6][3] = { { 0.8, 0.8, 0.8 }, { 0.85, 0.2, 0.2 }, { 0.2, 0.45, 0.85 },
+    { 0.25, 0.7, 0.3 }, { 0.9, 0.65, 0.1 }, { 0.6, 0.3, 0.7 } };
+  for (int r = 0; r < 6; ++r)
+  {
+    reasons->SetTableValue(r, colours[r][0], colours[r][1], colours[r][2]);
+  }
+  // The exact curved patches (finely tessellated for display), their outlines, and the
+  // receiver's characteristic point.
+  vtkNew<vtkDataSetSurfaceFilter> surfaces;
+  surfaces->SetInputConnection(subdivision->GetOutputPort(0));
+  surfaces->SetNonlinearSubdivisionLevel(3);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(surfaces->GetOutputPort());
+  mapper->SetScalarModeToUseCellFieldData();
+  mapper->SelectColorArray("SplitReason");
+  mapper->SetLookupTable(reasons);
+  mapper->SetScalarRange(0, 5);
+  mapper->ScalarVisibilityOn();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  vtkNew<vtkPolyDataMapper> outlineMapper;
+  outlineMapper->SetInputData(PatchOutlines(patches));
+  outlineMapper->SetResolveCoincidentTopologyToPolygonOffset();
+  vtkNew<vtkActor> outlineActor;
+  outlineActor->SetMapper(outlineMapper);
+  outlineActor->GetProperty()->SetColor(0.1, 0.1, 0.1);
+  vtkNew<vtkSphereSource> eye;
+  eye->SetCenter(1.6, 0.0, 0.65);
+  eye->SetRadius(0.05);
+  vtkNew<vtkPolyDataMapper> eyeMapper;
+  eyeMapper->SetInputConnection(eye->GetOutputPort());
+  vtkNew<vtkActor> eyeActor;
+  eyeActor->SetMapper(eyeMapper);
+  eyeActor->GetProperty()->SetColor(0.1, 0.1, 0.1);
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddActor(actor);
+  renderer->AddActor(outlineActor);
+  renderer->AddActor(eyeActor);
+  renderer->SetBackground(1, 1, 1);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetPosition(2.6, -3.2, 3.0);
+  camera->SetFocalPoint(0.2, 0, 0.5);
+  camera->SetViewUp(0, 0, 1);
+  camera->SetViewAngle(30);
+  vtkNew<vtkRenderWindow> window;
+  window->SetSize(400, 300);
+  window->AddRenderer(renderer);
+  window->Render();
+  const int image = vtkRegressionTestImage(window);
+  if (image == vtkTesting::FAILED)
+  {
+    ++failures;
+  }
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
