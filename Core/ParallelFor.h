@@ -10,8 +10,11 @@
 #ifndef SPHCOVER_PARALLELFOR_H
 #define SPHCOVER_PARALLELFOR_H
 
+#include <atomic>
 #include <cstddef>
 #include <functional>
+#include <thread>
+#include <vector>
 
 namespace sphcover
 {
@@ -27,6 +30,29 @@ inline void SequentialFor(
   {
     body(0, count);
   }
+}
+
+/// Runs the range on `threads` std::threads, one item at a time: for Core-only programs
+/// (benchmarks, tests) that have no vtkSMPTools.
+inline ParallelFor ThreadedFor(int threads)
+{
+  return [threads](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) {
+    std::atomic<std::size_t> next{ 0 };
+    std::vector<std::thread> pool;
+    for (int t = 0; t < threads; ++t)
+    {
+      pool.emplace_back([&] {
+        for (std::size_t k = next++; k < count; k = next++)
+        {
+          body(k, k + 1);
+        }
+      });
+    }
+    for (std::thread& thread : pool)
+    {
+      thread.join();
+    }
+  };
 }
 
 /// Reports the fraction done in [0,1]; returns false to abort the work.

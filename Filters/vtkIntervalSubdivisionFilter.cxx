@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkIntervalSubdivisionFilter.h"
 
+#include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -55,27 +56,6 @@ int vtkIntervalSubdivisionFilter::FillOutputPortInformation(int port, vtkInforma
 {
   info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkUnstructuredGrid" : "vtkPolyData");
   return 1;
-}
-
-namespace
-{
-vtkSmartPointer<vtkIntArray> IntArray(const char* name, int components, vtkIdType tuples)
-{
-  auto array = vtkSmartPointer<vtkIntArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
-
-vtkSmartPointer<vtkDoubleArray> DoubleArray(const char* name, int components, vtkIdType tuples)
-{
-  auto array = vtkSmartPointer<vtkDoubleArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
 }
 
 int vtkIntervalSubdivisionFilter::RequestData(
@@ -156,19 +136,19 @@ int vtkIntervalSubdivisionFilter::RequestData(
   vtkSurfaceGridBuilder::BuildCells(geometry, patchesOut);
   vtkSurfaceGridBuilder::AddMaterialArrays(scene, surfaceOfPatch, patchesOut);
   patchesOut->GetFieldData()->PassData(input->GetFieldData());
-  auto statistics = DoubleArray(names::SubdivisionStatistics, 2, 1);
+  auto statistics = vtkNamedArrays::Double(names::SubdivisionStatistics, 2, 1);
   statistics->SetComponentName(0, "PairTests");
   statistics->SetComponentName(1, "Sweeps");
   statistics->SetComponent(0, 0, static_cast<double>(this->PairTests));
   statistics->SetComponent(0, 1, sweeps);
   patchesOut->GetFieldData()->AddArray(statistics);
 
-  auto surfaceId = IntArray(names::SurfaceId, 1, count);
-  auto patchId = IntArray(names::PatchId, 1, count);
-  auto level = IntArray(names::Level, 1, count);
-  auto reason = IntArray(names::SplitReason, 1, count);
-  auto uvRange = DoubleArray(names::UVRange, 4, count);
-  auto area = DoubleArray(names::Area, 1, count);
+  auto surfaceId = vtkNamedArrays::Int(names::SurfaceId, 1, count);
+  auto patchId = vtkNamedArrays::Int(names::PatchId, 1, count);
+  auto level = vtkNamedArrays::Int(names::Level, 1, count);
+  auto reason = vtkNamedArrays::Int(names::SplitReason, 1, count);
+  auto uvRange = vtkNamedArrays::Double(names::UVRange, 4, count);
+  auto area = vtkNamedArrays::Double(names::Area, 1, count);
   for (int k = 0; k < 4; ++k)
   {
     uvRange->SetComponentName(k, k == 0 ? "u0" : k == 1 ? "u1" : k == 2 ? "v0" : "v1");
@@ -179,8 +159,8 @@ int vtkIntervalSubdivisionFilter::RequestData(
   points->SetNumberOfPoints(count);
   vtkNew<vtkCellArray> vertices;
   vertices->AllocateExact(count, count);
-  auto normals = DoubleArray(names::Normals, 3, count);
-  auto uv = DoubleArray(names::UV, 2, count);
+  auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
+  auto uv = vtkNamedArrays::Double(names::UV, 2, count);
   for (vtkIdType p = 0; p < count; ++p)
   {
     const sphcover::Patch& patch = patches[static_cast<size_t>(p)];

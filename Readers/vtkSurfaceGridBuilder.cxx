@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSurfaceGridBuilder.h"
 
+#include "vtkNamedArrays.h"
 #include "vtkSphericalCoverArrayNames.h"
 
 #include "BezierPatch.h"
@@ -21,35 +22,6 @@
 #include <vtkUnstructuredGrid.h>
 
 namespace names = vtkSphericalCoverArrayNames;
-
-namespace
-{
-vtkSmartPointer<vtkDoubleArray> NewDoubleArray(const char* name, int components, vtkIdType tuples)
-{
-  auto array = vtkSmartPointer<vtkDoubleArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
-
-vtkSmartPointer<vtkIntArray> NewIntArray(const char* name, int components, vtkIdType tuples)
-{
-  auto array = vtkSmartPointer<vtkIntArray>::New();
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(tuples);
-  return array;
-}
-
-vtkSmartPointer<vtkStringArray> NewStringArray(const char* name, vtkIdType values)
-{
-  auto array = vtkSmartPointer<vtkStringArray>::New();
-  array->SetName(name);
-  array->SetNumberOfValues(values);
-  return array;
-}
-}
 
 int vtkSurfaceGridBuilder::VTKPointIndex(int i, int j, int degreeU, int degreeV)
 {
@@ -79,7 +51,7 @@ void vtkSurfaceGridBuilder::BuildCells(
   cells->AllocateExact(numberOfCells, numberOfPoints);
   vtkNew<vtkUnsignedCharArray> types;
   types->SetNumberOfValues(numberOfCells);
-  auto degrees = NewIntArray(names::HigherOrderDegrees, 3, numberOfCells);
+  auto degrees = vtkNamedArrays::Int(names::HigherOrderDegrees, 3, numberOfCells);
 
   std::vector<vtkIdType> ids;
   vtkIdType nextPoint = 0;
@@ -129,14 +101,14 @@ void vtkSurfaceGridBuilder::AddMaterialArrays(
   const sphcover::Scene& scene, const std::vector<int>& surfaceOfCell, vtkUnstructuredGrid* output)
 {
   const vtkIdType numberOfCells = static_cast<vtkIdType>(surfaceOfCell.size());
-  auto surfaceNameId = NewIntArray(names::SurfaceNameId, 1, numberOfCells);
-  auto materialId = NewIntArray(names::MaterialId, 1, numberOfCells);
-  auto materialType = NewIntArray(names::MaterialType, 1, numberOfCells);
-  auto twoSided = NewIntArray(names::TwoSided, 1, numberOfCells);
-  auto emission = NewDoubleArray(names::Emission, 3, numberOfCells);
-  auto diffuse = NewDoubleArray(names::Diffuse, 3, numberOfCells);
-  auto specular = NewDoubleArray(names::Specular, 3, numberOfCells);
-  auto exponent = NewDoubleArray(names::PhongExponent, 1, numberOfCells);
+  auto surfaceNameId = vtkNamedArrays::Int(names::SurfaceNameId, 1, numberOfCells);
+  auto materialId = vtkNamedArrays::Int(names::MaterialId, 1, numberOfCells);
+  auto materialType = vtkNamedArrays::Int(names::MaterialType, 1, numberOfCells);
+  auto twoSided = vtkNamedArrays::Int(names::TwoSided, 1, numberOfCells);
+  auto emission = vtkNamedArrays::Double(names::Emission, 3, numberOfCells);
+  auto diffuse = vtkNamedArrays::Double(names::Diffuse, 3, numberOfCells);
+  auto specular = vtkNamedArrays::Double(names::Specular, 3, numberOfCells);
+  auto exponent = vtkNamedArrays::Double(names::PhongExponent, 1, numberOfCells);
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
     const sphcover::Surface& surface = scene.Surfaces[static_cast<size_t>(surfaceOfCell[static_cast<size_t>(c)])];
@@ -172,7 +144,7 @@ void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredG
     surfaceOfCell.push_back(static_cast<int>(s));
   }
   BuildCells(patches, output);
-  auto surfaceId = NewIntArray(names::SurfaceId, 1, static_cast<vtkIdType>(patches.size()));
+  auto surfaceId = vtkNamedArrays::Int(names::SurfaceId, 1, static_cast<vtkIdType>(patches.size()));
   for (size_t s = 0; s < patches.size(); ++s)
   {
     surfaceId->SetValue(static_cast<vtkIdType>(s), static_cast<int>(s));
@@ -185,7 +157,7 @@ void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredG
 void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
 {
   vtkFieldData* fd = output->GetFieldData();
-  auto surfaceNames = NewStringArray(names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()));
+  auto surfaceNames = vtkNamedArrays::String(names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()));
   for (size_t k = 0; k < scene.SurfaceNames.size(); ++k)
   {
     surfaceNames->SetValue(static_cast<vtkIdType>(k), scene.SurfaceNames[k]);
@@ -193,9 +165,9 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   fd->AddArray(surfaceNames);
 
   const vtkIdType numberOfMaterials = static_cast<vtkIdType>(scene.Materials.size());
-  auto materialNames = NewStringArray(names::MaterialNames, numberOfMaterials);
-  auto materialTypes = NewStringArray(names::MaterialTypeNames, numberOfMaterials);
-  auto materialFiles = NewStringArray(names::MaterialFiles, numberOfMaterials);
+  auto materialNames = vtkNamedArrays::String(names::MaterialNames, numberOfMaterials);
+  auto materialTypes = vtkNamedArrays::String(names::MaterialTypeNames, numberOfMaterials);
+  auto materialFiles = vtkNamedArrays::String(names::MaterialFiles, numberOfMaterials);
   for (vtkIdType k = 0; k < numberOfMaterials; ++k)
   {
     const sphcover::Material& material = scene.Materials[static_cast<size_t>(k)];
@@ -208,8 +180,8 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   fd->AddArray(materialFiles);
 
   const vtkIdType numberOfCameras = static_cast<vtkIdType>(scene.Cameras.size());
-  auto cameraNames = NewStringArray(names::CameraNames, numberOfCameras);
-  auto cameraParameters = NewDoubleArray(names::CameraParameters, 12, numberOfCameras);
+  auto cameraNames = vtkNamedArrays::String(names::CameraNames, numberOfCameras);
+  auto cameraParameters = vtkNamedArrays::Double(names::CameraParameters, 12, numberOfCameras);
   const char* cameraComponents[12] = { "PositionX", "PositionY", "PositionZ", "FocalPointX",
     "FocalPointY", "FocalPointZ", "ViewUpX", "ViewUpY", "ViewUpZ", "ViewAngle", "Width", "Height" };
   for (int k = 0; k < 12; ++k)
@@ -229,7 +201,7 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   fd->AddArray(cameraNames);
   fd->AddArray(cameraParameters);
 
-  auto settings = NewDoubleArray(names::SceneSettings, 4, 1);
+  auto settings = vtkNamedArrays::Double(names::SceneSettings, 4, 1);
   settings->SetComponentName(0, "theta_bins");
   settings->SetComponentName(1, "phi_bins");
   settings->SetComponentName(2, "max_level");
@@ -239,7 +211,7 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   settings->SetTuple(0, settingValues);
   fd->AddArray(settings);
 
-  auto sourceFile = NewStringArray(names::SourceFile, 1);
+  auto sourceFile = vtkNamedArrays::String(names::SourceFile, 1);
   sourceFile->SetValue(0, scene.SourceFile);
   fd->AddArray(sourceFile);
 }

@@ -69,27 +69,6 @@ BezierPatch Dome()
   return BezierPatch(3, 3, points);
 }
 
-/// A ParallelFor that really runs on `threads` threads, in chunks of one item.
-ParallelFor Threads(int threads)
-{
-  return [threads](size_t count, const std::function<void(size_t, size_t)>& body) {
-    std::atomic<size_t> next{ 0 };
-    std::vector<std::thread> pool;
-    for (int t = 0; t < threads; ++t)
-    {
-      pool.emplace_back([&] {
-        for (size_t k = next++; k < count; k = next++)
-        {
-          body(k, k + 1);
-        }
-      });
-    }
-    for (auto& thread : pool)
-    {
-      thread.join();
-    }
-  };
-}
 
 std::vector<Patch> Subdivide(const Scene& scene, const SubdivisionSettings& settings,
   SubdivisionStatistics* statistics = nullptr, const ParallelFor& parallelFor = SequentialFor)
@@ -431,7 +410,7 @@ TEST(IntervalSubdivision, ResultDoesNotDependOnThreads)
   SubdivisionStatistics one;
   SubdivisionStatistics three;
   const std::vector<Patch> a = Subdivide(scene, settings, &one, SequentialFor);
-  const std::vector<Patch> b = Subdivide(scene, settings, &three, Threads(3));
+  const std::vector<Patch> b = Subdivide(scene, settings, &three, ThreadedFor(3));
   ASSERT_EQ(a.size(), b.size());
   for (size_t k = 0; k < a.size(); ++k)
   {

@@ -34,33 +34,6 @@ std::vector<int> SurfaceGroups(const std::vector<Patch>& patches)
   return groups;
 }
 
-/// A ParallelFor on std::threads that hands out small chunks in an order that depends on
-/// timing: results must not.
-void ThreadedFor(std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
-{
-  std::atomic<std::size_t> next{ 0 };
-  auto worker = [&]()
-  {
-    for (;;)
-    {
-      const std::size_t begin = next.fetch_add(3);
-      if (begin >= count)
-      {
-        return;
-      }
-      body(begin, std::min(count, begin + 3));
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int t = 0; t < 3; ++t)
-  {
-    threads.emplace_back(worker);
-  }
-  for (std::thread& thread : threads)
-  {
-    thread.join();
-  }
-}
 
 /// Lambert's projected solid angle of a planar polygon on or above the tangent plane of p.
 double LambertProjectedSolidAngle(const glm::dvec3& p,
@@ -463,7 +436,7 @@ TEST(SphericalCover, DeterministicWhateverTheThreads)
     SphericalCover sequential;
     SphericalCover threaded;
     ASSERT_TRUE(sequential.Build(patches, options));
-    ASSERT_TRUE(threaded.Build(patches, options, ThreadedFor));
+    ASSERT_TRUE(threaded.Build(patches, options, ThreadedFor(3)));
     ASSERT_EQ(sequential.EntryCount(), threaded.EntryCount());
     ASSERT_EQ(sequential.StripCount(), threaded.StripCount());
     for (size_t i = 0; i < patches.size(); ++i)

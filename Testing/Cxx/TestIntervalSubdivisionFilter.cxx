@@ -3,6 +3,7 @@
 // - a regression image (VTK-style baseline) of the paper's Fig. 9 situation: a doubly curved
 //   patch seen from a point near it, its patches coloured by SplitReason with their edges;
 // - bad properties and inputs give one clear error and a failed request, never a crash.
+#include "FailureExpectation.h"
 #include "vtkIntervalSubdivisionFilter.h"
 #include "vtkPatchSceneReader.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -37,38 +38,10 @@
 
 namespace
 {
-void Record(vtkObject*, unsigned long, void* clientData, void* callData)
-{
-  std::string message = callData ? static_cast<const char*>(callData) : "";
-  // Keep the message itself, not VTK's "ERROR: In file, line" header (CTest would fail on it).
-  static_cast<std::vector<std::string>*>(clientData)->push_back(message.substr(message.find('\n') + 1));
-}
-
 /// Updates the filter expecting a failure with one error that contains `fragment`.
 int ExpectFailure(vtkIntervalSubdivisionFilter* filter, const std::string& fragment)
 {
-  std::vector<std::string> errors;
-  std::vector<std::string> executiveErrors;
-  vtkNew<vtkCallbackCommand> onError;
-  onError->SetCallback(Record);
-  onError->SetClientData(&errors);
-  vtkNew<vtkCallbackCommand> onExecutiveError;
-  onExecutiveError->SetCallback(Record);
-  onExecutiveError->SetClientData(&executiveErrors);
-  filter->AddObserver(vtkCommand::ErrorEvent, onError);
-  filter->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, onExecutiveError);
-  const int status = filter->GetExecutive()->Update();
-  filter->RemoveAllObservers();
-  filter->GetExecutive()->RemoveAllObservers();
-  if (status != 0 || errors.size() != 1 || errors[0].find(fragment) == std::string::npos)
-  {
-    std::cerr << "FAILED: expected one error with '" << fragment << "', got status " << status
-              << " and " << errors.size() << " errors" << (errors.empty() ? "" : ": " + errors[0])
-              << "\n";
-    return 1;
-  }
-  std::cout << "as expected: " << errors[0];
-  return 0;
+  return FailureExpectation::Check(filter, { fragment }, "vtkIntervalSubdivisionFilter");
 }
 
 /// The outlines of the patches: their exact boundary curves, sampled.
