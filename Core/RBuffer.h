@@ -20,8 +20,8 @@
  *    finely split surfaces that grows with the number of patches meeting in a cell. A tie
  *    between the top counts goes to the tied candidate met first in
  *    HemisphereGrid::SamplesFromCentre() order (the one covering the sample nearest the cell's
- *    centre), so ties need no depth and favour neither side of a boundary. The cell's R is the distance to the winner along its first sample in
- *    centre order (the representative sample).
+ *    centre), so ties need no depth and favour neither side of a boundary. The cell's R is the
+ * distance to the winner along its first sample in centre order (the representative sample).
  *
  * Visibility semantics shared by both fills (RBufferFiller): surfaces are opaque and one-sided
  * (SPEC §3). A sample is covered by Q_j if the first surface the ray P_i + t w, t > 0, meets is

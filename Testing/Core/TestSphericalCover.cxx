@@ -34,7 +34,6 @@ std::vector<int> SurfaceGroups(const std::vector<Patch>& patches)
   return groups;
 }
 
-
 /// Lambert's projected solid angle of a planar polygon on or above the tangent plane of p.
 double LambertProjectedSolidAngle(const glm::dvec3& p,
   const glm::dvec3& n,
@@ -387,7 +386,7 @@ TEST(SphericalCover, CornellBoxWithBlocksNeedsCharacterisablePatches)
   // partly hidden patches need paper §4.3 Step 3. Pairs away from contacts still keep
   // reciprocity within a few per cent; this records where the cover stands before refinement.
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
-  const std::vector<Patch> patches = SplitScene(scene, Sanitized ? 3 : 4);
+  const std::vector<Patch> patches = SplitScene(scene, 4);
   SphericalCover cover;
   ASSERT_TRUE(cover.Build(patches));
   const size_t count = scene.Surfaces.size();
