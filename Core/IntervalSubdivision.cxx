@@ -21,32 +21,6 @@ Box BoxOf(const Patch& patch)
   return { bounds.Lower(), bounds.Upper() };
 }
 
-/// Lengths in 3-D of the patch along u and along v, from its control net (mean polygon length
-/// of the rows and of the columns): what "square in Euclidean space" compares (§4.3 note 3).
-void NetLengths(const BezierPatch& patch, double& alongU, double& alongV)
-{
-  const int m = patch.DegreeU();
-  const int n = patch.DegreeV();
-  alongU = 0.0;
-  alongV = 0.0;
-  for (int j = 0; j <= n; ++j)
-  {
-    for (int i = 0; i < m; ++i)
-    {
-      alongU += glm::length(patch.ControlPoint(i + 1, j) - patch.ControlPoint(i, j));
-    }
-  }
-  for (int i = 0; i <= m; ++i)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      alongV += glm::length(patch.ControlPoint(i, j + 1) - patch.ControlPoint(i, j));
-    }
-  }
-  alongU /= (n + 1);
-  alongV /= (m + 1);
-}
-
 /// Receivers per progress report / abort check.
 constexpr std::size_t BatchSize = 64;
 }
@@ -79,26 +53,12 @@ PatchView IntervalSubdivision::ViewOfPatch(const Patch& patch) const
 void IntervalSubdivision::Split(int node, SplitReason reason)
 {
   const Patch& parent = this->Nodes[static_cast<size_t>(node)];
-  double alongU = 0.0;
-  double alongV = 0.0;
-  NetLengths(parent.Geometry, alongU, alongV);
-  const bool splitU = alongU >= alongV;
-  const UVRect d = parent.Domain;
-  const double lo = splitU ? d.U0 : d.V0;
-  const double hi = splitU ? d.U1 : d.V1;
-  // The cut values are computed once and shared by neighbouring pieces, so the pieces tile the
-  // parent's domain exactly.
-  const double cuts[4] = { lo, lo + (hi - lo) / 3.0, lo + 2.0 * (hi - lo) / 3.0, hi };
-  const int surface = parent.SurfaceIndex;
-  const int level = parent.Level + 1;
-  const BezierPatch& whole = this->Environment.Surfaces[static_cast<size_t>(surface)].Patch;
-  for (int k = 0; k < 3; ++k)
+  const BezierPatch& whole =
+    this->Environment.Surfaces[static_cast<size_t>(parent.SurfaceIndex)].Patch;
+  // SplitInThree returns copies, so appending to Nodes cannot invalidate `parent` mid-split.
+  for (Patch& piece : SplitInThree(parent, whole, reason))
   {
-    const UVRect piece = splitU ? UVRect{ cuts[k], cuts[k + 1], d.V0, d.V1 }
-                                : UVRect{ d.U0, d.U1, cuts[k], cuts[k + 1] };
-    // From the original surface, not the parent: no rounding accumulates over the levels.
-    this->Nodes.emplace_back(surface, piece, level, whole.SubPatch(piece));
-    this->Nodes.back().Reason = reason;
+    this->Nodes.push_back(std::move(piece));
   }
 }
 

@@ -13,6 +13,32 @@ namespace sphcover
 {
 namespace
 {
+/// Lengths in 3-D of the patch along u and along v, from its control net (mean polygon length
+/// of the rows and of the columns): what "square in Euclidean space" compares (§4.3 note 3).
+void NetLengths(const BezierPatch& patch, double& alongU, double& alongV)
+{
+  const int m = patch.DegreeU();
+  const int n = patch.DegreeV();
+  alongU = 0.0;
+  alongV = 0.0;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i < m; ++i)
+    {
+      alongU += glm::length(patch.ControlPoint(i + 1, j) - patch.ControlPoint(i, j));
+    }
+  }
+  for (int i = 0; i <= m; ++i)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      alongV += glm::length(patch.ControlPoint(i, j + 1) - patch.ControlPoint(i, j));
+    }
+  }
+  alongU /= (n + 1);
+  alongV /= (m + 1);
+}
+
 /// Nodes and weights of n-point Gauss-Legendre quadrature on [0,1] (Newton on P_n).
 struct GaussLegendre
 {
@@ -116,6 +142,30 @@ const char* SplitReasonName(SplitReason reason)
       return "RBuffer";
   }
   return "Unknown";
+}
+
+std::array<Patch, 3> SplitInThree(const Patch& parent,
+  const BezierPatch& surface,
+  SplitReason reason)
+{
+  double alongU = 0.0;
+  double alongV = 0.0;
+  NetLengths(parent.Geometry, alongU, alongV);
+  const bool splitU = alongU >= alongV;
+  const UVRect d = parent.Domain;
+  const double lo = splitU ? d.U0 : d.V0;
+  const double hi = splitU ? d.U1 : d.V1;
+  // The cut values are computed once and shared by neighbouring pieces, so the pieces tile the
+  // parent's domain exactly.
+  const double cuts[4] = { lo, lo + (hi - lo) / 3.0, lo + 2.0 * (hi - lo) / 3.0, hi };
+  auto piece = [&](int k) {
+    const UVRect rect = splitU ? UVRect{ cuts[k], cuts[k + 1], d.V0, d.V1 }
+                               : UVRect{ d.U0, d.U1, cuts[k], cuts[k + 1] };
+    Patch result(parent.SurfaceIndex, rect, parent.Level + 1, surface.SubPatch(rect));
+    result.Reason = reason;
+    return result;
+  };
+  return { piece(0), piece(1), piece(2) };
 }
 
 } // namespace sphcover

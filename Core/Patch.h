@@ -15,6 +15,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <array>
+
 namespace sphcover
 {
 
@@ -51,6 +53,19 @@ struct Patch
   /// Surface area of the patch.
   double Area = 0.0;
 };
+
+/**
+ * The ternary split of paper §4.3 note 3 shared by the interval subdivision and the R-buffer
+ * refinement: `parent` is cut into three pieces of equal parametric width along u or v,
+ * whichever is longer in 3-D (mean control polygon length), "so as to maintain relatively
+ * square shaped subpatches in Euclidean space". The pieces are at Level + 1, carry `reason`,
+ * tile the parent's domain exactly (the cut values are shared by neighbouring pieces) and are
+ * taken from `surface`, the whole original surface, not from the parent, so that no rounding
+ * accumulates over the levels. Returned in increasing u (or v).
+ */
+std::array<Patch, 3> SplitInThree(const Patch& parent,
+  const BezierPatch& surface,
+  SplitReason reason);
 
 /// Area of a Bezier patch, the integral of |dQ/du x dQ/dv| over [0,1]^2, by Gauss-Legendre
 /// quadrature of an order high enough for the patch's degrees.

@@ -187,7 +187,18 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
   }
   this->UnoccludedKnown = filler->Kind() == RBufferFill::Projection;
 
-  // Columns: count, prefix sums, then fill in receiver order (receivers ascending per column).
+  this->BuildColumns();
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+void SphericalCover::BuildColumns()
+{
+  // Count, prefix sums, then fill in receiver order (receivers ascending per column).
+  const size_t count = this->PatchCount();
   this->ColumnOffsets.assign(count + 1, 0);
   for (const Entry& entry : this->Entries)
   {
@@ -205,11 +216,85 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
         static_cast<uint32_t>(e) };
     }
   }
-  if (progress)
+}
+
+SphericalCover::Arrays SphericalCover::ExportArrays() const
+{
+  Arrays arrays;
+  arrays.ThetaBins = this->BuildOptions.ThetaBins;
+  arrays.PhiBins = this->BuildOptions.PhiBins;
+  arrays.SamplesTheta = this->BuildOptions.SamplesTheta;
+  arrays.SamplesPhi = this->BuildOptions.SamplesPhi;
+  arrays.Fill = static_cast<int>(this->BuildOptions.Fill);
+  arrays.RowOffsets = this->RowOffsets;
+  arrays.Entries = this->Entries;
+  arrays.Unoccluded = this->Unoccluded;
+  arrays.UnoccludedKnown = this->UnoccludedKnown;
+  arrays.Strips = this->Strips;
+  arrays.StripDepths = this->StripDepths;
+  arrays.Areas = this->Areas;
+  return arrays;
+}
+
+std::string SphericalCover::ImportArrays(Arrays arrays)
+{
+  this->Clear();
+  if (arrays.ThetaBins < 1 || arrays.PhiBins < 1 || arrays.ThetaBins > 65535 ||
+    arrays.PhiBins > 65535 || arrays.SamplesTheta < 1 || arrays.SamplesPhi < 1)
   {
-    progress(1.0);
+    return "the grid sizes are invalid";
   }
-  return true;
+  const size_t count = arrays.Areas.size();
+  if (arrays.RowOffsets.size() != count + 1 || arrays.RowOffsets.front() != 0 ||
+    arrays.RowOffsets.back() != arrays.Entries.size())
+  {
+    return "the row offsets do not match the entries";
+  }
+  for (size_t i = 0; i < count; ++i)
+  {
+    if (arrays.RowOffsets[i] > arrays.RowOffsets[i + 1])
+    {
+      return "the row offsets decrease";
+    }
+  }
+  if (arrays.Unoccluded.size() != arrays.Entries.size() ||
+    arrays.StripDepths.size() != arrays.Strips.size())
+  {
+    return "the entry or strip arrays have different lengths";
+  }
+  for (size_t e = 0; e < arrays.Entries.size(); ++e)
+  {
+    const Entry& entry = arrays.Entries[e];
+    const size_t next = e + 1 < arrays.Entries.size() ? arrays.Entries[e + 1].FirstStrip : arrays.Strips.size();
+    if (entry.Source >= count || entry.FirstStrip > next || next > arrays.Strips.size())
+    {
+      return "entry " + std::to_string(e) + " refers to a missing source or strip";
+    }
+  }
+  for (const Strip& strip : arrays.Strips)
+  {
+    if (strip.Row >= arrays.ThetaBins || strip.PhiBegin >= strip.PhiEnd || strip.PhiEnd > arrays.PhiBins)
+    {
+      return "a strip lies outside the grid";
+    }
+  }
+  this->BuildOptions = SphericalCoverOptions();
+  this->BuildOptions.ThetaBins = arrays.ThetaBins;
+  this->BuildOptions.PhiBins = arrays.PhiBins;
+  this->BuildOptions.SamplesTheta = arrays.SamplesTheta;
+  this->BuildOptions.SamplesPhi = arrays.SamplesPhi;
+  this->BuildOptions.Fill = static_cast<RBufferFill>(arrays.Fill);
+  this->GridPointer = std::make_unique<HemisphereGrid>(
+    arrays.ThetaBins, arrays.PhiBins, arrays.SamplesTheta, arrays.SamplesPhi);
+  this->RowOffsets = std::move(arrays.RowOffsets);
+  this->Entries = std::move(arrays.Entries);
+  this->Unoccluded = std::move(arrays.Unoccluded);
+  this->UnoccludedKnown = arrays.UnoccludedKnown;
+  this->Strips = std::move(arrays.Strips);
+  this->StripDepths = std::move(arrays.StripDepths);
+  this->Areas = std::move(arrays.Areas);
+  this->BuildColumns();
+  return std::string();
 }
 
 std::size_t SphericalCover::StripEnd(std::size_t entry) const

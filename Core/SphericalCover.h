@@ -50,6 +50,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace sphcover
@@ -169,6 +170,28 @@ public:
    */
   std::vector<double> FormFactors(const std::vector<int>& groupOfPatch, int groupCount) const;
 
+  // --- storage ---------------------------------------------------------------------------------
+  /// The cover's own arrays, for saving and loading it (the columns are derived from the rows).
+  struct Arrays
+  {
+    int ThetaBins = 0;
+    int PhiBins = 0;
+    int SamplesTheta = 0;
+    int SamplesPhi = 0;
+    int Fill = 0;
+    std::vector<uint64_t> RowOffsets;
+    std::vector<Entry> Entries;
+    std::vector<float> Unoccluded;
+    bool UnoccludedKnown = false;
+    std::vector<Strip> Strips;
+    std::vector<float> StripDepths;
+    std::vector<double> Areas;
+  };
+  Arrays ExportArrays() const;
+  /// Replaces the cover with saved arrays after checking that they are consistent (offsets,
+  /// indices and cell ranges); returns an explanation (and leaves the cover empty) if not.
+  std::string ImportArrays(Arrays arrays);
+
   // --- statistics and memory -------------------------------------------------------------------
   /// Candidate culling counts summed over all receivers (projection fill only).
   const CullingStatistics& Culling() const { return this->CullingCounts; }
@@ -198,6 +221,8 @@ private:
   struct Row;
   static void ExtractRow(const RBuffer& buffer, Row& row);
   void AppendRow(Row& row);
+  /// Derives the columns (which rows contain each source) from the rows.
+  void BuildColumns();
   void Clear();
 
   SphericalCoverOptions BuildOptions;

@@ -4,6 +4,7 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridBuilder.h"
 
+#include "Patch.h"
 #include "Scene.h"
 #include "SceneLoader.h"
 
@@ -201,5 +202,36 @@ bool vtkSurfaceGridAdapter::ToScene(
     scene.Surfaces.push_back(std::move(surface));
   }
   scene.SourceFile = StringValue(fd, names::SourceFile, 0);
+  return true;
+}
+
+bool vtkSurfaceGridAdapter::ToPatches(vtkDataSet* input, sphcover::Scene& scene,
+  std::vector<sphcover::Patch>& patches, std::string& error)
+{
+  patches.clear();
+  if (!ToScene(input, false, scene, error))
+  {
+    return false;
+  }
+  vtkCellData* cd = input->GetCellData();
+  vtkDataArray* uvRange = cd->GetArray(names::UVRange);
+  vtkDataArray* level = cd->GetArray(names::Level);
+  if (uvRange && uvRange->GetNumberOfComponents() != 4)
+  {
+    error = "the UVRange cell array must have 4 components";
+    return false;
+  }
+  patches.reserve(scene.Surfaces.size());
+  for (size_t c = 0; c < scene.Surfaces.size(); ++c)
+  {
+    const vtkIdType cell = static_cast<vtkIdType>(c);
+    sphcover::UVRect domain = sphcover::UVRect::Unit();
+    if (uvRange)
+    {
+      domain = { uvRange->GetComponent(cell, 0), uvRange->GetComponent(cell, 1),
+        uvRange->GetComponent(cell, 2), uvRange->GetComponent(cell, 3) };
+    }
+    patches.emplace_back(static_cast<int>(c), domain, level ? static_cast<int>(level->GetComponent(cell, 0)) : 0, scene.Surfaces[c].Patch);
+  }
   return true;
 }

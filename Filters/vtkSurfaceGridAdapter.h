@@ -17,10 +17,12 @@
 #include "SphericalCoverFiltersModule.h" // for export macro
 
 #include <string>
+#include <vector>
 
 class vtkDataSet;
 namespace sphcover
 {
+struct Patch;
 struct Scene;
 }
 
@@ -31,6 +33,13 @@ public:
   /// inconsistent arrays, missing material arrays when defaults are not allowed, ...).
   static bool ToScene(vtkDataSet* input, bool allowDefaultMaterials, sphcover::Scene& scene,
     std::string& error);
+
+  /// The patches of a subdivided environment (vtkIntervalSubdivisionFilter's first output, or
+  /// any surface dataset: then one patch per surface), one per cell, with their `UVRange` and
+  /// `Level` where the input has them. `scene` gets one surface per cell (the cell's geometry
+  /// and material): patch k's SurfaceIndex is k, the index of its cell.
+  static bool ToPatches(vtkDataSet* input, sphcover::Scene& scene,
+    std::vector<sphcover::Patch>& patches, std::string& error);
 };
 
 #endif

@@ -46,6 +46,23 @@ constexpr const char* Normals = "Normals";
 constexpr const char* UV = "UV";
 /// Field data, named components: pair tests, sweeps.
 constexpr const char* SubdivisionStatistics = "SubdivisionStatistics";
+
+// Spherical cover (SPEC §4.3): points' point data, the cover in field data, the strip table.
+constexpr const char* Tangents = "Tangents";
+constexpr const char* CoveredProjectedSolidAngle = "CoveredProjectedSolidAngle";
+constexpr const char* VisibleSources = "VisibleSources";
+constexpr const char* CoverGrid = "CoverGrid";
+constexpr const char* CoverRowOffsets = "CoverRowOffsets";
+constexpr const char* CoverEntries = "CoverEntries";
+constexpr const char* CoverUnoccluded = "CoverUnoccluded";
+constexpr const char* CoverStrips = "CoverStrips";
+constexpr const char* CoverStripDepths = "CoverStripDepths";
+constexpr const char* Receiver = "Receiver";
+constexpr const char* Source = "Source";
+constexpr const char* Theta = "Theta";
+constexpr const char* PhiBegin = "PhiBegin";
+constexpr const char* PhiEnd = "PhiEnd";
+constexpr const char* R = "R";
 }
 
 #endif

@@ -5,6 +5,7 @@
  *
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
+ *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
  * half-written (files are written under a temporary name and renamed when complete).
@@ -17,12 +18,18 @@
 #include "vtkPatchSceneReader.h"
 #include "vtkSceneFileLoader.h"
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkSphericalCoverArrays.h"
+#include "vtkSphericalCoverFilter.h"
 
 #include "InputError.h"
 #include "Scene.h"
 #include "SceneLoader.h"
+#include "SphericalCover.h"
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <vtkPointData.h>
+#include <vtkStringArray.h>
 #include <vtkDataArray.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
@@ -40,6 +47,7 @@
 #include <cstring>
 #include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
@@ -50,6 +58,8 @@ struct Options
   std::string Scene;
   std::string Output;
   std::string RangeMethod = "bernstein";
+  std::string Report;
+  std::string Fill = "projection";
   std::vector<std::string> Settings;
   int Threads = 0;
   bool Quiet = false;
@@ -129,6 +139,153 @@ void WriteAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::strin
     throw std::runtime_error("cannot write '" + path + "': " +
       (written ? failure.message() : errors.First()));
   }
+}
+
+/// Writes text to a temporary file beside `path`, then renames it into place.
+void WriteTextAtomically(const std::string& text, const std::string& path)
+{
+  const std::string temporary = path + ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    out << text;
+    if (!out.good())
+    {
+      std::remove(temporary.c_str());
+      throw std::runtime_error("cannot write '" + path + "'");
+    }
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+  {
+    std::remove(temporary.c_str());
+    throw std::runtime_error("cannot write '" + path + "'");
+  }
+}
+
+/// The stages up to the spherical cover, run with progress bars; errors throw one line.
+struct Solution
+{
+  vtkNew<vtkPatchSceneReader> Reader;
+  vtkNew<vtkIntervalSubdivisionFilter> Subdivision;
+  vtkNew<vtkSphericalCoverFilter> Cover;
+  double ReadSeconds = 0.0;
+  double SubdivideSeconds = 0.0;
+  double CoverSeconds = 0.0;
+
+  void Run(const Options& options)
+  {
+    ErrorCollector errors;
+    this->Reader->SetFileName(options.Scene.c_str());
+    {
+      ProgressBar bar(this->Reader, "read", options.Quiet);
+      ::Run(this->Reader, errors);
+      this->ReadSeconds = bar.Seconds();
+    }
+    const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
+    this->Subdivision->SetInputConnection(this->Reader->GetOutputPort());
+    this->Subdivision->SetThetaBins(settings.ThetaBins);
+    this->Subdivision->SetPhiBins(settings.PhiBins);
+    this->Subdivision->SetMaxLevel(settings.MaxLevel);
+    this->Subdivision->SetTolerance(settings.Tolerance);
+    if (options.RangeMethod == "natural")
+    {
+      this->Subdivision->SetRangeMethodToNaturalInterval();
+    }
+    {
+      ProgressBar bar(this->Subdivision, "subdivide", options.Quiet);
+      ::Run(this->Subdivision, errors);
+      this->SubdivideSeconds = bar.Seconds();
+    }
+    this->Cover->SetInputConnection(this->Subdivision->GetOutputPort(0));
+    this->Cover->SetThetaBins(settings.ThetaBins);
+    this->Cover->SetPhiBins(settings.PhiBins);
+    if (options.Fill == "raycasting")
+    {
+      this->Cover->SetFillMethodToRayCasting();
+    }
+    {
+      ProgressBar bar(this->Cover, "cover", options.Quiet);
+      ::Run(this->Cover, errors);
+      this->CoverSeconds = bar.Seconds();
+    }
+  }
+};
+
+/// The report of SPEC §5 as far as the stages that have run: surfaces, form factors between
+/// named surfaces (area-weighted over the source surface), counts and timings.
+nlohmann::json Report(Solution& solution)
+{
+  vtkPolyData* points = solution.Cover->GetOutput();
+  sphcover::SphericalCover cover;
+  const std::string problem = vtkSphericalCoverArrays::Load(points, cover);
+  if (!problem.empty())
+  {
+    throw std::runtime_error(problem);
+  }
+  auto* names = vtkStringArray::SafeDownCast(
+    points->GetFieldData()->GetAbstractArray(vtkSphericalCoverArrayNames::SurfaceNames));
+  vtkDataArray* nameId = points->GetPointData()->GetArray(vtkSphericalCoverArrayNames::SurfaceNameId);
+  vtkDataArray* area = points->GetPointData()->GetArray(vtkSphericalCoverArrayNames::Area);
+  if (!names || !nameId || !area)
+  {
+    throw std::runtime_error("the cover lacks the surface names or areas");
+  }
+  const int groups = static_cast<int>(names->GetNumberOfValues());
+  std::vector<int> groupOfPatch(static_cast<size_t>(points->GetNumberOfPoints()));
+  std::vector<double> groupArea(static_cast<size_t>(groups), 0.0);
+  for (vtkIdType k = 0; k < points->GetNumberOfPoints(); ++k)
+  {
+    groupOfPatch[static_cast<size_t>(k)] = static_cast<int>(nameId->GetComponent(k, 0));
+    groupArea[static_cast<size_t>(groupOfPatch[static_cast<size_t>(k)])] += area->GetComponent(k, 0);
+  }
+  const std::vector<double> factors = cover.FormFactors(groupOfPatch, groups);
+
+  nlohmann::json report;
+  report["surfaces"] = nlohmann::json::array();
+  report["form_factors"]["names"] = nlohmann::json::array();
+  report["form_factors"]["matrix"] = nlohmann::json::array();
+  for (int a = 0; a < groups; ++a)
+  {
+    report["surfaces"].push_back({ { "name", names->GetValue(a) }, { "area", groupArea[static_cast<size_t>(a)] } });
+    report["form_factors"]["names"].push_back(names->GetValue(a));
+    nlohmann::json row = nlohmann::json::array();
+    for (int b = 0; b < groups; ++b)
+    {
+      row.push_back(factors[static_cast<size_t>(a * groups + b)]);
+    }
+    report["form_factors"]["matrix"].push_back(row);
+  }
+  report["counts"] = { { "surfaces", solution.Reader->GetOutput()->GetNumberOfCells() },
+    { "patches", solution.Subdivision->GetOutput()->GetNumberOfCells() },
+    { "characteristic_points", points->GetNumberOfPoints() }, { "strips", cover.StripCount() },
+    { "pair_tests", solution.Subdivision->GetPairTests() } };
+  report["timings_s"] = { { "read", solution.ReadSeconds }, { "subdivide", solution.SubdivideSeconds },
+    { "cover", solution.CoverSeconds } };
+  return report;
+}
+
+int RunSolve(const Options& options)
+{
+  Solution solution;
+  solution.Run(options);
+  if (!options.Report.empty())
+  {
+    WriteTextAtomically(Report(solution).dump(2) + "\n", options.Report);
+  }
+  if (!options.Output.empty())
+  {
+    vtkNew<vtkMultiBlockDataSet> blocks;
+    blocks->SetNumberOfBlocks(2);
+    blocks->SetBlock(0, solution.Subdivision->GetOutput());
+    blocks->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "Patches");
+    blocks->SetBlock(1, solution.Cover->GetOutput());
+    blocks->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Cover");
+    vtkNew<vtkXMLMultiBlockDataWriter> writer;
+    WriteAtomically(writer, blocks, options.Output);
+  }
+  std::cout << "patches: " << solution.Subdivision->GetOutput()->GetNumberOfCells() << "\n"
+            << "seconds: read " << solution.ReadSeconds << ", subdivide " << solution.SubdivideSeconds
+            << ", cover " << solution.CoverSeconds << "\n";
+  return 0;
 }
 
 int RunInfo(const Options& options)
@@ -213,6 +370,18 @@ int main(int argc, char** argv)
     "Override a setting of the scene file, e.g. --set max_level=3 (theta_bins, phi_bins, "
     "max_level, tolerance)");
 
+  CLI::App* solve = app.add_subcommand("solve",
+    "Run the method up to the spherical cover (subdivision, cover) and write the solution and a "
+    "JSON report (counts, form factors between named surfaces, timings)");
+  solve->add_option("SCENE", options.Scene, "A .scene or .bpt file")->required();
+  solve->add_option("-o,--output", options.Output, "Solution file (.vtm): patches and cover");
+  solve->add_option("--report", options.Report, "Report file (.json)");
+  solve->add_option("--fill", options.Fill, "R-buffer fill: projection (default) or raycasting")
+    ->check(CLI::IsMember({ "projection", "raycasting" }));
+  solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
+    ->check(CLI::IsMember({ "bernstein", "natural" }));
+  solve->add_option("--set", options.Settings, "Override a setting of the scene file (see subdivide)");
+
   try
   {
     app.parse(argc, argv);
@@ -235,6 +404,10 @@ int main(int argc, char** argv)
     if (subdivide->parsed())
     {
       return RunSubdivide(options);
+    }
+    if (solve->parsed())
+    {
+      return RunSolve(options);
     }
   }
   catch (const std::exception& e)

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file CoverRefinement.h
+ * @brief The R-buffer criterion of paper §4.2.5 and the refinement of paper §4.3 Steps 3 and
+ * 5: after the global subdivision (IntervalSubdivision.h), patches that are partly hidden in
+ * some hemisphere, or whose visible part there is disconnected, are split until their images
+ * match the R-buffers or the limits are reached; the spherical cover is then built over the
+ * refined patch list.
+ *
+ * Data flow, one way: IntervalSubdivision -> CoverRefinement -> SphericalCover::Build over
+ * Patches(). The refinement fills the R-buffers of its receivers itself (projection fill,
+ * paper §4.3 Step 2, on the cover's grid) and reads them at sample resolution:
+ *
+ *  - Step 3, hidden part: "By comparing polar projection of T_j with its image, if any, in the
+ *    R buffer, determine if T_j is fully visible, fully hidden or partially visible to P_i."
+ *    The polar projection of Q_j is RBuffer::UnoccludedProjectedSolidAngles (the projected
+ *    solid angle of the samples the unoccluded Q_j covers); its image is the projected solid
+ *    angle of the samples whose nearest surface is Q_j. Both are sums over the same samples
+ *    with the same weights, so their difference is the hidden part up to the samples on Q_j's
+ *    edges, and the cell rounding (a cell goes wholly to one source) does not enter: for a
+ *    source a few cells wide that rounding alone moves the cell count by tens of per cent.
+ *    Q_j is partially visible when its image covers at least MinimumVisibleCells cells'
+ *    worth; it is "hidden substantially" when the hidden part exceeds HiddenFraction of its
+ *    projection and MinimumHiddenCells cells' worth (a hidden sliver thinner than a cell cannot
+ *    change which cells h_ij holds).
+ *  - Step 3, connectedness: the image of Q_j is labelled into connected regions of samples
+ *    (8-neighbours, wrapping in phi, the first sample row joined around the pole); Q_j is
+ *    disconnected when two or more regions each hold at least a cell's worth of samples
+ *    (fragments smaller than a cell are edge rounding, and a cell could not hold them).
+ *  - A split is ternary along the longer 3-D direction (SplitInThree, §4.3 note 3) and obeys
+ *    the limits of the subdivision (§4.3 note 2): not beyond MaxLevel, and only while Q_j
+ *    projects from P_i to more than about one cell (its box's diagonal exceeds the cell angle
+ *    times its distance).
+ *
+ * The receiver side follows from the symmetry of the cover (§3.3: every characteristic point
+ * is a candidate for every other point's hemisphere). A floor patch half under a block is a
+ * source in the hemispheres of the ceiling's and the walls' points, where the block hides the
+ * half under it: Step 3 splits it there, and its pieces then receive light separately. No
+ * receiver test of its own is needed for occlusion.
+ *
+ * Step 5 ("Modify Q by suitably replacing all subdivided patches which are not completely
+ * hidden") and note 4 ("all patches completely hidden from the point do not get subdivided"):
+ * a patch fully hidden from P_i, or whose image is under MinimumVisibleCells, never asks to be
+ * split from P_i. A split patch is replaced in Q by all three pieces, including a piece that
+ * is hidden from every point that saw its parent: Q is also the list of receivers, a hidden
+ * piece still receives light (the floor under a block, seeing the block's inside) and SPEC
+ * §4.2 requires the patches of each surface to tile its parameter domain.
+ *
+ * Iteration: after each round of splits, only the hemispheres that can change are analysed
+ * again: those of the new pieces and those in which a split patch was visible (a patch hidden
+ * from P_i has hidden pieces). The rounds end when no patch asks to be split; every round
+ * deepens by one level, so there are at most MaxLevel + 1 rounds.
+ *
+ * Hemisphere interpolation (§3.4, §4.3 Step 5, note 5) is not used: the paper interpolates to
+ * avoid "expensive" hemisphere computations, but here a hemisphere is one R-buffer fill (the
+ * same cost as the analysis that decides the split), the interpolated rows of Fig. 7 are
+ * approximations that break the cover's exactness (every covered cell once, rows summing to
+ * one in a closed scene) exactly where refinement happens (at occlusion boundaries, where
+ * neighbouring hemispheres differ most), and the cover is built over the refined list anyway.
+ *
+ * The result does not depend on the thread count: receivers are analysed independently and
+ * their split requests merged in receiver order; the patch list is kept in a fixed order.
+ */
+#ifndef SPHCOVER_COVERREFINEMENT_H
+#define SPHCOVER_COVERREFINEMENT_H
+
+#include "ParallelFor.h"
+#include "Patch.h"
+#include "Scene.h"
+#include "SphericalCover.h"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace sphcover
+{
+
+struct RefinementSettings
+{
+  /// The grid, samples and fill options of the R-buffers: those of the cover to be built. The
+  /// refinement always fills by projection (it needs the unoccluded projections); Fill is
+  /// ignored.
+  SphericalCoverOptions Cover;
+  /// Deepest level of a patch (as SubdivisionSettings::MaxLevel).
+  int MaxLevel = 5;
+  /// Split Q_j when more than this fraction of its projection in H_i is hidden...
+  double HiddenFraction = 0.1;
+  /// ... and the hidden part is more than this many cells (of the size where Q_j is seen).
+  double MinimumHiddenCells = 1.0;
+  /// Q_j counts as fully hidden from P_i when its image is smaller than this many cells.
+  double MinimumVisibleCells = 0.5;
+  /// Split Q_j when its image in H_i is disconnected.
+  bool SplitDisconnected = true;
+
+  /// Empty if the settings are usable, else what is wrong with them.
+  std::string Problem() const;
+};
+
+struct RefinementStatistics
+{
+  std::size_t InputPatches = 0;
+  std::size_t OutputPatches = 0;
+  /// Rounds of analysis and splitting (the last one splits nothing).
+  int Rounds = 0;
+  /// R-buffers filled and analysed (hemispheres computed), over all rounds.
+  std::size_t RowsAnalysed = 0;
+  /// Patches split, and among them those only a disconnected image asked to split.
+  std::size_t Splits = 0;
+  std::size_t DisconnectedSplits = 0;
+  /// (receiver, source) pairs that asked for a split the limits refused.
+  std::size_t LimitedRequests = 0;
+};
+
+class CoverRefinement
+{
+public:
+  /**
+   * `patches` is the patch list Q (e.g. IntervalSubdivision::Patches()); `scene` holds their
+   * surfaces (pieces are cut from the original surfaces) and must outlive the object. Throws
+   * std::invalid_argument for unusable settings or a patch whose surface is not in the scene.
+   */
+  CoverRefinement(const Scene& scene,
+    std::vector<Patch> patches,
+    const RefinementSettings& settings);
+
+  /**
+   * Refines to the fixed point. Returns false if `progress` returned false (abort); Patches()
+   * are then those after the last complete round (a valid tiling, not fully refined).
+   */
+  bool Run(const ProgressCallback& progress = nullptr,
+    const ParallelFor& parallelFor = SequentialFor);
+
+  /// The refined patch list, ordered by surface, then by v, then by u of their domains (as
+  /// IntervalSubdivision::Patches()).
+  std::vector<Patch> Patches() const;
+
+  const RefinementStatistics& Statistics() const { return this->Stats; }
+
+private:
+  struct Analysis;
+  /// Fills and analyses the R-buffer of leaf `receiver` of `current`.
+  void Analyse(std::size_t receiver,
+    const std::vector<Patch>& current,
+    const class RBufferFiller& filler,
+    class RBuffer& buffer,
+    Analysis& result) const;
+
+  const Scene& Environment;
+  RefinementSettings Settings;
+  /// Every patch ever made (a split appends its three pieces).
+  std::vector<Patch> Nodes;
+  /// The current patch list Q: indices into Nodes, a split piece in its parent's place.
+  std::vector<int> Leaves;
+  /// Per node: the nodes visible in its hemisphere at its last analysis (ascending), and
+  /// whether it has been analysed since the list last changed around it.
+  std::vector<std::vector<int>> VisibleNodes;
+  std::vector<bool> Analysed;
+  RefinementStatistics Stats;
+};
+
+} // namespace sphcover
+
+#endif

@@ -1,0 +1,198 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkSphericalCoverFilter.h"
+
+#include "vtkNamedArrays.h"
+#include "vtkSMPParallelFor.h"
+#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSphericalCoverArrays.h"
+#include "vtkSurfaceGridAdapter.h"
+
+#include "HemisphereGrid.h"
+#include "Patch.h"
+#include "Scene.h"
+#include "SphericalCover.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataSet.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkTable.h>
+
+#include <exception>
+#include <sstream>
+
+namespace names = vtkSphericalCoverArrayNames;
+
+vtkStandardNewMacro(vtkSphericalCoverFilter);
+
+vtkSphericalCoverFilter::vtkSphericalCoverFilter()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkSphericalCoverFilter::~vtkSphericalCoverFilter() = default;
+
+int vtkSphericalCoverFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
+  return 1;
+}
+
+int vtkSphericalCoverFilter::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+int vtkSphericalCoverFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
+  vtkPolyData* pointsOut = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* stripsOut = vtkTable::GetData(outputVector, 1);
+
+  sphcover::Scene scene;
+  std::vector<sphcover::Patch> patches;
+  std::string error;
+  if (!vtkSurfaceGridAdapter::ToPatches(input, scene, patches, error))
+  {
+    vtkErrorMacro(<< "Cannot build a spherical cover of this input: " << error);
+    return 0;
+  }
+
+  sphcover::SphericalCoverOptions options;
+  options.ThetaBins = this->ThetaBins;
+  options.PhiBins = this->PhiBins;
+  options.SamplesTheta = this->SamplesPerCell;
+  options.SamplesPhi = this->SamplesPerCell;
+  options.Fill = this->FillMethod == RAY_CASTING ? sphcover::RBufferFill::RayCasting
+                                                 : sphcover::RBufferFill::Projection;
+  options.FillOptions.BackFacesOcclude = this->BackFacesOcclude;
+
+  sphcover::SphericalCover cover;
+  try
+  {
+    // Refuse before building what would not fit: an estimate from a few rows actually built.
+    const double estimate =
+      static_cast<double>(sphcover::SphericalCover::EstimateBytes(patches, options)) / (1024.0 * 1024.0);
+    if (estimate > this->MemoryLimit)
+    {
+      vtkErrorMacro(<< "The cover of " << patches.size() << " patches would need about "
+                    << static_cast<long long>(estimate) << " MiB, more than MemoryLimit ("
+                    << this->MemoryLimit << " MiB); use fewer patches (MaxLevel) or a coarser grid.");
+      return 0;
+    }
+    const bool completed = cover.Build(patches, options, vtkSMPParallelFor::Make(),
+      [this](double fraction) {
+        this->UpdateProgress(0.95 * fraction);
+        return !this->GetAbortExecute();
+      });
+    if (!completed)
+    {
+      vtkWarningMacro("Spherical cover aborted.");
+      return 0;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Spherical cover failed: " << e.what());
+    return 0;
+  }
+
+  // Output 0: the characteristic points and the cover.
+  const vtkIdType count = static_cast<vtkIdType>(patches.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(count);
+  vtkNew<vtkCellArray> vertices;
+  vertices->AllocateExact(count, count);
+  auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
+  auto tangents = vtkNamedArrays::Double(names::Tangents, 3, count);
+  auto area = vtkNamedArrays::Double(names::Area, 1, count);
+  auto patchId = vtkNamedArrays::Int(names::PatchId, 1, count);
+  auto covered = vtkNamedArrays::Double(names::CoveredProjectedSolidAngle, 1, count);
+  auto visible = vtkNamedArrays::Int(names::VisibleSources, 1, count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const sphcover::Patch& patch = patches[static_cast<size_t>(i)];
+    const sphcover::HemisphereFrame frame = sphcover::HemisphereFrame::OfPatch(patch);
+    points->SetPoint(i, &patch.Point[0]);
+    vertices->InsertNextCell(1, &i);
+    normals->SetTuple(i, &frame.Normal[0]);
+    tangents->SetTuple(i, &frame.Tangent[0]);
+    area->SetValue(i, patch.Area);
+    patchId->SetValue(i, static_cast<int>(i));
+    covered->SetValue(i, cover.CoveredProjectedSolidAngle(static_cast<size_t>(i)));
+    visible->SetValue(i, static_cast<int>(cover.VisibleSourceCount(static_cast<size_t>(i))));
+  }
+  pointsOut->Initialize();
+  pointsOut->SetPoints(points);
+  pointsOut->SetVerts(vertices);
+  vtkPointData* pd = pointsOut->GetPointData();
+  // The patches' cell arrays (SurfaceId, materials, UV, Level, ...) become point data, one
+  // point per patch; then the cover's own arrays, which take precedence.
+  pd->PassData(input->GetCellData());
+  pd->RemoveArray(names::HigherOrderDegrees);
+  pd->SetNormals(normals);
+  pd->AddArray(tangents);
+  pd->AddArray(area);
+  pd->AddArray(patchId);
+  pd->AddArray(covered);
+  pd->AddArray(visible);
+  pointsOut->GetFieldData()->PassData(input->GetFieldData());
+  vtkSphericalCoverArrays::Store(cover, pointsOut);
+
+  // Output 1: the strips, for the spreadsheet view.
+  const vtkIdType strips = static_cast<vtkIdType>(cover.StripCount());
+  auto receiver = vtkNamedArrays::Int(names::Receiver, 1, strips);
+  auto source = vtkNamedArrays::Int(names::Source, 1, strips);
+  auto theta = vtkNamedArrays::Int(names::Theta, 1, strips);
+  auto phiBegin = vtkNamedArrays::Int(names::PhiBegin, 1, strips);
+  auto phiEnd = vtkNamedArrays::Int(names::PhiEnd, 1, strips);
+  auto depth = vtkNamedArrays::New<vtkFloatArray>(names::R, 1, strips);
+  vtkIdType k = 0;
+  for (size_t i = 0; i < patches.size(); ++i)
+  {
+    for (size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+    {
+      for (size_t s = cover.StripBegin(e); s < cover.StripEnd(e); ++s, ++k)
+      {
+        const sphcover::SphericalCover::Strip& strip = cover.StripAt(s);
+        receiver->SetValue(k, static_cast<int>(i));
+        source->SetValue(k, static_cast<int>(cover.EntryAt(e).Source));
+        theta->SetValue(k, strip.Row);
+        phiBegin->SetValue(k, strip.PhiBegin);
+        phiEnd->SetValue(k, strip.PhiEnd);
+        depth->SetValue(k, cover.StripDepth(s));
+      }
+    }
+  }
+  stripsOut->Initialize();
+  stripsOut->AddColumn(receiver);
+  stripsOut->AddColumn(source);
+  stripsOut->AddColumn(theta);
+  stripsOut->AddColumn(phiBegin);
+  stripsOut->AddColumn(phiEnd);
+  stripsOut->AddColumn(depth);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ThetaBins: " << this->ThetaBins << "\n";
+  os << indent << "PhiBins: " << this->PhiBins << "\n";
+  os << indent << "SamplesPerCell: " << this->SamplesPerCell << "\n";
+  os << indent << "FillMethod: " << (this->FillMethod == PROJECTION ? "Projection" : "RayCasting")
+     << "\n";
+  os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
+}

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkSphericalCoverFilter
+ * @brief The spherical cover of paper §3.3: for every characteristic point P_i the hemisphere
+ * H_i as a (theta, phi) grid filled as an R-buffer (§4.2.5), stored as strips per source patch.
+ *
+ * Input: the patches (vtkIntervalSubdivisionFilter's first output, or any surface dataset,
+ * then one patch per surface). Each patch's characteristic point is its parametric centre.
+ *
+ * The R-buffer of H_i is filled either by projecting every candidate patch into (theta, phi)
+ * with a depth test, as the paper does, or by casting rays through the cells with Embree
+ * against a tessellation of the exact patches; several samples per cell classify each cell
+ * by coverage. Patches fully below the tangent plane of P_i are skipped before any work.
+ *
+ * Output 0 (vtkPolyData): the characteristic points with point data `Normals`, `Tangents`
+ * (phi = 0), `Area`, `PatchId`, `SurfaceId`, `CoveredProjectedSolidAngle` (pi inside a closed
+ * scene), `VisibleSources` and the material arrays of the patches; field data: the input's
+ * and the cover itself (vtkSphericalCoverArrays), which VTK's XML writers save bit for bit.
+ *
+ * Output 1 (vtkTable): the strips, `Receiver`, `Source`, `Theta` (row), `PhiBegin`, `PhiEnd`
+ * (columns, end exclusive), `R` (mean distance).
+ *
+ * Before building, the memory the cover needs is estimated; above MemoryLimit (MiB) the
+ * filter refuses with an error.
+ *
+ * @warning Rows are built in parallel (vtkSMPTools); the result does not depend on the number
+ * of threads.
+ */
+#ifndef vtkSphericalCoverFilter_h
+#define vtkSphericalCoverFilter_h
+
+#include "SphericalCoverFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class SPHERICALCOVERFILTERS_EXPORT vtkSphericalCoverFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkSphericalCoverFilter* New();
+  vtkTypeMacro(vtkSphericalCoverFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum FillMethods
+  {
+    PROJECTION = 0,
+    RAY_CASTING = 1
+  };
+
+  ///@{
+  /** Cells of the hemisphere grid in theta (polar) and phi (azimuth). Defaults 32 and 128. */
+  vtkSetClampMacro(ThetaBins, int, 1, 4096);
+  vtkGetMacro(ThetaBins, int);
+  vtkSetClampMacro(PhiBins, int, 1, 16384);
+  vtkGetMacro(PhiBins, int);
+  ///@}
+
+  ///@{
+  /**
+   * Samples per cell along theta and along phi (SamplesPerCell^2 in all): cells are classified
+   * by coverage. Default is 3.
+   */
+  vtkSetClampMacro(SamplesPerCell, int, 1, 16);
+  vtkGetMacro(SamplesPerCell, int);
+  ///@}
+
+  ///@{
+  /** How the R-buffer is filled: PROJECTION (the paper's) or RAY_CASTING (Embree). Default
+   * is PROJECTION. */
+  vtkSetClampMacro(FillMethod, int, PROJECTION, RAY_CASTING);
+  vtkGetMacro(FillMethod, int);
+  void SetFillMethodToProjection() { this->SetFillMethod(PROJECTION); }
+  void SetFillMethodToRayCasting() { this->SetFillMethod(RAY_CASTING); }
+  ///@}
+
+  ///@{
+  /**
+   * Back sides of surfaces hide what lies behind them (opaque surfaces). Off: the paper's
+   * culling of back-facing patches, which makes them transparent. Default is on.
+   */
+  vtkSetMacro(BackFacesOcclude, bool);
+  vtkGetMacro(BackFacesOcclude, bool);
+  vtkBooleanMacro(BackFacesOcclude, bool);
+  ///@}
+
+  ///@{
+  /** Largest memory the cover may take, in MiB; a bigger estimate is refused. Default 8192. */
+  vtkSetClampMacro(MemoryLimit, double, 0.0, 1.0e9);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+protected:
+  vtkSphericalCoverFilter();
+  ~vtkSphericalCoverFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int ThetaBins = 32;
+  int PhiBins = 128;
+  int SamplesPerCell = 3;
+  int FillMethod = PROJECTION;
+  bool BackFacesOcclude = true;
+  double MemoryLimit = 8192.0;
+
+private:
+  vtkSphericalCoverFilter(const vtkSphericalCoverFilter&) = delete;
+  void operator=(const vtkSphericalCoverFilter&) = delete;
+};
+
+#endif
