@@ -9,6 +9,7 @@
 #include <atomic>
 #include <climits>
 #include <stdexcept>
+#include <utility>
 
 namespace sphcover
 {

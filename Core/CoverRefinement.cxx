@@ -1,0 +1,439 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "CoverRefinement.h"
+
+#include "BoundingBoxTree.h"
+#include "HemisphereGrid.h"
+#include "RBuffer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <utility>
+
+namespace sphcover
+{
+namespace
+{
+/// Receivers per ParallelFor call; progress and abort are checked between calls.
+constexpr std::size_t BatchSize = 64;
+
+/// Union-find over the samples of one hemisphere (path halving, union by index so that the
+/// labelling does not depend on anything but the R-buffer).
+struct SampleRegions
+{
+  std::vector<int32_t> Parent;
+
+  void Reset(std::size_t count)
+  {
+    this->Parent.resize(count);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      this->Parent[k] = static_cast<int32_t>(k);
+    }
+  }
+  int32_t Find(int32_t x)
+  {
+    while (this->Parent[static_cast<size_t>(x)] != x)
+    {
+      const int32_t grand = this->Parent[static_cast<size_t>(this->Parent[static_cast<size_t>(x)])];
+      this->Parent[static_cast<size_t>(x)] = grand;
+      x = grand;
+    }
+    return x;
+  }
+  void Join(int32_t a, int32_t b)
+  {
+    a = this->Find(a);
+    b = this->Find(b);
+    if (a != b)
+    {
+      this->Parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  }
+};
+
+/// Per-thread scratch of the analysis: per-source sums (one slot per patch, left zero) and
+/// the sample regions.
+struct Scratch
+{
+  std::vector<double> VisibleMeasure;
+  std::vector<uint32_t> VisibleSamples;
+  std::vector<uint32_t> LargeRegions;
+  std::vector<uint32_t> RegionSamples;
+  SampleRegions Regions;
+};
+}
+
+std::string RefinementSettings::Problem() const
+{
+  if (this->MaxLevel < 0)
+  {
+    return "RefinementSettings: MaxLevel must be >= 0";
+  }
+  if (!(this->HiddenFraction > 0.0 && this->HiddenFraction < 1.0))
+  {
+    return "RefinementSettings: HiddenFraction must be in (0, 1)";
+  }
+  if (!(this->MinimumHiddenCells >= 0.0) || !(this->MinimumVisibleCells >= 0.0))
+  {
+    return "RefinementSettings: MinimumHiddenCells and MinimumVisibleCells must be >= 0";
+  }
+  try
+  {
+    HemisphereGrid grid(
+      this->Cover.ThetaBins, this->Cover.PhiBins, this->Cover.SamplesTheta, this->Cover.SamplesPhi);
+  }
+  catch (const std::invalid_argument& error)
+  {
+    return std::string("RefinementSettings: ") + error.what();
+  }
+  return std::string();
+}
+
+/// What the analysis of one hemisphere H_i found (sources as indices into the current list).
+struct CoverRefinement::Analysis
+{
+  /// Sources visible in H_i (image of at least one sample), ascending.
+  std::vector<uint32_t> Visible;
+  /// Sources to split because substantially hidden, and (not already there) because their
+  /// image is disconnected; both within the limits.
+  std::vector<uint32_t> Hidden;
+  std::vector<uint32_t> Disconnected;
+  /// Sources that asked for a split the limits refused.
+  std::size_t Limited = 0;
+  /// Thread-local working arrays, shared by the receivers of one ParallelFor chunk.
+  std::shared_ptr<Scratch> Work;
+};
+
+CoverRefinement::CoverRefinement(const Scene& scene,
+  std::vector<Patch> patches,
+  const RefinementSettings& settings)
+  : Environment(scene)
+  , Settings(settings)
+  , Nodes(std::move(patches))
+{
+  const std::string problem = settings.Problem();
+  if (!problem.empty())
+  {
+    throw std::invalid_argument(problem);
+  }
+  for (const Patch& patch : this->Nodes)
+  {
+    if (patch.SurfaceIndex < 0 || static_cast<size_t>(patch.SurfaceIndex) >= scene.Surfaces.size())
+    {
+      throw std::invalid_argument("CoverRefinement: a patch's surface is not in the scene");
+    }
+  }
+  this->Leaves.resize(this->Nodes.size());
+  for (size_t k = 0; k < this->Nodes.size(); ++k)
+  {
+    this->Leaves[k] = static_cast<int>(k);
+  }
+  this->VisibleNodes.resize(this->Nodes.size());
+  this->Analysed.assign(this->Nodes.size(), false);
+  this->Stats.InputPatches = this->Nodes.size();
+  this->Stats.OutputPatches = this->Nodes.size();
+}
+
+void CoverRefinement::Analyse(std::size_t receiver,
+  const std::vector<Patch>& current,
+  const RBufferFiller& filler,
+  RBuffer& buffer,
+  Analysis& result) const
+{
+  filler.Fill(receiver, buffer, nullptr);
+  const HemisphereGrid& grid = buffer.Grid();
+  Scratch& work = *result.Work;
+  const size_t count = current.size();
+  if (work.VisibleMeasure.size() != count)
+  {
+    work.VisibleMeasure.assign(count, 0.0);
+    work.VisibleSamples.assign(count, 0);
+    work.LargeRegions.assign(count, 0);
+  }
+  const int rows = grid.SampleRows();
+  const int columns = grid.SampleColumns();
+  const int perCell = grid.SamplesPerCell();
+  const int samplesTheta = grid.SamplesTheta();
+
+  // The image of every source at sample resolution: measure, sample count, regions.
+  work.Regions.Reset(grid.SampleCount());
+  work.RegionSamples.assign(grid.SampleCount(), 0);
+  std::vector<std::pair<int32_t, int32_t>> poleSamples; // (source, first sample of row 0)
+  for (int r = 0; r < rows; ++r)
+  {
+    const double weight = grid.CellMeasure(r / samplesTheta) / perCell;
+    for (int c = 0; c < columns; ++c)
+    {
+      const size_t s = grid.SampleIndex(r, c);
+      const int32_t source = buffer.SampleSource(s);
+      if (source < 0)
+      {
+        continue;
+      }
+      if (work.VisibleSamples[static_cast<size_t>(source)] == 0)
+      {
+        result.Visible.push_back(static_cast<uint32_t>(source));
+      }
+      ++work.VisibleSamples[static_cast<size_t>(source)];
+      work.VisibleMeasure[static_cast<size_t>(source)] += weight;
+      // 8-neighbours already visited: left (wrapping in phi) and the three above.
+      const int32_t self = static_cast<int32_t>(s);
+      auto join = [&](int rr, int cc) {
+        const size_t t = grid.SampleIndex(rr, (cc + columns) % columns);
+        if (buffer.SampleSource(t) == source)
+        {
+          work.Regions.Join(self, static_cast<int32_t>(t));
+        }
+      };
+      join(r, c - 1);
+      if (c == columns - 1)
+      {
+        join(r, 0);
+      }
+      if (r > 0)
+      {
+        join(r - 1, c - 1);
+        join(r - 1, c);
+        join(r - 1, c + 1);
+      }
+      else
+      {
+        // The first sample row is a small circle around the normal: all of it is adjacent.
+        auto found = std::find_if(poleSamples.begin(), poleSamples.end(),
+          [source](const std::pair<int32_t, int32_t>& p) { return p.first == source; });
+        if (found == poleSamples.end())
+        {
+          poleSamples.emplace_back(source, self);
+        }
+        else
+        {
+          work.Regions.Join(self, found->second);
+        }
+      }
+    }
+  }
+  std::sort(result.Visible.begin(), result.Visible.end());
+  for (size_t s = 0; s < grid.SampleCount(); ++s)
+  {
+    if (buffer.SampleSource(s) >= 0)
+    {
+      ++work.RegionSamples[static_cast<size_t>(work.Regions.Find(static_cast<int32_t>(s)))];
+    }
+  }
+  for (size_t s = 0; s < grid.SampleCount(); ++s)
+  {
+    const int32_t source = buffer.SampleSource(s);
+    if (source >= 0 && work.Regions.Parent[s] == static_cast<int32_t>(s) &&
+      work.RegionSamples[s] >= static_cast<uint32_t>(perCell))
+    {
+      ++work.LargeRegions[static_cast<size_t>(source)];
+    }
+  }
+
+  // Step 3: compare each visible source's image with its unoccluded projection.
+  const std::vector<std::pair<int32_t, float>>& unoccluded = buffer.UnoccludedProjectedSolidAngles();
+  const Patch& receiverPatch = current[receiver];
+  const double cellAngle = std::min(
+    0.5 * 3.14159265358979323846 / grid.ThetaBins(), 2.0 * 3.14159265358979323846 / grid.PhiBins());
+  for (const uint32_t j : result.Visible)
+  {
+    const double visible = work.VisibleMeasure[j];
+    const uint32_t samples = work.VisibleSamples[j];
+    const uint32_t regions = work.LargeRegions[j];
+    work.VisibleMeasure[j] = 0.0;
+    work.VisibleSamples[j] = 0;
+    work.LargeRegions[j] = 0;
+    if (j == receiver || samples < this->Settings.MinimumVisibleCells * perCell)
+    {
+      continue; // a concave patch seeing itself; or (note 4) Q_j fully hidden from P_i
+    }
+    const auto found = std::lower_bound(unoccluded.begin(), unoccluded.end(),
+      static_cast<int32_t>(j),
+      [](const std::pair<int32_t, float>& p, int32_t source) { return p.first < source; });
+    const double projection =
+      found != unoccluded.end() && found->first == static_cast<int32_t>(j) ? found->second : 0.0;
+    // The cell measure where Q_j is seen: its image's mean measure per sample, times a cell's.
+    const double cellMeasure = visible / samples * perCell;
+    const double hidden = projection - visible;
+    const bool hiddenSubstantially = hidden > this->Settings.HiddenFraction * projection &&
+      hidden > this->Settings.MinimumHiddenCells * cellMeasure;
+    const bool disconnected = this->Settings.SplitDisconnected && regions >= 2;
+    if (!hiddenSubstantially && !disconnected)
+    {
+      continue;
+    }
+    // The limits of §4.3 note 2, as in the subdivision.
+    const Patch& source = current[j];
+    const IntervalVec3& bounds = source.Geometry.Bounds();
+    const Box box{ bounds.Lower(), bounds.Upper() };
+    const double distance = box.DistanceTo(receiverPatch.Point);
+    const bool maySplit = source.Level < this->Settings.MaxLevel &&
+      (distance <= 0.0 || box.Diagonal() > cellAngle * distance);
+    if (!maySplit)
+    {
+      ++result.Limited;
+      continue;
+    }
+    (hiddenSubstantially ? result.Hidden : result.Disconnected).push_back(j);
+  }
+}
+
+bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& parallelFor)
+{
+  const ParallelFor& run = parallelFor ? parallelFor : ParallelFor(SequentialFor);
+  const SphericalCoverOptions& options = this->Settings.Cover;
+  const HemisphereGrid grid(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  // Each round deepens by at most one level.
+  const double expectedRounds = this->Settings.MaxLevel + 1.0;
+  while (true)
+  {
+    const size_t count = this->Leaves.size();
+    std::vector<Patch> current;
+    current.reserve(count);
+    for (int node : this->Leaves)
+    {
+      current.push_back(this->Nodes[static_cast<size_t>(node)]);
+    }
+    std::vector<size_t> receivers;
+    for (size_t k = 0; k < count; ++k)
+    {
+      if (!this->Analysed[static_cast<size_t>(this->Leaves[k])])
+      {
+        receivers.push_back(k);
+      }
+    }
+    const std::unique_ptr<RBufferFiller> filler =
+      RBufferFiller::Create(RBufferFill::Projection, current, grid, options.FillOptions);
+
+    // Step 3 for every hemisphere that may have changed; requests merged in receiver order.
+    std::vector<char> hidden(count, 0);
+    std::vector<char> disconnected(count, 0);
+    std::vector<Analysis> results;
+    for (size_t first = 0; first < receivers.size(); first += BatchSize)
+    {
+      const size_t batch = std::min(BatchSize, receivers.size() - first);
+      results.assign(batch, Analysis());
+      run(batch, [&](size_t begin, size_t end) {
+        RBuffer buffer(grid);
+        const std::shared_ptr<Scratch> work = std::make_shared<Scratch>();
+        for (size_t k = begin; k < end; ++k)
+        {
+          results[k].Work = work;
+          this->Analyse(receivers[first + k], current, *filler, buffer, results[k]);
+          results[k].Work.reset();
+        }
+      });
+      for (size_t k = 0; k < batch; ++k)
+      {
+        const Analysis& analysis = results[k];
+        const size_t node = static_cast<size_t>(this->Leaves[receivers[first + k]]);
+        this->Analysed[node] = true;
+        std::vector<int>& visible = this->VisibleNodes[node];
+        visible.clear();
+        for (uint32_t j : analysis.Visible)
+        {
+          visible.push_back(this->Leaves[j]);
+        }
+        std::sort(visible.begin(), visible.end());
+        for (uint32_t j : analysis.Hidden)
+        {
+          hidden[j] = 1;
+        }
+        for (uint32_t j : analysis.Disconnected)
+        {
+          disconnected[j] = 1;
+        }
+        this->Stats.LimitedRequests += analysis.Limited;
+      }
+      this->Stats.RowsAnalysed += batch;
+      if (progress &&
+        !progress(std::min(
+          1.0, (this->Stats.Rounds + double(first + batch) / receivers.size()) / expectedRounds)))
+      {
+        return false;
+      }
+    }
+    ++this->Stats.Rounds;
+
+    // Step 5: every split patch is replaced by its three pieces, in its place.
+    std::vector<int> nextLeaves;
+    std::vector<char> splitNode(this->Nodes.size(), 0);
+    for (size_t k = 0; k < count; ++k)
+    {
+      const int node = this->Leaves[k];
+      if (!hidden[k] && !disconnected[k])
+      {
+        nextLeaves.push_back(node);
+        continue;
+      }
+      splitNode[static_cast<size_t>(node)] = 1;
+      ++this->Stats.Splits;
+      if (!hidden[k])
+      {
+        ++this->Stats.DisconnectedSplits;
+      }
+      const Patch& parent = this->Nodes[static_cast<size_t>(node)];
+      const BezierPatch& surface =
+        this->Environment.Surfaces[static_cast<size_t>(parent.SurfaceIndex)].Patch;
+      for (Patch& piece : SplitInThree(parent, surface, SplitReason::RBuffer))
+      {
+        nextLeaves.push_back(static_cast<int>(this->Nodes.size()));
+        this->Nodes.push_back(std::move(piece));
+        this->VisibleNodes.emplace_back();
+        this->Analysed.push_back(false);
+      }
+      this->VisibleNodes[static_cast<size_t>(node)].clear();
+    }
+    if (nextLeaves.size() == count)
+    {
+      break;
+    }
+    // A hemisphere in which a split patch was visible must be analysed again (its pieces may
+    // be hidden differently); one in which it was hidden keeps its verdicts.
+    for (int node : nextLeaves)
+    {
+      const std::vector<int>& visible = this->VisibleNodes[static_cast<size_t>(node)];
+      if (this->Analysed[static_cast<size_t>(node)] &&
+        std::any_of(visible.begin(), visible.end(),
+          [&](int j) { return splitNode[static_cast<size_t>(j)] != 0; }))
+      {
+        this->Analysed[static_cast<size_t>(node)] = false;
+      }
+    }
+    this->Leaves = std::move(nextLeaves);
+    this->Stats.OutputPatches = this->Leaves.size();
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+std::vector<Patch> CoverRefinement::Patches() const
+{
+  std::vector<Patch> patches;
+  patches.reserve(this->Leaves.size());
+  for (int node : this->Leaves)
+  {
+    patches.push_back(this->Nodes[static_cast<size_t>(node)]);
+  }
+  std::sort(patches.begin(), patches.end(), [](const Patch& a, const Patch& b) {
+    if (a.SurfaceIndex != b.SurfaceIndex)
+    {
+      return a.SurfaceIndex < b.SurfaceIndex;
+    }
+    if (a.Domain.V0 != b.Domain.V0)
+    {
+      return a.Domain.V0 < b.Domain.V0;
+    }
+    return a.Domain.U0 < b.Domain.U0;
+  });
+  return patches;
+}
+
+} // namespace sphcover

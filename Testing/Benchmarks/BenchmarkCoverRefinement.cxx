@@ -1,0 +1,189 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file BenchmarkCoverRefinement.cxx
+ * @brief The R-buffer refinement of paper §4.3 Steps 3 and 5 (CoverRefinement.h) on the Cornell
+ * box and the teapot room at the scenes' settings: interval subdivision, cover, refinement,
+ * cover over the refined patches (SPEC §7: speed is measured by a benchmark, never by timed
+ * tests).
+ *
+ *   BenchmarkCoverRefinement [--threads N] [--extra-levels K] [--scene name.scene]...
+ *
+ * The refinement may go K levels (default 2) deeper than the scene's MaxLevel: at the scenes'
+ * settings the interval subdivision already takes every patch to MaxLevel, so with the same
+ * limit Step 3 could split nothing.
+ *
+ * Prints per scene: patches before/after refinement, rounds, hemispheres analysed by the
+ * refinement, splits, seconds of each stage, and the worst surface-pair reciprocity error
+ * |A_a F_ab - A_b F_ba| / max(A_a F_ab, A_b F_ba) before and after (over pairs whose exchange
+ * min(A_a F_ab, A_b F_ba) exceeds 0.1% of the smaller area), with the pair, and the worst
+ * |row sum - 1| of the surfaces' form factors.
+ */
+#include "CoverRefinement.h"
+#include "IntervalSubdivision.h"
+#include "ParallelFor.h"
+#include "SceneLoader.h"
+#include "SphericalCover.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+using namespace sphcover;
+
+namespace
+{
+double Seconds(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct Reciprocity
+{
+  double Worst = 0.0;
+  std::string Pair;
+  double WorstRow = 0.0;
+};
+
+Reciprocity Measure(const Scene& scene, const std::vector<Patch>& patches, const SphericalCover& cover)
+{
+  const size_t count = scene.Surfaces.size();
+  std::vector<int> groups;
+  std::vector<double> area(count, 0.0);
+  for (const Patch& patch : patches)
+  {
+    groups.push_back(patch.SurfaceIndex);
+    area[static_cast<size_t>(patch.SurfaceIndex)] += patch.Area;
+  }
+  const std::vector<double> f = cover.FormFactors(groups, static_cast<int>(count));
+  Reciprocity result;
+  for (size_t a = 0; a < count; ++a)
+  {
+    double row = 0.0;
+    for (size_t b = 0; b < count; ++b)
+    {
+      row += f[a * count + b];
+      const double ab = area[a] * f[a * count + b];
+      const double ba = area[b] * f[b * count + a];
+      if (b <= a || std::min(ab, ba) <= 1e-3 * std::min(area[a], area[b]))
+      {
+        continue;
+      }
+      const double error = std::fabs(ab - ba) / std::max(ab, ba);
+      if (error > result.Worst)
+      {
+        result.Worst = error;
+        result.Pair = scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[a].NameIndex)] + " / " +
+          scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[b].NameIndex)];
+      }
+    }
+    result.WorstRow = std::max(result.WorstRow, std::fabs(row - 1.0));
+  }
+  return result;
+}
+
+void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFor)
+{
+  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
+  SubdivisionSettings subdivisionSettings;
+  subdivisionSettings.MaxLevel = scene.Settings.MaxLevel;
+  subdivisionSettings.ThetaBins = scene.Settings.ThetaBins;
+  subdivisionSettings.PhiBins = scene.Settings.PhiBins;
+  for (double& tolerance : subdivisionSettings.Tolerance)
+  {
+    tolerance = scene.Settings.Tolerance;
+  }
+  SphericalCoverOptions coverOptions;
+  coverOptions.ThetaBins = scene.Settings.ThetaBins;
+  coverOptions.PhiBins = scene.Settings.PhiBins;
+
+  auto start = std::chrono::steady_clock::now();
+  IntervalSubdivision subdivision(scene, subdivisionSettings);
+  subdivision.Run(nullptr, parallelFor);
+  const std::vector<Patch> before = subdivision.Patches();
+  const double subdivisionSeconds = Seconds(start);
+
+  start = std::chrono::steady_clock::now();
+  SphericalCover coverBefore;
+  coverBefore.Build(before, coverOptions, parallelFor);
+  const double coverBeforeSeconds = Seconds(start);
+  const Reciprocity reciprocityBefore = Measure(scene, before, coverBefore);
+
+  RefinementSettings refinementSettings;
+  refinementSettings.Cover = coverOptions;
+  refinementSettings.MaxLevel = scene.Settings.MaxLevel + extraLevels;
+  start = std::chrono::steady_clock::now();
+  CoverRefinement refinement(scene, before, refinementSettings);
+  refinement.Run(nullptr, parallelFor);
+  const std::vector<Patch> after = refinement.Patches();
+  const double refinementSeconds = Seconds(start);
+
+  start = std::chrono::steady_clock::now();
+  SphericalCover coverAfter;
+  coverAfter.Build(after, coverOptions, parallelFor);
+  const double coverAfterSeconds = Seconds(start);
+  const Reciprocity reciprocityAfter = Measure(scene, after, coverAfter);
+
+  const RefinementStatistics& s = refinement.Statistics();
+  std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d)\n", name.c_str(),
+    coverOptions.ThetaBins, coverOptions.PhiBins, scene.Settings.MaxLevel,
+    refinementSettings.MaxLevel);
+  std::printf("  subdivision          %8zu patches  %8.2f s\n", before.size(), subdivisionSeconds);
+  std::printf("  cover before         %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
+              "worst |row - 1| %.2e\n",
+    before.size(), coverBeforeSeconds, reciprocityBefore.Worst, reciprocityBefore.Pair.c_str(),
+    reciprocityBefore.WorstRow);
+  std::printf("  refinement           %8zu patches  %8.2f s  rounds %d, hemispheres analysed %zu, "
+              "splits %zu (%zu for disconnection only), refused by limits %zu\n",
+    after.size(), refinementSeconds, s.Rounds, s.RowsAnalysed, s.Splits, s.DisconnectedSplits,
+    s.LimitedRequests);
+  std::printf("  cover after          %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
+              "worst |row - 1| %.2e\n",
+    after.size(), coverAfterSeconds, reciprocityAfter.Worst, reciprocityAfter.Pair.c_str(),
+    reciprocityAfter.WorstRow);
+  std::printf("  hemispheres computed after subdivision: %zu (refinement) + %zu (final cover)\n",
+    s.RowsAnalysed, after.size());
+}
+}
+
+int main(int argc, char* argv[])
+{
+  int threads = 2;
+  int extraLevels = 2;
+  std::vector<std::string> scenes;
+  for (int k = 1; k < argc; ++k)
+  {
+    if (std::strcmp(argv[k], "--threads") == 0 && k + 1 < argc)
+    {
+      threads = std::max(1, std::atoi(argv[++k]));
+    }
+    else if (std::strcmp(argv[k], "--extra-levels") == 0 && k + 1 < argc)
+    {
+      extraLevels = std::max(0, std::atoi(argv[++k]));
+    }
+    else if (std::strcmp(argv[k], "--scene") == 0 && k + 1 < argc)
+    {
+      scenes.emplace_back(argv[++k]);
+    }
+    else
+    {
+      std::fprintf(stderr, "usage: %s [--threads N] [--extra-levels K] [--scene name.scene]...\n", argv[0]);
+      return 2;
+    }
+  }
+  if (scenes.empty())
+  {
+    scenes = { "cornell_box.scene", "teapot_room.scene" };
+  }
+  const ParallelFor parallelFor = threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
+  std::printf("threads %d\n", threads);
+  for (const std::string& scene : scenes)
+  {
+    Run(scene, extraLevels, parallelFor);
+  }
+  return 0;
+}

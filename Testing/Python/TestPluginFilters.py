@@ -1,0 +1,113 @@
+"""pvbatch: the filter proxies of the plug-in (Interval Subdivision, Spherical Cover).
+- every property's XML default equals the C++ constructor's value (the wrapped class's getter);
+- every property can be set to a non-default value and back;
+- on the Cornell box the output ports carry the SPEC §4.2 / §4.3 data: patches and
+  characteristic points, whose areas add up to the surfaces' areas; cover points with their
+  covered projected solid angles and the strip table;
+- a bad property value makes the update fail without a crash (empty output)."""
+import sys
+
+from paraview import servermanager
+from paraview.simple import LoadPlugin, OpenDataFile, OutputPort
+
+plugin, data = sys.argv[1:3]
+LoadPlugin(plugin, remote=False, ns=globals())
+from sphericalcover import vtkIntervalSubdivisionFilter, vtkSphericalCoverFilter  # noqa: E402
+
+failures = []
+scene = OpenDataFile(f"{data}/scenes/cornell_box.scene")
+subdivision = globals()["IntervalSubdivision"](Input=scene)
+cxx = vtkIntervalSubdivisionFilter()
+
+BOOLEANS_AND_ENUMS = ("RangeMethod", "SelfShadowing", "HemisphericalContainment", "SphericalShape",
+                      "Characterisability", "FillMethod", "BackFacesOcclude")
+
+
+def check_properties(proxy, native, names):
+    """XML defaults equal the C++ defaults; each property can be changed and reset."""
+    for name in names:
+        prop = proxy.SMProxy.GetProperty(name)
+        default = prop.GetElement(0)
+        value = getattr(native, "Get" + name)()
+        if float(default) != float(value):
+            failures.append(f"{name}: XML default {default} != C++ default {value}")
+        other = (1 - default) if name in BOOLEANS_AND_ENUMS else default * 2
+        prop.SetElement(0, other)
+        proxy.SMProxy.UpdateVTKObjects()
+        if prop.GetElement(0) != other:
+            failures.append(f"{name}: cannot be set to {other}")
+        prop.SetElement(0, default)
+        proxy.SMProxy.UpdateVTKObjects()
+
+
+check_properties(subdivision, cxx, ["RangeMethod", "MaxLevel", "ThetaBins", "PhiBins", "SelfShadowing",
+                 "SelfShadowingTolerance", "HemisphericalContainment",
+                 "HemisphericalContainmentTolerance", "SphericalShape", "SphericalShapeTolerance",
+                 "Characterisability", "CharacterisabilityTolerance"])
+
+subdivision.MaxLevel = 2
+subdivision.UpdatePipeline()
+patches = servermanager.Fetch(subdivision)
+points_info = subdivision.GetDataInformation(1)
+patch_info = subdivision.GetDataInformation(0)
+cells = patch_info.GetNumberOfCells()
+if cells <= 16:
+    failures.append(f"the Cornell box was not subdivided ({cells} patches)")
+if points_info.GetNumberOfPoints() != cells:
+    failures.append(f"{points_info.GetNumberOfPoints()} characteristic points for {cells} patches")
+cell_arrays = set(subdivision.CellData.keys())
+for name in ["SurfaceId", "PatchId", "Level", "UVRange", "Area", "SplitReason", "MaterialId",
+             "Diffuse", "Emission"]:
+    if name not in cell_arrays:
+        failures.append(f"patches lack {name}")
+point_data = points_info.GetPointDataInformation()
+point_arrays = {point_data.GetArrayInformation(k).GetName() for k in range(point_data.GetNumberOfArrays())}
+for name in ["Normals", "PatchId", "SurfaceId", "UV", "Area"]:
+    if name not in point_arrays:
+        failures.append(f"characteristic points lack {name}")
+
+# Areas: the patches add up to the surfaces' areas, as VTK's own cell-size filter measures them.
+area = patches.GetCellData().GetArray("Area")
+total = sum(area.GetValue(k) for k in range(patches.GetNumberOfCells()))
+reader_output = servermanager.Fetch(scene)
+from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter  # noqa: E402
+sizes = vtkCellSizeFilter()
+sizes.SetInputData(reader_output)
+sizes.ComputeAreaOn()
+sizes.Update()
+reader_area = sizes.GetOutput().GetCellData().GetArray("Area")
+expected = sum(reader_area.GetValue(k) for k in range(reader_output.GetNumberOfCells()))
+if abs(total / expected - 1) > 1e-6:
+    failures.append(f"patch areas add up to {total}, the surfaces' to {expected}")
+
+# The spherical cover of the (coarsely) subdivided box.
+cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0))
+check_properties(cover, vtkSphericalCoverFilter(), ["ThetaBins", "PhiBins", "SamplesPerCell", "FillMethod",
+                 "BackFacesOcclude", "MemoryLimit"])
+subdivision.MaxLevel = 1
+cover.UpdatePipeline()
+cover_points = servermanager.Fetch(cover)
+if cover_points.GetNumberOfPoints() != subdivision.GetDataInformation(0).GetNumberOfCells():
+    failures.append("one cover point per patch expected")
+for name in ["Normals", "Tangents", "Area", "PatchId", "SurfaceId", "CoveredProjectedSolidAngle",
+             "VisibleSources", "MaterialId", "Diffuse", "Emission"]:
+    if cover_points.GetPointData().GetArray(name) is None:
+        failures.append(f"cover points lack {name}")
+covered = cover_points.GetPointData().GetArray("CoveredProjectedSolidAngle")
+values = [covered.GetValue(k) for k in range(covered.GetNumberOfTuples())]
+# The Cornell box is open at the front: no point sees more than pi; points on the floor under
+# the blocks see nothing, all others something.
+if max(values) > 3.14159265358979 + 1e-9 or sum(v > 0 for v in values) < 0.9 * len(values):
+    failures.append(f"covered projected solid angles out of range: {min(values)}..{max(values)}")
+if cover.GetDataInformation(1).GetNumberOfRows() == 0:
+    failures.append("the strip table is empty")
+
+bad = globals()["IntervalSubdivision"](Input=scene)
+bad.SelfShadowingTolerance = -1
+bad.UpdatePipeline()
+if bad.GetDataInformation(0).GetNumberOfCells() != 0:
+    failures.append("a negative tolerance still produced patches")
+
+for failure in failures:
+    print("FAILED:", failure)
+sys.exit(1 if failures else 0)
