@@ -26,6 +26,7 @@
 #include <vtkTable.h>
 
 #include <exception>
+#include <iomanip>
 #include <sstream>
 
 namespace names = vtkSphericalCoverArrayNames;
@@ -84,8 +85,10 @@ int vtkSphericalCoverFilter::RequestData(
       static_cast<double>(sphcover::SphericalCover::EstimateBytes(patches, options)) / (1024.0 * 1024.0);
     if (estimate > this->MemoryLimit)
     {
+      std::ostringstream needed;
+      needed << std::setprecision(3) << estimate;
       vtkErrorMacro(<< "The cover of " << patches.size() << " patches would need about "
-                    << static_cast<long long>(estimate) << " MiB, more than MemoryLimit ("
+                    << needed.str() << " MiB, more than MemoryLimit ("
                     << this->MemoryLimit << " MiB); use fewer patches (MaxLevel) or a coarser grid.");
       return 0;
     }

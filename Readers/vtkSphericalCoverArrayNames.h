@@ -63,6 +63,11 @@ constexpr const char* Theta = "Theta";
 constexpr const char* PhiBegin = "PhiBegin";
 constexpr const char* PhiEnd = "PhiEnd";
 constexpr const char* R = "R";
+
+// Hemisphere extractor (SPEC §4.6): cell data of the hemisphere image and mesh (with Source,
+// SurfaceId, R).
+/// The cosine-weighted measure of a (theta, phi) cell, dphi (cos 2 theta0 - cos 2 theta1) / 4.
+constexpr const char* ProjectedSolidAngle = "ProjectedSolidAngle";
 }
 
 #endif
