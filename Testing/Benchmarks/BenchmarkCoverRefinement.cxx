@@ -179,6 +179,8 @@ int main(int argc, char* argv[])
   {
     scenes = { "cornell_box.scene", "teapot_room.scene" };
   }
+  // Unbuffered: a long run shows each stage as it ends.
+  std::setvbuf(stdout, nullptr, _IONBF, 0);
   const ParallelFor parallelFor = threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   std::printf("threads %d\n", threads);
   for (const std::string& scene : scenes)

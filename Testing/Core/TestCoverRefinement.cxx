@@ -1,0 +1,348 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The R-buffer refinement of paper §4.3 Steps 3 and 5 (CoverRefinement.h): reciprocity of the
+// Cornell box after subdivision + refinement + cover, tiling of every surface's domain, closed
+// scenes (with and without an occluder inside) stay closed, splits are marked RBuffer and are
+// fewer than a uniform refinement, determinism whatever the thread count, progress and abort,
+// settings checks.
+#include "CoverRefinement.h"
+
+#include "CoverTestUtilities.h"
+#include "IntervalSubdivision.h"
+#include "SphericalCover.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace sphcover;
+using namespace sphcover_test;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+/// A coarse configuration for the tests: the interval subdivision to `maxLevel` on a
+/// thetaBins x 4 thetaBins grid, the refinement `extraLevels` deeper.
+struct Pipeline
+{
+  SubdivisionSettings Subdivision;
+  RefinementSettings Refinement;
+
+  Pipeline(int thetaBins, int maxLevel, int extraLevels)
+  {
+    this->Subdivision.ThetaBins = thetaBins;
+    this->Subdivision.PhiBins = 4 * thetaBins;
+    this->Subdivision.MaxLevel = maxLevel;
+    this->Refinement.Cover.ThetaBins = thetaBins;
+    this->Refinement.Cover.PhiBins = 4 * thetaBins;
+    this->Refinement.MaxLevel = maxLevel + extraLevels;
+  }
+};
+
+std::vector<Patch> Subdivide(const Scene& scene, const SubdivisionSettings& settings)
+{
+  IntervalSubdivision subdivision(scene, settings);
+  EXPECT_TRUE(subdivision.Run(nullptr, ThreadedFor(2)));
+  return subdivision.Patches();
+}
+
+struct Exchange
+{
+  double WorstReciprocity = 0.0;
+  std::string WorstPair;
+  double WorstRowError = 0.0;
+  std::size_t Pairs = 0;
+};
+
+/// Surface-pair reciprocity |A_a F_ab - A_b F_ba| / max(...) over the pairs whose exchange
+/// min(A_a F_ab, A_b F_ba) exceeds 0.1% of the smaller area, and the worst |row sum - 1|.
+Exchange MeasureExchange(const Scene& scene,
+  const std::vector<Patch>& patches,
+  const SphericalCover& cover)
+{
+  const size_t count = scene.Surfaces.size();
+  std::vector<int> groups;
+  std::vector<double> area(count, 0.0);
+  for (const Patch& patch : patches)
+  {
+    groups.push_back(patch.SurfaceIndex);
+    area[static_cast<size_t>(patch.SurfaceIndex)] += patch.Area;
+  }
+  const std::vector<double> f = cover.FormFactors(groups, static_cast<int>(count));
+  Exchange result;
+  for (size_t a = 0; a < count; ++a)
+  {
+    double row = 0.0;
+    for (size_t b = 0; b < count; ++b)
+    {
+      row += f[a * count + b];
+      const double ab = area[a] * f[a * count + b];
+      const double ba = area[b] * f[b * count + a];
+      if (b <= a || std::min(ab, ba) <= 1e-3 * std::min(area[a], area[b]))
+      {
+        continue;
+      }
+      ++result.Pairs;
+      const double error = std::fabs(ab - ba) / std::max(ab, ba);
+      if (error > result.WorstReciprocity)
+      {
+        result.WorstReciprocity = error;
+        result.WorstPair = scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[a].NameIndex)] +
+          " / " + scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[b].NameIndex)];
+      }
+    }
+    result.WorstRowError = std::max(result.WorstRowError, std::fabs(row - 1.0));
+  }
+  return result;
+}
+
+/// The patches of every surface tile its parameter domain [0,1]^2: their rectangles do not
+/// overlap and their areas sum to 1.
+void ExpectTiling(const Scene& scene, const std::vector<Patch>& patches)
+{
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    std::vector<UVRect> rects;
+    for (const Patch& patch : patches)
+    {
+      if (patch.SurfaceIndex == static_cast<int>(s))
+      {
+        rects.push_back(patch.Domain);
+      }
+    }
+    double sum = 0.0;
+    for (size_t a = 0; a < rects.size(); ++a)
+    {
+      ASSERT_TRUE(rects[a].IsValid());
+      sum += (rects[a].U1 - rects[a].U0) * (rects[a].V1 - rects[a].V0);
+      for (size_t b = a + 1; b < rects.size(); ++b)
+      {
+        const double du =
+          std::min(rects[a].U1, rects[b].U1) - std::max(rects[a].U0, rects[b].U0);
+        const double dv =
+          std::min(rects[a].V1, rects[b].V1) - std::max(rects[a].V0, rects[b].V0);
+        ASSERT_FALSE(du > 1e-12 && dv > 1e-12) << "surface " << s << ": patches overlap";
+      }
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-12) << "surface " << s;
+  }
+}
+
+/// The furnace box with a closed, outward-facing cube [0.35, 0.65]^3 inside: every direction
+/// from every point still meets a surface, and the cube hides parts of the walls.
+Scene FurnaceBoxWithOccluder()
+{
+  Scene scene = LoadSceneFile(ScenePath("furnace_box.scene"));
+  const double lo = 0.35;
+  const double hi = 0.65;
+  const double w = hi - lo;
+  const int name = static_cast<int>(scene.SurfaceNames.size());
+  scene.SurfaceNames.push_back("inner_box");
+  const glm::dvec3 x(w, 0, 0);
+  const glm::dvec3 y(0, w, 0);
+  const glm::dvec3 z(0, 0, w);
+  // Each face's e1 x e2 points out of the cube.
+  const BezierPatch faces[6] = { Parallelogram({ lo, lo, lo }, z, y),
+    Parallelogram({ hi, lo, lo }, y, z),
+    Parallelogram({ lo, lo, lo }, x, z),
+    Parallelogram({ lo, hi, lo }, z, x),
+    Parallelogram({ lo, lo, lo }, y, x),
+    Parallelogram({ lo, lo, hi }, x, y) };
+  for (const BezierPatch& face : faces)
+  {
+    scene.Surfaces.emplace_back(face, name, 0);
+  }
+  return scene;
+}
+}
+
+TEST(CoverRefinement, CornellBoxReciprocity)
+{
+#ifdef SPHCOVER_SANITIZED
+  // About 30 s in Release, many minutes under the sanitizers: the Release run covers it, and
+  // the other refinement tests exercise the same code under the sanitizers.
+  GTEST_SKIP() << "too slow under the sanitizers";
+#endif
+  // The full Cornell box: after the interval subdivision alone, patches straddling the blocks'
+  // footprints and the contact edges are represented by their centres and reciprocity is off
+  // by tens of per cent at these coarse settings; Step 3 splits the patches that are partly
+  // hidden in others' hemispheres (a floor patch half under a block, seen from the ceiling and
+  // the walls) and must at least halve the worst error. The 1% is NOT reached here:
+  // the remaining error (light / block sides) is the one-point-per-receiver quadrature of
+  // unoccluded pairs, which no visibility criterion addresses (see the report).
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  const Pipeline pipeline(Sanitized ? 12 : 16, 3, 2);
+  const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
+  SphericalCover coverBefore;
+  ASSERT_TRUE(coverBefore.Build(before, pipeline.Refinement.Cover, ThreadedFor(2)));
+  const Exchange exchangeBefore = MeasureExchange(scene, before, coverBefore);
+
+  CoverRefinement refinement(scene, before, pipeline.Refinement);
+  ASSERT_TRUE(refinement.Run(nullptr, ThreadedFor(2)));
+  const std::vector<Patch> after = refinement.Patches();
+  SphericalCover coverAfter;
+  ASSERT_TRUE(coverAfter.Build(after, pipeline.Refinement.Cover, ThreadedFor(2)));
+  const Exchange exchangeAfter = MeasureExchange(scene, after, coverAfter);
+  const RefinementStatistics& stats = refinement.Statistics();
+  std::printf("[ Refine   ] Cornell box: %zu -> %zu patches in %d rounds (%zu hemispheres "
+              "analysed, %zu splits); worst reciprocity %.2e (%s) -> %.2e (%s) over %zu pairs\n",
+    before.size(),
+    after.size(),
+    stats.Rounds,
+    stats.RowsAnalysed,
+    stats.Splits,
+    exchangeBefore.WorstReciprocity,
+    exchangeBefore.WorstPair.c_str(),
+    exchangeAfter.WorstReciprocity,
+    exchangeAfter.WorstPair.c_str(),
+    exchangeAfter.Pairs);
+
+  EXPECT_GT(exchangeBefore.WorstReciprocity, 0.02) << "the refinement has something to fix";
+  EXPECT_LT(exchangeAfter.WorstReciprocity, 0.5 * exchangeBefore.WorstReciprocity)
+    << exchangeAfter.WorstPair;
+  EXPECT_GE(exchangeAfter.Pairs, 40u);
+  ExpectTiling(scene, after);
+
+  // Splits are Step 3's, and fewer than refining every patch uniformly to the deepest level
+  // the refinement reached.
+  EXPECT_EQ(stats.InputPatches, before.size());
+  EXPECT_EQ(stats.OutputPatches, after.size());
+  EXPECT_EQ(after.size(), before.size() + 2 * stats.Splits);
+  int deepest = 0;
+  size_t marked = 0;
+  for (const Patch& patch : after)
+  {
+    deepest = std::max(deepest, patch.Level);
+    marked += patch.Reason == SplitReason::RBuffer ? 1 : 0;
+    EXPECT_LE(patch.Level, pipeline.Refinement.MaxLevel);
+  }
+  EXPECT_GT(stats.Splits, 0u);
+  // Each split adds three RBuffer pieces and removes one leaf (perhaps an RBuffer piece).
+  EXPECT_GE(marked, 2 * stats.Splits + 1);
+  size_t uniform = 0;
+  for (const Patch& patch : before)
+  {
+    uniform += static_cast<size_t>(std::pow(3.0, deepest - patch.Level));
+  }
+  EXPECT_LT(after.size(), uniform / 2);
+}
+
+TEST(CoverRefinement, ClosedScenesStayClosed)
+{
+  // Splitting changes no geometry: in a closed scene every hemisphere of the refined cover is
+  // still covered completely (projected solid angle pi) and every row sums to 1. The empty
+  // furnace box has nothing hidden, so nothing is split; with a cube inside, the walls behind
+  // the cube are partly hidden and get split.
+  const Pipeline pipeline(Sanitized ? 8 : 12, 1, 2);
+  for (const bool occluder : { false, true })
+  {
+    const Scene scene =
+      occluder ? FurnaceBoxWithOccluder() : LoadSceneFile(ScenePath("furnace_box.scene"));
+    const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
+    CoverRefinement refinement(scene, before, pipeline.Refinement);
+    ASSERT_TRUE(refinement.Run(nullptr, ThreadedFor(2)));
+    const std::vector<Patch> after = refinement.Patches();
+    SphericalCover cover;
+    ASSERT_TRUE(cover.Build(after, pipeline.Refinement.Cover, ThreadedFor(2)));
+    double worstCovered = 0.0;
+    for (size_t i = 0; i < after.size(); ++i)
+    {
+      worstCovered = std::max(worstCovered, std::fabs(cover.CoveredProjectedSolidAngle(i) - Pi));
+    }
+    const Exchange exchange = MeasureExchange(scene, after, cover);
+    std::printf("[ Refine   ] furnace box%s: %zu -> %zu patches, largest |covered - pi| %.1e, "
+                "|row - 1| %.1e, worst reciprocity %.2e\n",
+      occluder ? " with a cube inside" : "",
+      before.size(),
+      after.size(),
+      worstCovered,
+      exchange.WorstRowError,
+      exchange.WorstReciprocity);
+    EXPECT_LT(worstCovered, 1e-12);
+    EXPECT_LT(exchange.WorstRowError, 5e-3);
+    ExpectTiling(scene, after);
+    if (occluder)
+    {
+      EXPECT_GT(refinement.Statistics().Splits, 0u);
+    }
+    else
+    {
+      EXPECT_EQ(refinement.Statistics().Splits, 0u) << "nothing is hidden in an empty box";
+    }
+  }
+}
+
+TEST(CoverRefinement, DeterministicWhateverTheThreads)
+{
+  const Scene scene = FurnaceBoxWithOccluder();
+  const Pipeline pipeline(8, 1, 2);
+  const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
+  CoverRefinement sequential(scene, before, pipeline.Refinement);
+  CoverRefinement threaded(scene, before, pipeline.Refinement);
+  ASSERT_TRUE(sequential.Run(nullptr, SequentialFor));
+  ASSERT_TRUE(threaded.Run(nullptr, ThreadedFor(3)));
+  const std::vector<Patch> a = sequential.Patches();
+  const std::vector<Patch> b = threaded.Patches();
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), before.size());
+  for (size_t k = 0; k < a.size(); ++k)
+  {
+    ASSERT_EQ(a[k].SurfaceIndex, b[k].SurfaceIndex);
+    ASSERT_EQ(a[k].Domain.U0, b[k].Domain.U0);
+    ASSERT_EQ(a[k].Domain.U1, b[k].Domain.U1);
+    ASSERT_EQ(a[k].Domain.V0, b[k].Domain.V0);
+    ASSERT_EQ(a[k].Domain.V1, b[k].Domain.V1);
+    ASSERT_EQ(a[k].Level, b[k].Level);
+  }
+  EXPECT_EQ(sequential.Statistics().RowsAnalysed, threaded.Statistics().RowsAnalysed);
+  EXPECT_EQ(sequential.Statistics().LimitedRequests, threaded.Statistics().LimitedRequests);
+}
+
+TEST(CoverRefinement, ProgressAndAbort)
+{
+  const Scene scene = FurnaceBoxWithOccluder();
+  const Pipeline pipeline(8, 1, 2);
+  const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
+
+  std::vector<double> reported;
+  CoverRefinement complete(scene, before, pipeline.Refinement);
+  ASSERT_TRUE(complete.Run([&](double fraction) {
+    reported.push_back(fraction);
+    return true;
+  }));
+  ASSERT_FALSE(reported.empty());
+  EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
+  EXPECT_EQ(reported.back(), 1.0);
+  EXPECT_GE(reported.front(), 0.0);
+
+  // Abort in the second round: the patches are those after the first, still a tiling.
+  CoverRefinement aborted(scene, before, pipeline.Refinement);
+  int calls = 0;
+  EXPECT_FALSE(aborted.Run([&](double) { return ++calls < 2 + static_cast<int>(before.size() / 64); }));
+  ExpectTiling(scene, aborted.Patches());
+  EXPECT_LE(aborted.Patches().size(), complete.Patches().size());
+}
+
+TEST(CoverRefinement, RejectsUnusableSettings)
+{
+  const Scene scene = LoadSceneFile(ScenePath("furnace_box.scene"));
+  const std::vector<Patch> patches = SplitScene(scene, 1);
+  RefinementSettings settings;
+  EXPECT_TRUE(settings.Problem().empty());
+  settings.HiddenFraction = 1.0;
+  EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
+  settings = RefinementSettings();
+  settings.MaxLevel = -1;
+  EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
+  settings = RefinementSettings();
+  settings.Cover.ThetaBins = 0;
+  EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
+  std::vector<Patch> foreign = patches;
+  foreign[0].SurfaceIndex = static_cast<int>(scene.Surfaces.size());
+  EXPECT_THROW(CoverRefinement(scene, foreign, RefinementSettings()), std::invalid_argument);
+}
