@@ -19,6 +19,8 @@
  * row) is the cover's cell row * PhiBins + column. Cell data:
  *  - `Source` (int): the patch seen through the cell, -1 where none;
  *  - `SurfaceId` (int): the surface of that patch, -1 where none;
+ *  - `SurfaceNameId` (int, when the input has it): the named scene entry of that patch (all
+ *    surfaces of one `.bpt` model share it), -1 where none;
  *  - `R` (float): the mean distance of the cell's strip to its source, NaN where none;
  *  - `ProjectedSolidAngle` (double): the cell's cosine-weighted measure
  *    dphi (cos 2 theta0 - cos 2 theta1) / 4 (SPEC §4.3), whatever its source: the cells sum to
@@ -83,8 +85,9 @@ public:
   /// Output 1: the 3-D hemisphere mesh.
   vtkPolyData* GetMeshOutput();
 
-  vtkTypeBool ProcessRequest(
-    vtkInformation* request, vtkInformationVector** inInfo, vtkInformationVector* outInfo) override;
+  vtkTypeBool ProcessRequest(vtkInformation* request,
+    vtkInformationVector** inInfo,
+    vtkInformationVector* outInfo) override;
 
 protected:
   vtkHemisphereExtractor();
