@@ -416,24 +416,7 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
 
 std::vector<Patch> CoverRefinement::Patches() const
 {
-  std::vector<Patch> patches;
-  patches.reserve(this->Leaves.size());
-  for (int node : this->Leaves)
-  {
-    patches.push_back(this->Nodes[static_cast<size_t>(node)]);
-  }
-  std::sort(patches.begin(), patches.end(), [](const Patch& a, const Patch& b) {
-    if (a.SurfaceIndex != b.SurfaceIndex)
-    {
-      return a.SurfaceIndex < b.SurfaceIndex;
-    }
-    if (a.Domain.V0 != b.Domain.V0)
-    {
-      return a.Domain.V0 < b.Domain.V0;
-    }
-    return a.Domain.U0 < b.Domain.U0;
-  });
-  return patches;
+  return CollectPatches(this->Nodes, this->Leaves);
 }
 
 } // namespace sphcover

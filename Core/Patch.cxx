@@ -3,6 +3,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <memory>
@@ -122,6 +123,28 @@ Patch::Patch(int surfaceIndex, const UVRect& domain, int level, BezierPatch geom
   , Normal(this->Geometry.Normal(0.5, 0.5))
   , Area(PatchArea(this->Geometry))
 {
+}
+
+std::vector<Patch> CollectPatches(const std::vector<Patch>& nodes, const std::vector<int>& leaves)
+{
+  std::vector<Patch> patches;
+  patches.reserve(leaves.size());
+  for (int node : leaves)
+  {
+    patches.push_back(nodes[static_cast<size_t>(node)]);
+  }
+  std::sort(patches.begin(), patches.end(), [](const Patch& a, const Patch& b) {
+    if (a.SurfaceIndex != b.SurfaceIndex)
+    {
+      return a.SurfaceIndex < b.SurfaceIndex;
+    }
+    if (a.Domain.V0 != b.Domain.V0)
+    {
+      return a.Domain.V0 < b.Domain.V0;
+    }
+    return a.Domain.U0 < b.Domain.U0;
+  });
+  return patches;
 }
 
 const char* SplitReasonName(SplitReason reason)

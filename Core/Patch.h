@@ -15,6 +15,8 @@
 
 #include <glm/vec3.hpp>
 
+#include <vector>
+
 #include <array>
 
 namespace sphcover
@@ -66,6 +68,10 @@ struct Patch
 std::array<Patch, 3> SplitInThree(const Patch& parent,
   const BezierPatch& surface,
   SplitReason reason);
+
+/// The patch list Q of the leaves `leaves` of `nodes`, in canonical order: by surface, then by
+/// v, then by u of their domains (the order every stage's output uses).
+std::vector<Patch> CollectPatches(const std::vector<Patch>& nodes, const std::vector<int>& leaves);
 
 /// Area of a Bezier patch, the integral of |dQ/du x dQ/dv| over [0,1]^2, by Gauss-Legendre
 /// quadrature of an order high enough for the patch's degrees.

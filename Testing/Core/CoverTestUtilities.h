@@ -14,6 +14,7 @@
 #include "Scene.h"
 #include "SceneLoader.h"
 
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
 #include <cmath>
@@ -103,6 +104,31 @@ inline double HowellPerpendicular(double l, double w, double h)
   const double pi = 3.14159265358979323846;
   return 1.0 / (pi * W) *
     (W * std::atan(1 / W) + H * std::atan(1 / H) - s * std::atan(1 / s) + 0.25 * logTerm);
+}
+
+/**
+ * Lambert's formula: the projected solid angle of a planar polygon (vertices in order, wholly
+ * on or above the tangent plane) seen from point p with unit normal n is
+ * |sum_k gamma_k (n . u_k)| / 2, gamma_k the angle its edge k subtends at p and u_k the unit
+ * normal of the plane through p and the edge.
+ */
+inline double LambertProjectedSolidAngle(const glm::dvec3& p,
+  const glm::dvec3& n,
+  const std::vector<glm::dvec3>& polygon)
+{
+  double sum = 0.0;
+  for (size_t k = 0; k < polygon.size(); ++k)
+  {
+    const glm::dvec3 a = glm::normalize(polygon[k] - p);
+    const glm::dvec3 b = glm::normalize(polygon[(k + 1) % polygon.size()] - p);
+    const glm::dvec3 c = glm::cross(a, b);
+    const double length = glm::length(c);
+    if (length > 0.0)
+    {
+      sum += std::atan2(length, glm::dot(a, b)) * glm::dot(c / length, n);
+    }
+  }
+  return std::fabs(sum) / 2.0;
 }
 
 } // namespace sphcover_test

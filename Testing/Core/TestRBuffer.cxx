@@ -22,30 +22,6 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-/**
- * Lambert's formula: the projected solid angle of a planar polygon (vertices in order, wholly
- * on or above the tangent plane) seen from point p with unit normal n is
- * |sum_k gamma_k (n . u_k)| / 2, gamma_k the angle its edge k subtends at p and u_k the unit
- * normal of the plane through p and the edge.
- */
-double LambertProjectedSolidAngle(const glm::dvec3& p,
-  const glm::dvec3& n,
-  const std::vector<glm::dvec3>& polygon)
-{
-  double sum = 0.0;
-  for (size_t k = 0; k < polygon.size(); ++k)
-  {
-    const glm::dvec3 a = glm::normalize(polygon[k] - p);
-    const glm::dvec3 b = glm::normalize(polygon[(k + 1) % polygon.size()] - p);
-    const glm::dvec3 c = glm::cross(a, b);
-    const double length = glm::length(c);
-    if (length > 0.0)
-    {
-      sum += std::atan2(length, glm::dot(a, b)) * glm::dot(c / length, n);
-    }
-  }
-  return std::fabs(sum) / 2.0;
-}
 
 /// Projected solid angle of the samples covered by `source` (sample resolution, no rounding
 /// to cells).

@@ -34,25 +34,6 @@ std::vector<int> SurfaceGroups(const std::vector<Patch>& patches)
   return groups;
 }
 
-/// Lambert's projected solid angle of a planar polygon on or above the tangent plane of p.
-double LambertProjectedSolidAngle(const glm::dvec3& p,
-  const glm::dvec3& n,
-  const std::vector<glm::dvec3>& polygon)
-{
-  double sum = 0.0;
-  for (size_t k = 0; k < polygon.size(); ++k)
-  {
-    const glm::dvec3 a = glm::normalize(polygon[k] - p);
-    const glm::dvec3 b = glm::normalize(polygon[(k + 1) % polygon.size()] - p);
-    const glm::dvec3 c = glm::cross(a, b);
-    const double length = glm::length(c);
-    if (length > 0.0)
-    {
-      sum += std::atan2(length, glm::dot(a, b)) * glm::dot(c / length, n);
-    }
-  }
-  return std::fabs(sum) / 2.0;
-}
 
 /**
  * One of Howell's configurations, receiving surface A (split receiverSplit x receiverSplit)
