@@ -216,6 +216,7 @@ bool vtkSurfaceGridAdapter::ToPatches(vtkDataSet* input, sphcover::Scene& scene,
   vtkCellData* cd = input->GetCellData();
   vtkDataArray* uvRange = cd->GetArray(names::UVRange);
   vtkDataArray* level = cd->GetArray(names::Level);
+  vtkDataArray* surfaceId = cd->GetArray(names::SurfaceId);
   if (uvRange && uvRange->GetNumberOfComponents() != 4)
   {
     error = "the UVRange cell array must have 4 components";
@@ -231,7 +232,10 @@ bool vtkSurfaceGridAdapter::ToPatches(vtkDataSet* input, sphcover::Scene& scene,
       domain = { uvRange->GetComponent(cell, 0), uvRange->GetComponent(cell, 1),
         uvRange->GetComponent(cell, 2), uvRange->GetComponent(cell, 3) };
     }
-    patches.emplace_back(static_cast<int>(c), domain, level ? static_cast<int>(level->GetComponent(cell, 0)) : 0, scene.Surfaces[c].Patch);
+    // The surface the patch is part of: the R-buffer's coverage vote and the ray fill's
+    // crack-free tessellation group a surface's pieces together.
+    const int surface = surfaceId ? static_cast<int>(surfaceId->GetComponent(cell, 0)) : static_cast<int>(c);
+    patches.emplace_back(surface, domain, level ? static_cast<int>(level->GetComponent(cell, 0)) : 0, scene.Surfaces[c].Patch);
   }
   return true;
 }

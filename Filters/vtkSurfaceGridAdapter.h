@@ -35,9 +35,10 @@ public:
     std::string& error);
 
   /// The patches of a subdivided environment (vtkIntervalSubdivisionFilter's first output, or
-  /// any surface dataset: then one patch per surface), one per cell, with their `UVRange` and
-  /// `Level` where the input has them. `scene` gets one surface per cell (the cell's geometry
-  /// and material): patch k's SurfaceIndex is k, the index of its cell.
+  /// any surface dataset: then one patch per surface), one per cell, with their `UVRange`,
+  /// `Level` and `SurfaceId` (the surface they are part of: Patch::SurfaceIndex) where the
+  /// input has them. `scene` gets one surface per cell (the cell's geometry and material), so
+  /// scene.Surfaces[k] belongs to patch k, whatever its SurfaceIndex.
   static bool ToPatches(vtkDataSet* input, sphcover::Scene& scene,
     std::vector<sphcover::Patch>& patches, std::string& error);
 };

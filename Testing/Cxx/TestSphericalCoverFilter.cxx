@@ -74,17 +74,17 @@ int TestSphericalCoverFilter(int, char*[])
   sphere->SetFileName(SPHCOVER_DATA_DIR "/scenes/furnace_sphere.scene");
   vtkNew<vtkIntervalSubdivisionFilter> subdivision;
   subdivision->SetInputConnection(sphere->GetOutputPort());
-  subdivision->SetMaxLevel(1);
+  subdivision->SetMaxLevel(2);
 
-  // Closed enclosures: every hemisphere fully covered. The curved sphere with the projection
-  // fill; the ray fill on the flat box (on the subdivided sphere its tessellation still lets
-  // about 0.1% of the rays escape between pieces split along different directions).
+  // Closed enclosures: every hemisphere fully covered, with both fills, on the curved sphere
+  // (its pieces split along different directions meet without cracks) and on the flat box.
   vtkNew<vtkPatchSceneReader> flatBox;
   flatBox->SetFileName(SPHCOVER_DATA_DIR "/scenes/furnace_box.scene");
   vtkNew<vtkIntervalSubdivisionFilter> flatPatches;
   flatPatches->SetInputConnection(flatBox->GetOutputPort());
   flatPatches->SetMaxLevel(2);
   const std::pair<vtkAlgorithm*, int> closed[] = { { subdivision, vtkSphericalCoverFilter::PROJECTION },
+    { subdivision, vtkSphericalCoverFilter::RAY_CASTING },
     { flatPatches, vtkSphericalCoverFilter::PROJECTION }, { flatPatches, vtkSphericalCoverFilter::RAY_CASTING } };
   for (const auto& run : closed)
   {

@@ -1,7 +1,8 @@
 """`sphcover solve`: the report of SPEC §5 (surfaces, form factors, counts, timings) from the
-spherical cover, checked against Howell's closed form C-11 for the parallel opposed rectangles
-of Data/scenes/howell_parallel.scene (dimensions read from the scene, not assumed), reciprocity
-for the perpendicular configuration, the solution file read back by VTK, and a clean failure."""
+spherical cover at the scenes' default settings, checked against Howell's closed forms C-11
+(parallel opposed rectangles) and C-14 (perpendicular rectangles with a common edge) within
+0.5%, dimensions read from the scenes, not assumed; reciprocity; the solution file read back by
+VTK; and a clean failure."""
 import json
 import math
 import os
@@ -26,14 +27,9 @@ def solve(scene, *extra):
     return json.load(open(report))
 
 
-def parallel_rectangles(a, b, c):
-    """Howell C-11: equal parallel coaxial rectangles a x b at distance c."""
-    x, y = a / c, b / c
-    return 2 / (math.pi * x * y) * (
-        math.log(math.sqrt((1 + x * x) * (1 + y * y) / (1 + x * x + y * y)))
-        + x * math.sqrt(1 + y * y) * math.atan(x / math.sqrt(1 + y * y))
-        + y * math.sqrt(1 + x * x) * math.atan(y / math.sqrt(1 + x * x))
-        - x * math.atan(x) - y * math.atan(y))
+# Howell's closed forms C-11 and C-14, as documented with the scenes (Data/scenes/tools).
+sys.path.insert(0, os.path.join(data, "scenes", "tools"))
+from howell import f_parallel, f_perpendicular  # noqa: E402
 
 
 def distance(p, q):
@@ -50,7 +46,7 @@ v = [first[3][k] - first[0][k] for k in range(3)]
 n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
 length = math.sqrt(sum(x * x for x in n))
 c = abs(sum(n[k] * (second[0][k] - first[0][k]) for k in range(3))) / length
-expected = parallel_rectangles(a, b, c)
+expected = f_parallel(a, b, c)
 
 report = solve(scene_file)
 if report:
@@ -71,12 +67,26 @@ if report:
         if report["counts"].get(key, 0) <= 0:
             failures.append(f"count {key} missing or zero")
 
-perpendicular = solve(f"{data}/scenes/howell_perpendicular.scene", "-o", os.path.join(folder, "solution.vtm"))
+perpendicular_file = f"{data}/scenes/howell_perpendicular.scene"
+perpendicular = solve(perpendicular_file, "-o", os.path.join(folder, "solution.vtm"))
 if perpendicular:
+    # A (l x w) and B (l x h) share the edge l: read the three lengths from the scene.
+    pa, pb = [s["points"] for s in json.load(open(perpendicular_file))["surfaces"]]
+    edges_a = [distance(pa[0], pa[1]), distance(pa[1], pa[2])]
+    edges_b = [distance(pb[0], pb[1]), distance(pb[1], pb[2])]
+    common = [e for e in edges_a if any(abs(e - f) < 1e-12 for f in edges_b)][0]
+    w = [e for e in edges_a if e != common][0] if edges_a[0] != edges_a[1] else common
+    h = [e for e in edges_b if e != common][0] if edges_b[0] != edges_b[1] else common
     names = perpendicular["form_factors"]["names"]
     matrix = perpendicular["form_factors"]["matrix"]
     areas = {s["name"]: s["area"] for s in perpendicular["surfaces"]}
     i, j = names.index("A"), names.index("B")
+    for label, got, want in [("F_AB", matrix[i][j], f_perpendicular(common, w, h)),
+                             ("F_BA", matrix[j][i], f_perpendicular(common, h, w))]:
+        error = (got - want) / want
+        print(f"perpendicular rectangles l={common} w={w} h={h}: {label} = {got:.6f}, Howell C-14 {want:.6f}, error {100 * error:+.3f}%")
+        if abs(error) > 0.005:
+            failures.append(f"{label} off by {100 * error:.3f}% (more than 0.5%)")
     ab, ba = areas["A"] * matrix[i][j], areas["B"] * matrix[j][i]
     print(f"perpendicular rectangles: A F_AB = {ab:.6f}, A F_BA = {ba:.6f}")
     if abs(ab - ba) > 0.01 * max(ab, ba):
