@@ -25,7 +25,8 @@ double Box::MaxHeightAbove(const glm::dvec3& p, const glm::dvec3& n) const
 {
   // The corner farthest along n.
   const glm::dvec3 corner(n.x >= 0 ? this->Upper.x : this->Lower.x,
-    n.y >= 0 ? this->Upper.y : this->Lower.y, n.z >= 0 ? this->Upper.z : this->Lower.z);
+    n.y >= 0 ? this->Upper.y : this->Lower.y,
+    n.z >= 0 ? this->Upper.z : this->Lower.z);
   return glm::dot(n, corner - p);
 }
 
@@ -47,8 +48,11 @@ BoundingBoxTree::BoundingBoxTree(const std::vector<Box>& boxes, int leafSize)
   this->Build(boxes, 0, static_cast<int32_t>(boxes.size()), std::max(1, leafSize), 0);
 }
 
-int32_t BoundingBoxTree::Build(
-  const std::vector<Box>& boxes, int32_t first, int32_t count, int leafSize, int depth)
+int32_t BoundingBoxTree::Build(const std::vector<Box>& boxes,
+  int32_t first,
+  int32_t count,
+  int leafSize,
+  int depth)
 {
   const int32_t index = static_cast<int32_t>(this->NodeList.size());
   this->NodeList.emplace_back();
@@ -68,16 +72,24 @@ int32_t BoundingBoxTree::Build(
   // Median split of the box centres along the longest axis; ties by item index keep the tree
   // (and every traversal order) deterministic.
   const glm::dvec3 extent = bounds.Upper - bounds.Lower;
-  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const int axis =
+    extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   auto begin = this->ItemList.begin() + first;
   auto middle = begin + count / 2;
-  std::nth_element(begin, middle, begin + count, [&](int32_t a, int32_t b) {
-    const double ca = boxes[static_cast<size_t>(a)].Lower[axis] + boxes[static_cast<size_t>(a)].Upper[axis];
-    const double cb = boxes[static_cast<size_t>(b)].Lower[axis] + boxes[static_cast<size_t>(b)].Upper[axis];
-    return ca < cb || (ca == cb && a < b);
-  });
+  std::nth_element(begin,
+    middle,
+    begin + count,
+    [&](int32_t a, int32_t b)
+    {
+      const double ca =
+        boxes[static_cast<size_t>(a)].Lower[axis] + boxes[static_cast<size_t>(a)].Upper[axis];
+      const double cb =
+        boxes[static_cast<size_t>(b)].Lower[axis] + boxes[static_cast<size_t>(b)].Upper[axis];
+      return ca < cb || (ca == cb && a < b);
+    });
   const int32_t left = this->Build(boxes, first, count / 2, leafSize, depth + 1);
-  const int32_t right = this->Build(boxes, first + count / 2, count - count / 2, leafSize, depth + 1);
+  const int32_t right =
+    this->Build(boxes, first + count / 2, count - count / 2, leafSize, depth + 1);
   this->NodeList[static_cast<size_t>(index)].Left = left;
   this->NodeList[static_cast<size_t>(index)].Right = right;
   return index;

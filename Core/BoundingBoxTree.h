@@ -60,7 +60,7 @@ public:
 
   /// Depth-first traversal: `enter(node)` decides whether to descend into a node (both internal
   /// and leaf nodes); `visit(item)` is called for every item of an entered leaf.
-  template <typename Enter, typename Visit>
+  template<typename Enter, typename Visit>
   void Traverse(Enter&& enter, Visit&& visit) const
   {
     if (this->NodeList.empty())
@@ -93,7 +93,11 @@ public:
   }
 
 private:
-  int32_t Build(const std::vector<Box>& boxes, int32_t first, int32_t count, int leafSize, int depth);
+  int32_t Build(const std::vector<Box>& boxes,
+    int32_t first,
+    int32_t count,
+    int leafSize,
+    int depth);
 
   std::vector<Node> NodeList;
   std::vector<int32_t> ItemList;

@@ -181,7 +181,8 @@ void CoverRefinement::Analyse(std::size_t receiver,
       work.VisibleMeasure[static_cast<size_t>(source)] += weight;
       // 8-neighbours already visited: left (wrapping in phi) and the three above.
       const int32_t self = static_cast<int32_t>(s);
-      auto join = [&](int rr, int cc) {
+      auto join = [&](int rr, int cc)
+      {
         const size_t t = grid.SampleIndex(rr, (cc + columns) % columns);
         if (buffer.SampleSource(t) == source)
         {
@@ -202,7 +203,8 @@ void CoverRefinement::Analyse(std::size_t receiver,
       else
       {
         // The first sample row is a small circle around the normal: all of it is adjacent.
-        auto found = std::find_if(poleSamples.begin(), poleSamples.end(),
+        auto found = std::find_if(poleSamples.begin(),
+          poleSamples.end(),
           [source](const std::pair<int32_t, int32_t>& p) { return p.first == source; });
         if (found == poleSamples.end())
         {
@@ -234,7 +236,8 @@ void CoverRefinement::Analyse(std::size_t receiver,
   }
 
   // Step 3: compare each visible source's image with its unoccluded projection.
-  const std::vector<std::pair<int32_t, float>>& unoccluded = buffer.UnoccludedProjectedSolidAngles();
+  const std::vector<std::pair<int32_t, float>>& unoccluded =
+    buffer.UnoccludedProjectedSolidAngles();
   const Patch& receiverPatch = current[receiver];
   const double cellAngle = std::min(
     0.5 * 3.14159265358979323846 / grid.ThetaBins(), 2.0 * 3.14159265358979323846 / grid.PhiBins());
@@ -250,7 +253,8 @@ void CoverRefinement::Analyse(std::size_t receiver,
     {
       continue; // a concave patch seeing itself; or (note 4) Q_j fully hidden from P_i
     }
-    const auto found = std::lower_bound(unoccluded.begin(), unoccluded.end(),
+    const auto found = std::lower_bound(unoccluded.begin(),
+      unoccluded.end(),
       static_cast<int32_t>(j),
       [](const std::pair<int32_t, float>& p, int32_t source) { return p.first < source; });
     const double projection =
@@ -317,16 +321,18 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
     {
       const size_t batch = std::min(BatchSize, receivers.size() - first);
       results.assign(batch, Analysis());
-      run(batch, [&](size_t begin, size_t end) {
-        RBuffer buffer(grid);
-        const std::shared_ptr<Scratch> work = std::make_shared<Scratch>();
-        for (size_t k = begin; k < end; ++k)
+      run(batch,
+        [&](size_t begin, size_t end)
         {
-          results[k].Work = work;
-          this->Analyse(receivers[first + k], current, *filler, buffer, results[k]);
-          results[k].Work.reset();
-        }
-      });
+          RBuffer buffer(grid);
+          const std::shared_ptr<Scratch> work = std::make_shared<Scratch>();
+          for (size_t k = begin; k < end; ++k)
+          {
+            results[k].Work = work;
+            this->Analyse(receivers[first + k], current, *filler, buffer, results[k]);
+            results[k].Work.reset();
+          }
+        });
       for (size_t k = 0; k < batch; ++k)
       {
         const Analysis& analysis = results[k];
@@ -398,7 +404,8 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
     {
       const std::vector<int>& visible = this->VisibleNodes[static_cast<size_t>(node)];
       if (this->Analysed[static_cast<size_t>(node)] &&
-        std::any_of(visible.begin(), visible.end(),
+        std::any_of(visible.begin(),
+          visible.end(),
           [&](int j) { return splitNode[static_cast<size_t>(j)] != 0; }))
       {
         this->Analysed[static_cast<size_t>(node)] = false;

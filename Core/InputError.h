@@ -33,8 +33,9 @@ public:
   const std::string Problem;
 
 private:
-  static std::string Format(
-    const std::string& file, const std::string& location, const std::string& problem)
+  static std::string Format(const std::string& file,
+    const std::string& location,
+    const std::string& problem)
   {
     return location.empty() ? file + ": " + problem : file + ": " + location + ": " + problem;
   }

@@ -84,7 +84,10 @@ public:
   constexpr bool IsPositive() const { return this->Lo > 0.0; }
   constexpr bool IsNegative() const { return this->Hi < 0.0; }
   /// Smallest |x| over the interval.
-  double Mignitude() const { return this->ContainsZero() ? 0.0 : std::min(std::fabs(this->Lo), std::fabs(this->Hi)); }
+  double Mignitude() const
+  {
+    return this->ContainsZero() ? 0.0 : std::min(std::fabs(this->Lo), std::fabs(this->Hi));
+  }
   /// Largest |x| over the interval.
   double Magnitude() const { return std::max(std::fabs(this->Lo), std::fabs(this->Hi)); }
 

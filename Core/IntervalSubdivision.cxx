@@ -47,7 +47,8 @@ IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSe
 PatchView IntervalSubdivision::ViewOfPatch(const Patch& patch) const
 {
   const Surface& surface = this->Environment.Surfaces[static_cast<size_t>(patch.SurfaceIndex)];
-  const Material& material = this->Environment.Materials[static_cast<size_t>(surface.MaterialIndex)];
+  const Material& material =
+    this->Environment.Materials[static_cast<size_t>(surface.MaterialIndex)];
   return ViewOf(patch, material.Type == MaterialType::Diffuse, surface.TwoSided);
 }
 
@@ -87,7 +88,8 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
 
     // A split of patch k is allowed when it is not at MaxLevel and projects, from the point
     // that asks, to more than about one cell (§4.3 note 2).
-    auto canSplit = [&](size_t k, const glm::dvec3& from) {
+    auto canSplit = [&](size_t k, const glm::dvec3& from)
+    {
       if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= maxLevel)
       {
         return false;
@@ -103,7 +105,8 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
     {
       r.store(INT_MAX, std::memory_order_relaxed);
     }
-    auto request = [&](size_t k, SplitReason reason) {
+    auto request = [&](size_t k, SplitReason reason)
+    {
       int current = requested[k].load(std::memory_order_relaxed);
       const int value = static_cast<int>(reason);
       while (value < current &&
@@ -114,22 +117,26 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
     std::atomic<size_t> pairTests{ 0 };
     std::atomic<size_t> limited{ 0 };
 
-    auto examineReceiver = [&](size_t i) {
+    auto examineReceiver = [&](size_t i)
+    {
       const PatchView& receiver = views[i];
       const bool receiverIsNew = this->LeafIsNew[i];
       size_t localPairs = 0;
       size_t localLimited = 0;
       tree.Traverse(
-        [&](const BoundingBoxTree::Node& node) {
+        [&](const BoundingBoxTree::Node& node)
+        {
           // Pairs of two old patches were settled in an earlier sweep.
           if (!receiverIsNew && !node.Flag)
           {
             return false;
           }
           // A group wholly below the tangent plane sends no light to P_i: classified at once.
-          return receiver.TwoSided || node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
+          return receiver.TwoSided ||
+            node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
         },
-        [&](int32_t item) {
+        [&](int32_t item)
+        {
           const size_t j = static_cast<size_t>(item);
           if (j == i || (!receiverIsNew && !this->LeafIsNew[j]))
           {
@@ -163,14 +170,17 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
     for (size_t first = 0; first < count; first += BatchSize)
     {
       const size_t batch = std::min(BatchSize, count - first);
-      parallelFor(batch, [&](size_t begin, size_t end) {
-        for (size_t k = begin; k < end; ++k)
+      parallelFor(batch,
+        [&](size_t begin, size_t end)
         {
-          examineReceiver(first + k);
-        }
-      });
+          for (size_t k = begin; k < end; ++k)
+          {
+            examineReceiver(first + k);
+          }
+        });
       if (progress &&
-        !progress(std::min(1.0, (this->Stats.Sweeps + double(first + batch) / count) / expectedSweeps)))
+        !progress(
+          std::min(1.0, (this->Stats.Sweeps + double(first + batch) / count) / expectedSweeps)))
       {
         return false;
       }

@@ -64,7 +64,8 @@ public:
    * patches are then those of the last complete sweep. Throws std::invalid_argument for
    * unusable settings (SubdivisionSettings::Problem()).
    */
-  bool Run(const ProgressCallback& progress = nullptr, const ParallelFor& parallelFor = SequentialFor);
+  bool Run(const ProgressCallback& progress = nullptr,
+    const ParallelFor& parallelFor = SequentialFor);
 
   /// The final patches Q, ordered by surface, then by v, then by u of their domains.
   std::vector<Patch> Patches() const;

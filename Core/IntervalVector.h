@@ -39,7 +39,10 @@ struct IntervalVec3
   {
   }
 
-  const Interval& operator[](int i) const { return i == 0 ? this->X : (i == 1 ? this->Y : this->Z); }
+  const Interval& operator[](int i) const
+  {
+    return i == 0 ? this->X : (i == 1 ? this->Y : this->Z);
+  }
   Interval& operator[](int i) { return i == 0 ? this->X : (i == 1 ? this->Y : this->Z); }
 
   glm::dvec3 Lower() const { return { this->X.Lower(), this->Y.Lower(), this->Z.Lower() }; }

@@ -41,7 +41,10 @@ struct Material
   /// Absolute path of the BRDF weight table (tabulated only).
   std::string TableFile;
 
-  bool IsEmitter() const { return this->Emission.x > 0 || this->Emission.y > 0 || this->Emission.z > 0; }
+  bool IsEmitter() const
+  {
+    return this->Emission.x > 0 || this->Emission.y > 0 || this->Emission.z > 0;
+  }
 };
 
 } // namespace sphcover

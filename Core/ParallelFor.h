@@ -19,12 +19,12 @@
 namespace sphcover
 {
 
-using ParallelFor =
-  std::function<void(std::size_t count, const std::function<void(std::size_t begin, std::size_t end)>& body)>;
+using ParallelFor = std::function<void(std::size_t count,
+  const std::function<void(std::size_t begin, std::size_t end)>& body)>;
 
 /// Runs the whole range in the calling thread.
-inline void SequentialFor(
-  std::size_t count, const std::function<void(std::size_t begin, std::size_t end)>& body)
+inline void SequentialFor(std::size_t count,
+  const std::function<void(std::size_t begin, std::size_t end)>& body)
 {
   if (count > 0)
   {
@@ -36,17 +36,20 @@ inline void SequentialFor(
 /// (benchmarks, tests) that have no vtkSMPTools.
 inline ParallelFor ThreadedFor(int threads)
 {
-  return [threads](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) {
+  return [threads](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  {
     std::atomic<std::size_t> next{ 0 };
     std::vector<std::thread> pool;
     for (int t = 0; t < threads; ++t)
     {
-      pool.emplace_back([&] {
-        for (std::size_t k = next++; k < count; k = next++)
+      pool.emplace_back(
+        [&]
         {
-          body(k, k + 1);
-        }
-      });
+          for (std::size_t k = next++; k < count; k = next++)
+          {
+            body(k, k + 1);
+          }
+        });
     }
     for (std::thread& thread : pool)
     {

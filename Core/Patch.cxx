@@ -81,7 +81,8 @@ const GaussLegendre& RuleOfOrder(int n)
 {
   static std::array<std::unique_ptr<GaussLegendre>, 64> rules;
   static std::once_flag once[64];
-  std::call_once(once[n], [n] { rules[static_cast<size_t>(n)] = std::make_unique<GaussLegendre>(n); });
+  std::call_once(
+    once[n], [n] { rules[static_cast<size_t>(n)] = std::make_unique<GaussLegendre>(n); });
   return *rules[static_cast<size_t>(n)];
 }
 }
@@ -133,17 +134,20 @@ std::vector<Patch> CollectPatches(const std::vector<Patch>& nodes, const std::ve
   {
     patches.push_back(nodes[static_cast<size_t>(node)]);
   }
-  std::sort(patches.begin(), patches.end(), [](const Patch& a, const Patch& b) {
-    if (a.SurfaceIndex != b.SurfaceIndex)
+  std::sort(patches.begin(),
+    patches.end(),
+    [](const Patch& a, const Patch& b)
     {
-      return a.SurfaceIndex < b.SurfaceIndex;
-    }
-    if (a.Domain.V0 != b.Domain.V0)
-    {
-      return a.Domain.V0 < b.Domain.V0;
-    }
-    return a.Domain.U0 < b.Domain.U0;
-  });
+      if (a.SurfaceIndex != b.SurfaceIndex)
+      {
+        return a.SurfaceIndex < b.SurfaceIndex;
+      }
+      if (a.Domain.V0 != b.Domain.V0)
+      {
+        return a.Domain.V0 < b.Domain.V0;
+      }
+      return a.Domain.U0 < b.Domain.U0;
+    });
   return patches;
 }
 
@@ -181,7 +185,8 @@ std::array<Patch, 3> SplitInThree(const Patch& parent,
   // The cut values are computed once and shared by neighbouring pieces, so the pieces tile the
   // parent's domain exactly.
   const double cuts[4] = { lo, lo + (hi - lo) / 3.0, lo + 2.0 * (hi - lo) / 3.0, hi };
-  auto piece = [&](int k) {
+  auto piece = [&](int k)
+  {
     const UVRect rect = splitU ? UVRect{ cuts[k], cuts[k + 1], d.V0, d.V1 }
                                : UVRect{ d.U0, d.U1, cuts[k], cuts[k + 1] };
     Patch result(parent.SurfaceIndex, rect, parent.Level + 1, surface.SubPatch(rect));

@@ -72,7 +72,8 @@ std::string LowerExtension(const std::string& path)
     return std::string();
   }
   std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -107,13 +108,14 @@ private:
     }
   }
 
-  void CheckKeys(
-    const Json& j, const std::string& pointer, std::initializer_list<const char*> allowed) const
+  void CheckKeys(const Json& j,
+    const std::string& pointer,
+    std::initializer_list<const char*> allowed) const
   {
     for (auto it = j.begin(); it != j.end(); ++it)
     {
-      if (std::none_of(allowed.begin(), allowed.end(),
-            [&](const char* key) { return it.key() == key; }))
+      if (std::none_of(
+            allowed.begin(), allowed.end(), [&](const char* key) { return it.key() == key; }))
       {
         this->Fail(Child(pointer, it.key()), "unknown key '" + it.key() + "'");
       }
@@ -238,7 +240,7 @@ private:
 
   /// Problems inside a file the scene refers to are reported at the scene entry that names it,
   /// followed by the file's own location: "room.scene: /surfaces/3/file: pot.bpt: line 7: ...".
-  template <typename Read>
+  template<typename Read>
   auto Included(const std::string& pointer, Read&& read) const -> decltype(read())
   {
     try
@@ -271,18 +273,22 @@ private:
   glm::dmat4 ParseTransform(const Json& j, const std::string& pointer) const;
   void ParseSurface(const Json& j, const std::string& pointer, Scene& scene) const;
   Camera ParseCamera(const Json& j, const std::string& pointer) const;
-  SceneSettings ParseSettings(
-    const Json& j, const std::string& pointer, SceneSettings settings = SceneSettings()) const;
-  std::vector<BezierPatch> ParsePoints(
-    const Json& j, const std::string& pointer, int degreeU, int degreeV) const;
+  SceneSettings ParseSettings(const Json& j,
+    const std::string& pointer,
+    SceneSettings settings = SceneSettings()) const;
+  std::vector<BezierPatch> ParsePoints(const Json& j,
+    const std::string& pointer,
+    int degreeU,
+    int degreeV) const;
 
   const std::string& Path;
   const std::string Folder;
   const MeshFaceReader& ReadMesh;
 };
 
-Material SceneParser::ParseMaterial(
-  const std::string& name, const Json& j, const std::string& pointer) const
+Material SceneParser::ParseMaterial(const std::string& name,
+  const Json& j,
+  const std::string& pointer) const
 {
   this->ExpectObject(j, pointer);
   Material material;
@@ -296,15 +302,15 @@ Material SceneParser::ParseMaterial(
   {
     this->CheckKeys(j, pointer, { "type", "reflectance", "emission" });
     material.Type = MaterialType::Diffuse;
-    material.Diffuse = this->Reflectance(
-      this->Require(j, pointer, "reflectance"), Child(pointer, "reflectance"));
+    material.Diffuse =
+      this->Reflectance(this->Require(j, pointer, "reflectance"), Child(pointer, "reflectance"));
   }
   else if (type == "mirror")
   {
     this->CheckKeys(j, pointer, { "type", "reflectance", "emission" });
     material.Type = MaterialType::Mirror;
-    material.Specular = this->Reflectance(
-      this->Require(j, pointer, "reflectance"), Child(pointer, "reflectance"));
+    material.Specular =
+      this->Reflectance(this->Require(j, pointer, "reflectance"), Child(pointer, "reflectance"));
   }
   else if (type == "phong")
   {
@@ -333,7 +339,8 @@ Material SceneParser::ParseMaterial(
   {
     this->CheckKeys(j, pointer, { "type", "file", "emission" });
     material.Type = MaterialType::Tabulated;
-    material.TableFile = this->ExistingFile(this->Require(j, pointer, "file"), Child(pointer, "file"));
+    material.TableFile =
+      this->ExistingFile(this->Require(j, pointer, "file"), Child(pointer, "file"));
   }
   else
   {
@@ -350,7 +357,8 @@ glm::dmat4 SceneParser::ParseTransform(const Json& j, const std::string& pointer
   if (j.contains("scale"))
   {
     const std::string at = Child(pointer, "scale");
-    scale = j["scale"].is_number() ? glm::dvec3(this->Number(j["scale"], at)) : this->Vec3(j["scale"], at);
+    scale = j["scale"].is_number() ? glm::dvec3(this->Number(j["scale"], at))
+                                   : this->Vec3(j["scale"], at);
     if (scale.x == 0.0 || scale.y == 0.0 || scale.z == 0.0)
     {
       this->Fail(at, "scale must not be 0");
@@ -358,8 +366,9 @@ glm::dmat4 SceneParser::ParseTransform(const Json& j, const std::string& pointer
   }
   const glm::dvec3 rotate =
     j.contains("rotate") ? this->Vec3(j["rotate"], Child(pointer, "rotate")) : glm::dvec3(0.0);
-  const glm::dvec3 translate =
-    j.contains("translate") ? this->Vec3(j["translate"], Child(pointer, "translate")) : glm::dvec3(0.0);
+  const glm::dvec3 translate = j.contains("translate")
+    ? this->Vec3(j["translate"], Child(pointer, "translate"))
+    : glm::dvec3(0.0);
   // Applied to a point: scale, then rotate about x, y, z (in that order), then translate.
   glm::dmat4 m = glm::translate(glm::dmat4(1.0), translate);
   m = glm::rotate(m, glm::radians(rotate.z), glm::dvec3(0, 0, 1));
@@ -390,8 +399,10 @@ BezierPatch PlacePatch(const BezierPatch& patch, const glm::dmat4& transform, bo
   return BezierPatch(m, n, std::move(points));
 }
 
-std::vector<BezierPatch> SceneParser::ParsePoints(
-  const Json& j, const std::string& pointer, int degreeU, int degreeV) const
+std::vector<BezierPatch> SceneParser::ParsePoints(const Json& j,
+  const std::string& pointer,
+  int degreeU,
+  int degreeV) const
 {
   const size_t expected = static_cast<size_t>((degreeU + 1) * (degreeV + 1));
   if (!j.is_array())
@@ -400,8 +411,8 @@ std::vector<BezierPatch> SceneParser::ParsePoints(
   }
   if (j.size() != expected)
   {
-    this->Fail(pointer,
-      "expected " + std::to_string(expected) + " points, got " + std::to_string(j.size()));
+    this->Fail(
+      pointer, "expected " + std::to_string(expected) + " points, got " + std::to_string(j.size()));
   }
   std::vector<glm::dvec3> points;
   points.reserve(expected);
@@ -416,8 +427,9 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
 {
   this->ExpectObject(j, pointer);
   const std::string type = this->String(this->Require(j, pointer, "type"), Child(pointer, "type"));
-  const std::initializer_list<const char*> common = { "name", "type", "material", "two_sided",
-    "flip", "transform" };
+  const std::initializer_list<const char*> common = {
+    "name", "type", "material", "two_sided", "flip", "transform"
+  };
   std::vector<const char*> allowed(common);
   if (type == "bilinear")
   {
@@ -469,7 +481,8 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
   if (type == "bilinear")
   {
     // SPEC order P(0,0), P(1,0), P(1,1), P(0,1) -> row-major u fastest: P00, P10, P01, P11.
-    auto quad = this->ParsePoints(this->Require(j, pointer, "points"), Child(pointer, "points"), 1, 1);
+    auto quad =
+      this->ParsePoints(this->Require(j, pointer, "points"), Child(pointer, "points"), 1, 1);
     std::vector<glm::dvec3> cp = quad[0].ControlPoints();
     std::swap(cp[2], cp[3]);
     patches.emplace_back(1, 1, std::move(cp));
@@ -489,13 +502,16 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
       if (mn[k] < 1 || mn[k] > BezierPatch::MaxDegree)
       {
         this->Fail(Child(at, k),
-          "degree must be in [1, " + std::to_string(BezierPatch::MaxDegree) + "], got " + std::to_string(mn[k]));
+          "degree must be in [1, " + std::to_string(BezierPatch::MaxDegree) + "], got " +
+            std::to_string(mn[k]));
       }
     }
     const long long m = mn[0];
     const long long n = mn[1];
-    patches = this->ParsePoints(this->Require(j, pointer, "points"), Child(pointer, "points"),
-      static_cast<int>(m), static_cast<int>(n));
+    patches = this->ParsePoints(this->Require(j, pointer, "points"),
+      Child(pointer, "points"),
+      static_cast<int>(m),
+      static_cast<int>(n));
   }
   else if (type == "bpt")
   {
@@ -516,23 +532,26 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
     {
       this->Fail(at, "mesh surfaces need the VTK scene reader (vtkPatchSceneReader)");
     }
-    const std::vector<MeshFace> faces = this->Included(at, [&] {
-      std::vector<MeshFace> read = this->ReadMesh(file);
-      if (read.empty())
+    const std::vector<MeshFace> faces = this->Included(at,
+      [&]
       {
-        throw InputError(file, "", "mesh has no faces");
-      }
-      for (size_t f = 0; f < read.size(); ++f)
-      {
-        if (read[f].size() != 3 && read[f].size() != 4)
+        std::vector<MeshFace> read = this->ReadMesh(file);
+        if (read.empty())
         {
-          throw InputError(file, "face " + std::to_string(f + 1),
-            "only triangles and quads are supported, got a face with " +
-              std::to_string(read[f].size()) + " vertices");
+          throw InputError(file, "", "mesh has no faces");
         }
-      }
-      return read;
-    });
+        for (size_t f = 0; f < read.size(); ++f)
+        {
+          if (read[f].size() != 3 && read[f].size() != 4)
+          {
+            throw InputError(file,
+              "face " + std::to_string(f + 1),
+              "only triangles and quads are supported, got a face with " +
+                std::to_string(read[f].size()) + " vertices");
+          }
+        }
+        return read;
+      });
     for (const MeshFace& face : faces)
     {
       // A triangle becomes the bilinear patch with P(1,1) = P(0,1); the right-hand rule of the
@@ -572,8 +591,7 @@ Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
     j, pointer, { "name", "position", "focal_point", "view_up", "view_angle", "width", "height" });
   Camera camera;
   camera.Name = this->String(this->Require(j, pointer, "name"), Child(pointer, "name"));
-  camera.Position =
-    this->Vec3(this->Require(j, pointer, "position"), Child(pointer, "position"));
+  camera.Position = this->Vec3(this->Require(j, pointer, "position"), Child(pointer, "position"));
   camera.FocalPoint =
     this->Vec3(this->Require(j, pointer, "focal_point"), Child(pointer, "focal_point"));
   camera.ViewUp = this->Vec3(this->Require(j, pointer, "view_up"), Child(pointer, "view_up"));
@@ -592,7 +610,8 @@ Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
   {
     this->Fail(Child(pointer, "focal_point"), "focal_point equals position");
   }
-  if (glm::length(glm::cross(glm::normalize(direction), camera.ViewUp)) < 1e-9 * glm::length(camera.ViewUp) ||
+  if (glm::length(glm::cross(glm::normalize(direction), camera.ViewUp)) <
+      1e-9 * glm::length(camera.ViewUp) ||
     glm::length(camera.ViewUp) == 0.0)
   {
     this->Fail(Child(pointer, "view_up"), "view_up is zero or parallel to the view direction");
@@ -600,8 +619,9 @@ Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
   return camera;
 }
 
-SceneSettings SceneParser::ParseSettings(
-  const Json& j, const std::string& pointer, SceneSettings settings) const
+SceneSettings SceneParser::ParseSettings(const Json& j,
+  const std::string& pointer,
+  SceneSettings settings) const
 {
   this->ExpectObject(j, pointer);
   this->CheckKeys(j, pointer, { "theta_bins", "phi_bins", "max_level", "tolerance" });
@@ -651,7 +671,8 @@ Scene SceneParser::Parse(const Json& root)
   this->ExpectObject(materials, "/materials");
   for (auto it = materials.begin(); it != materials.end(); ++it)
   {
-    scene.Materials.push_back(this->ParseMaterial(it.key(), it.value(), Child("/materials", it.key())));
+    scene.Materials.push_back(
+      this->ParseMaterial(it.key(), it.value(), Child("/materials", it.key())));
   }
   const Json& surfaces = this->Require(root, "", "surfaces");
   if (!surfaces.is_array())
@@ -700,8 +721,14 @@ public:
 
   bool null() { return this->Value(Base::null()); }
   bool boolean(bool value) { return this->Value(Base::boolean(value)); }
-  bool number_integer(Json::number_integer_t value) { return this->Value(Base::number_integer(value)); }
-  bool number_unsigned(Json::number_unsigned_t value) { return this->Value(Base::number_unsigned(value)); }
+  bool number_integer(Json::number_integer_t value)
+  {
+    return this->Value(Base::number_integer(value));
+  }
+  bool number_unsigned(Json::number_unsigned_t value)
+  {
+    return this->Value(Base::number_unsigned(value));
+  }
   bool number_float(Json::number_float_t value, const Json::string_t& text)
   {
     return this->Value(Base::number_float(value, text));
@@ -734,7 +761,7 @@ public:
     return this->Value(Base::end_array());
   }
 
-  template <class Exception>
+  template<class Exception>
   bool parse_error(std::size_t position, const std::string&, const Exception& error)
   {
     this->Failed = true;
@@ -758,7 +785,7 @@ private:
   struct Level
   {
     bool IsArray;
-    size_t Count; // elements read so far (arrays)
+    size_t Count;    // elements read so far (arrays)
     std::string Key; // the current key (objects)
   };
 
@@ -831,7 +858,8 @@ Scene ParseScene(const std::string& text, const std::string& path, const MeshFac
   if (!Json::sax_parse(text, &dom) || dom.Failed)
   {
     // nlohmann reports the byte offset; users want line and column.
-    const size_t end = std::min(dom.ErrorPosition == 0 ? size_t{ 0 } : dom.ErrorPosition - 1, text.size());
+    const size_t end =
+      std::min(dom.ErrorPosition == 0 ? size_t{ 0 } : dom.ErrorPosition - 1, text.size());
     size_t line = 1;
     size_t column = 1;
     for (size_t k = 0; k < end; ++k)
@@ -858,13 +886,17 @@ Scene ParseScene(const std::string& text, const std::string& path, const MeshFac
     {
       detail = detail.substr(colon + 2);
     }
-    const std::string position = "line " + std::to_string(line) + ", column " + std::to_string(column);
+    const std::string position =
+      "line " + std::to_string(line) + ", column " + std::to_string(column);
     if (dom.ErrorId == 406) // a number too large for a double, such as 1e999
     {
-      throw InputError(path, dom.ErrorPointer, "not a finite number (" + detail + ", " + position + ")");
+      throw InputError(
+        path, dom.ErrorPointer, "not a finite number (" + detail + ", " + position + ")");
     }
-    throw InputError(path, position,
-      "JSON syntax error: " + detail + (dom.ErrorPointer.empty() ? "" : " (in " + dom.ErrorPointer + ")"));
+    throw InputError(path,
+      position,
+      "JSON syntax error: " + detail +
+        (dom.ErrorPointer.empty() ? "" : " (in " + dom.ErrorPointer + ")"));
   }
   SceneParser parser(path, readMesh);
   return parser.Parse(root);

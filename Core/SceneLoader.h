@@ -31,8 +31,9 @@ using MeshFaceReader = std::function<std::vector<MeshFace>(const std::string& pa
 Scene LoadSceneFile(const std::string& path, const MeshFaceReader& readMesh = nullptr);
 
 /// Parses scene text; `path` names it in messages and anchors relative file paths.
-Scene ParseScene(
-  const std::string& text, const std::string& path, const MeshFaceReader& readMesh = nullptr);
+Scene ParseScene(const std::string& text,
+  const std::string& path,
+  const MeshFaceReader& readMesh = nullptr);
 
 /// A .bpt file on its own as a scene: one surface per patch, all named after the file, with a
 /// white diffuse material (reflectance 0.8) and default settings.

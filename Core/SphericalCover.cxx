@@ -265,7 +265,8 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
   for (size_t e = 0; e < arrays.Entries.size(); ++e)
   {
     const Entry& entry = arrays.Entries[e];
-    const size_t next = e + 1 < arrays.Entries.size() ? arrays.Entries[e + 1].FirstStrip : arrays.Strips.size();
+    const size_t next =
+      e + 1 < arrays.Entries.size() ? arrays.Entries[e + 1].FirstStrip : arrays.Strips.size();
     if (entry.Source >= count || entry.FirstStrip > next || next > arrays.Strips.size())
     {
       return "entry " + std::to_string(e) + " refers to a missing source or strip";
@@ -273,7 +274,8 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
   }
   for (const Strip& strip : arrays.Strips)
   {
-    if (strip.Row >= arrays.ThetaBins || strip.PhiBegin >= strip.PhiEnd || strip.PhiEnd > arrays.PhiBins)
+    if (strip.Row >= arrays.ThetaBins || strip.PhiBegin >= strip.PhiEnd ||
+      strip.PhiEnd > arrays.PhiBins)
     {
       return "a strip lies outside the grid";
     }

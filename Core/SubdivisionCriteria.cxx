@@ -29,8 +29,10 @@ std::string SubdivisionSettings::Problem() const
   }
   else
   {
-    const char* names[NumberOfCriteria] = { "SelfShadowingTolerance", "ContainmentTolerance",
-      "SphericalShapeTolerance", "CharacterisabilityTolerance" };
+    const char* names[NumberOfCriteria] = { "SelfShadowingTolerance",
+      "ContainmentTolerance",
+      "SphericalShapeTolerance",
+      "CharacterisabilityTolerance" };
     for (int c = 0; c < NumberOfCriteria; ++c)
     {
       if (!(this->Tolerance[c] >= 0.0) || !std::isfinite(this->Tolerance[c]))
@@ -55,8 +57,11 @@ PatchView ViewOf(const Patch& patch, bool diffuse, bool twoSided)
   return view;
 }
 
-PairAssessment AssessPair(const PatchView& receiver, const PatchView& source,
-  const SubdivisionSettings& settings, bool sourceMaySplit, bool receiverMaySplit)
+PairAssessment AssessPair(const PatchView& receiver,
+  const PatchView& source,
+  const SubdivisionSettings& settings,
+  bool sourceMaySplit,
+  bool receiverMaySplit)
 {
   const UVRect whole = UVRect::Unit();
   const RangeMethod method = settings.Method;
@@ -72,8 +77,8 @@ PairAssessment AssessPair(const PatchView& receiver, const PatchView& source,
   result.Contained = height.Lower() >= -containmentTolerance;
 
   // §4.2.1 self-shadowing: which side of Q_j P_i sees, f < 0 on the front.
-  const double facingTolerance = settings.ToleranceOf(Criterion::SelfShadowing) *
-    source.CentreNormalLength * distance;
+  const double facingTolerance =
+    settings.ToleranceOf(Criterion::SelfShadowing) * source.CentreNormalLength * distance;
   const Interval facing = RangeOfFacing(*source.Geometry, whole, receiver.Point, method);
   const bool backFacing = !source.TwoSided && facing.Lower() >= -facingTolerance;
   const bool frontOnly = facing.Upper() <= facingTolerance;
@@ -124,8 +129,7 @@ PairAssessment AssessPair(const PatchView& receiver, const PatchView& source,
   }
   else
   {
-    result.Spherical =
-      facing.Width() <= shapeTolerance * source.CentreNormalLength * distance;
+    result.Spherical = facing.Width() <= shapeTolerance * source.CentreNormalLength * distance;
   }
   if (sourceMaySplit && result.SplitSource == SplitReason::None &&
     settings.IsEnabled(Criterion::SphericalShape) && !result.Spherical)

@@ -115,8 +115,11 @@ struct PairAssessment
 /// below the horizon or back-facing. When the caller knows that the source (or the receiver)
 /// may not be split anyway (limits), the criteria that could only ask for that split are not
 /// evaluated and their flags stay false.
-PairAssessment AssessPair(const PatchView& receiver, const PatchView& source,
-  const SubdivisionSettings& settings, bool sourceMaySplit = true, bool receiverMaySplit = true);
+PairAssessment AssessPair(const PatchView& receiver,
+  const PatchView& source,
+  const SubdivisionSettings& settings,
+  bool sourceMaySplit = true,
+  bool receiverMaySplit = true);
 
 } // namespace sphcover
 

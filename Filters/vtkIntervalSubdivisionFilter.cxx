@@ -58,8 +58,9 @@ int vtkIntervalSubdivisionFilter::FillOutputPortInformation(int port, vtkInforma
   return 1;
 }
 
-int vtkIntervalSubdivisionFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
   vtkUnstructuredGrid* patchesOut = vtkUnstructuredGrid::GetData(outputVector, 0);
@@ -72,10 +73,13 @@ int vtkIntervalSubdivisionFilter::RequestData(
   settings.MaxLevel = this->MaxLevel;
   settings.ThetaBins = this->ThetaBins;
   settings.PhiBins = this->PhiBins;
-  const bool enabled[4] = { this->SelfShadowing, this->HemisphericalContainment,
-    this->SphericalShape, this->Characterisability };
+  const bool enabled[4] = { this->SelfShadowing,
+    this->HemisphericalContainment,
+    this->SphericalShape,
+    this->Characterisability };
   const double tolerances[4] = { this->SelfShadowingTolerance,
-    this->HemisphericalContainmentTolerance, this->SphericalShapeTolerance,
+    this->HemisphericalContainmentTolerance,
+    this->SphericalShapeTolerance,
     this->CharacterisabilityTolerance };
   for (int c = 0; c < sphcover::NumberOfCriteria; ++c)
   {
@@ -103,7 +107,8 @@ int vtkIntervalSubdivisionFilter::RequestData(
   {
     sphcover::IntervalSubdivision subdivision(scene, settings);
     const bool completed = subdivision.Run(
-      [this](double fraction) {
+      [this](double fraction)
+      {
         this->UpdateProgress(0.95 * fraction);
         return !this->GetAbortExecute();
       },
@@ -210,16 +215,18 @@ int vtkIntervalSubdivisionFilter::RequestData(
 void vtkIntervalSubdivisionFilter::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "RangeMethod: " << (this->RangeMethod == BERNSTEIN ? "Bernstein" : "NaturalInterval")
+  os << indent
+     << "RangeMethod: " << (this->RangeMethod == BERNSTEIN ? "Bernstein" : "NaturalInterval")
      << "\n";
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";
   os << indent << "ThetaBins: " << this->ThetaBins << "\n";
   os << indent << "PhiBins: " << this->PhiBins << "\n";
-  os << indent << "SelfShadowing: " << this->SelfShadowing << " (" << this->SelfShadowingTolerance << ")\n";
+  os << indent << "SelfShadowing: " << this->SelfShadowing << " (" << this->SelfShadowingTolerance
+     << ")\n";
   os << indent << "HemisphericalContainment: " << this->HemisphericalContainment << " ("
      << this->HemisphericalContainmentTolerance << ")\n";
-  os << indent << "SphericalShape: " << this->SphericalShape << " (" << this->SphericalShapeTolerance
-     << ")\n";
+  os << indent << "SphericalShape: " << this->SphericalShape << " ("
+     << this->SphericalShapeTolerance << ")\n";
   os << indent << "Characterisability: " << this->Characterisability << " ("
      << this->CharacterisabilityTolerance << ")\n";
   os << indent << "PairTests: " << this->PairTests << "\n";

@@ -35,7 +35,8 @@
 #include "SphericalCoverFiltersModule.h" // for export macro
 #include "vtkUnstructuredGridAlgorithm.h"
 
-class SPHERICALCOVERFILTERS_EXPORT vtkIntervalSubdivisionFilter : public vtkUnstructuredGridAlgorithm
+class SPHERICALCOVERFILTERS_EXPORT vtkIntervalSubdivisionFilter
+  : public vtkUnstructuredGridAlgorithm
 {
 public:
   static vtkIntervalSubdivisionFilter* New();

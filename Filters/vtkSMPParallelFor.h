@@ -15,12 +15,14 @@ namespace vtkSMPParallelFor
 {
 inline sphcover::ParallelFor Make()
 {
-  return [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body) {
+  return [](std::size_t count, const std::function<void(std::size_t, std::size_t)>& body)
+  {
     // Small grains: the work per item (a receiver's pairs, a hemisphere) varies a lot.
-    vtkSMPTools::For(vtkIdType(0), static_cast<vtkIdType>(count), vtkIdType(1),
-      [&body](vtkIdType begin, vtkIdType end) {
-        body(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
-      });
+    vtkSMPTools::For(vtkIdType(0),
+      static_cast<vtkIdType>(count),
+      vtkIdType(1),
+      [&body](vtkIdType begin, vtkIdType end)
+      { body(static_cast<std::size_t>(begin), static_cast<std::size_t>(end)); });
   };
 }
 }

@@ -22,8 +22,11 @@ namespace names = vtkSphericalCoverArrayNames;
 namespace
 {
 /// Copies raw values into a new array of the matching VTK type.
-template <typename ArrayType, typename Value>
-vtkSmartPointer<ArrayType> RawArray(const char* name, int components, const Value* values, size_t tuples)
+template<typename ArrayType, typename Value>
+vtkSmartPointer<ArrayType> RawArray(const char* name,
+  int components,
+  const Value* values,
+  size_t tuples)
 {
   auto array = vtkNamedArrays::New<ArrayType>(name, components, static_cast<vtkIdType>(tuples));
   if (tuples > 0)
@@ -34,7 +37,7 @@ vtkSmartPointer<ArrayType> RawArray(const char* name, int components, const Valu
 }
 
 /// The raw values of a field array of exactly this type and component count, or false.
-template <typename ArrayType, typename Value>
+template<typename ArrayType, typename Value>
 bool ReadRaw(vtkFieldData* fd, const char* name, int components, std::vector<Value>& values)
 {
   auto* array = ArrayType::SafeDownCast(fd->GetAbstractArray(name));
@@ -58,10 +61,15 @@ void vtkSphericalCoverArrays::Store(const sphcover::SphericalCover& cover, vtkDa
   const sphcover::SphericalCover::Arrays arrays = cover.ExportArrays();
   vtkFieldData* fd = output->GetFieldData();
   auto grid = vtkNamedArrays::Int(names::CoverGrid, 6, 1);
-  const int gridValues[6] = { arrays.ThetaBins, arrays.PhiBins, arrays.SamplesTheta,
-    arrays.SamplesPhi, arrays.Fill, arrays.UnoccludedKnown ? 1 : 0 };
-  const char* gridNames[6] = { "ThetaBins", "PhiBins", "SamplesTheta", "SamplesPhi", "Fill",
-    "UnoccludedKnown" };
+  const int gridValues[6] = { arrays.ThetaBins,
+    arrays.PhiBins,
+    arrays.SamplesTheta,
+    arrays.SamplesPhi,
+    arrays.Fill,
+    arrays.UnoccludedKnown ? 1 : 0 };
+  const char* gridNames[6] = {
+    "ThetaBins", "PhiBins", "SamplesTheta", "SamplesPhi", "Fill", "UnoccludedKnown"
+  };
   for (int k = 0; k < 6; ++k)
   {
     grid->SetComponentName(k, gridNames[k]);

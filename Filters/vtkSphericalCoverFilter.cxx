@@ -52,8 +52,9 @@ int vtkSphericalCoverFilter::FillOutputPortInformation(int port, vtkInformation*
   return 1;
 }
 
-int vtkSphericalCoverFilter::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkSphericalCoverFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
 {
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
   vtkPolyData* pointsOut = vtkPolyData::GetData(outputVector, 0);
@@ -82,18 +83,22 @@ int vtkSphericalCoverFilter::RequestData(
   {
     // Refuse before building what would not fit: an estimate from a few rows actually built.
     const double estimate =
-      static_cast<double>(sphcover::SphericalCover::EstimateBytes(patches, options)) / (1024.0 * 1024.0);
+      static_cast<double>(sphcover::SphericalCover::EstimateBytes(patches, options)) /
+      (1024.0 * 1024.0);
     if (estimate > this->MemoryLimit)
     {
       std::ostringstream needed;
       needed << std::setprecision(3) << estimate;
       vtkErrorMacro(<< "The cover of " << patches.size() << " patches would need about "
-                    << needed.str() << " MiB, more than MemoryLimit ("
-                    << this->MemoryLimit << " MiB); use fewer patches (MaxLevel) or a coarser grid.");
+                    << needed.str() << " MiB, more than MemoryLimit (" << this->MemoryLimit
+                    << " MiB); use fewer patches (MaxLevel) or a coarser grid.");
       return 0;
     }
-    const bool completed = cover.Build(patches, options, vtkSMPParallelFor::Make(),
-      [this](double fraction) {
+    const bool completed = cover.Build(patches,
+      options,
+      vtkSMPParallelFor::Make(),
+      [this](double fraction)
+      {
         this->UpdateProgress(0.95 * fraction);
         return !this->GetAbortExecute();
       });

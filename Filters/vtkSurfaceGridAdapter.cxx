@@ -30,12 +30,14 @@ std::string StringValue(vtkFieldData* fd, const char* name, vtkIdType index)
 {
   auto* array = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
   return (array && index >= 0 && index < array->GetNumberOfValues()) ? array->GetValue(index)
-                                                                      : std::string();
+                                                                     : std::string();
 }
 }
 
-bool vtkSurfaceGridAdapter::ToScene(
-  vtkDataSet* input, bool allowDefaultMaterials, sphcover::Scene& scene, std::string& error)
+bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
+  bool allowDefaultMaterials,
+  sphcover::Scene& scene,
+  std::string& error)
 {
   scene = sphcover::Scene();
   if (!input || input->GetNumberOfCells() == 0)
@@ -88,7 +90,8 @@ bool vtkSurfaceGridAdapter::ToScene(
     const int type = input->GetCellType(c);
     input->GetCellPoints(c, ids);
     const vtkIdType n = ids->GetNumberOfIds();
-    auto point = [&](vtkIdType k) {
+    auto point = [&](vtkIdType k)
+    {
       glm::dvec3 p;
       input->GetPoint(ids->GetId(k), &p[0]);
       return p;
@@ -205,8 +208,10 @@ bool vtkSurfaceGridAdapter::ToScene(
   return true;
 }
 
-bool vtkSurfaceGridAdapter::ToPatches(vtkDataSet* input, sphcover::Scene& scene,
-  std::vector<sphcover::Patch>& patches, std::string& error)
+bool vtkSurfaceGridAdapter::ToPatches(vtkDataSet* input,
+  sphcover::Scene& scene,
+  std::vector<sphcover::Patch>& patches,
+  std::string& error)
 {
   patches.clear();
   if (!ToScene(input, false, scene, error))
@@ -229,13 +234,19 @@ bool vtkSurfaceGridAdapter::ToPatches(vtkDataSet* input, sphcover::Scene& scene,
     sphcover::UVRect domain = sphcover::UVRect::Unit();
     if (uvRange)
     {
-      domain = { uvRange->GetComponent(cell, 0), uvRange->GetComponent(cell, 1),
-        uvRange->GetComponent(cell, 2), uvRange->GetComponent(cell, 3) };
+      domain = { uvRange->GetComponent(cell, 0),
+        uvRange->GetComponent(cell, 1),
+        uvRange->GetComponent(cell, 2),
+        uvRange->GetComponent(cell, 3) };
     }
     // The surface the patch is part of: the R-buffer's coverage vote and the ray fill's
     // crack-free tessellation group a surface's pieces together.
-    const int surface = surfaceId ? static_cast<int>(surfaceId->GetComponent(cell, 0)) : static_cast<int>(c);
-    patches.emplace_back(surface, domain, level ? static_cast<int>(level->GetComponent(cell, 0)) : 0, scene.Surfaces[c].Patch);
+    const int surface =
+      surfaceId ? static_cast<int>(surfaceId->GetComponent(cell, 0)) : static_cast<int>(c);
+    patches.emplace_back(surface,
+      domain,
+      level ? static_cast<int>(level->GetComponent(cell, 0)) : 0,
+      scene.Surfaces[c].Patch);
   }
   return true;
 }

@@ -31,7 +31,9 @@ class SPHERICALCOVERFILTERS_EXPORT vtkSurfaceGridAdapter
 public:
   /// False with a message in `error` when the input cannot be used (unsupported cell type,
   /// inconsistent arrays, missing material arrays when defaults are not allowed, ...).
-  static bool ToScene(vtkDataSet* input, bool allowDefaultMaterials, sphcover::Scene& scene,
+  static bool ToScene(vtkDataSet* input,
+    bool allowDefaultMaterials,
+    sphcover::Scene& scene,
     std::string& error);
 
   /// The patches of a subdivided environment (vtkIntervalSubdivisionFilter's first output, or
@@ -39,8 +41,10 @@ public:
   /// `Level` and `SurfaceId` (the surface they are part of: Patch::SurfaceIndex) where the
   /// input has them. `scene` gets one surface per cell (the cell's geometry and material), so
   /// scene.Surfaces[k] belongs to patch k, whatever its SurfaceIndex.
-  static bool ToPatches(vtkDataSet* input, sphcover::Scene& scene,
-    std::vector<sphcover::Patch>& patches, std::string& error);
+  static bool ToPatches(vtkDataSet* input,
+    sphcover::Scene& scene,
+    std::vector<sphcover::Patch>& patches,
+    std::string& error);
 };
 
 #endif

@@ -13,7 +13,7 @@
 
 namespace vtkNamedArrays
 {
-template <typename ArrayType>
+template<typename ArrayType>
 vtkSmartPointer<ArrayType> New(const char* name, int components, vtkIdType tuples)
 {
   auto array = vtkSmartPointer<ArrayType>::New();

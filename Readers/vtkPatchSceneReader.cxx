@@ -27,8 +27,9 @@ sphcover::Scene vtkPatchSceneReader::LoadFile(const std::string& fileName)
   return vtkSceneFileLoader::Load(fileName);
 }
 
-int vtkPatchSceneReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkPatchSceneReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   output->Initialize();

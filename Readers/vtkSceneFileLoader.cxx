@@ -3,6 +3,7 @@
 
 #include "InputError.h"
 
+#include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -11,7 +12,6 @@
 #include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
 #include <vtkPolyData.h>
-#include <vtkAlgorithm.h>
 #include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataReader.h>
 
@@ -38,7 +38,8 @@ std::string LowerExtension(const std::string& path)
 {
   const size_t dot = path.find_last_of('.');
   std::string ext = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(
+    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 }
@@ -67,7 +68,8 @@ std::vector<sphcover::MeshFace> vtkSceneFileLoader::ReadMeshFaces(const std::str
   }
   else
   {
-    throw sphcover::InputError(path, "", "unsupported mesh format '." + ext + "' (use .obj, .ply or .vtp)");
+    throw sphcover::InputError(
+      path, "", "unsupported mesh format '." + ext + "' (use .obj, .ply or .vtp)");
   }
 
   // VTK readers report problems through the error event, not by return values.
@@ -81,11 +83,13 @@ std::vector<sphcover::MeshFace> vtkSceneFileLoader::ReadMeshFaces(const std::str
   vtkPolyData* mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (!error.empty() || !mesh)
   {
-    throw sphcover::InputError(path, "", "cannot read mesh: " + (error.empty() ? std::string("no output") : error));
+    throw sphcover::InputError(
+      path, "", "cannot read mesh: " + (error.empty() ? std::string("no output") : error));
   }
   if (mesh->GetNumberOfLines() > 0 || mesh->GetNumberOfStrips() > 0)
   {
-    throw sphcover::InputError(path, "", "only triangles and quads are supported (the mesh has lines or strips)");
+    throw sphcover::InputError(
+      path, "", "only triangles and quads are supported (the mesh has lines or strips)");
   }
 
   std::vector<sphcover::MeshFace> faces;

@@ -35,14 +35,15 @@ bool vtkSurfaceGridBuilder::IsTriangle(const sphcover::BezierPatch& patch)
     patch.ControlPoint(1, 1) == patch.ControlPoint(0, 1);
 }
 
-void vtkSurfaceGridBuilder::BuildCells(
-  const std::vector<const sphcover::BezierPatch*>& patches, vtkUnstructuredGrid* output)
+void vtkSurfaceGridBuilder::BuildCells(const std::vector<const sphcover::BezierPatch*>& patches,
+  vtkUnstructuredGrid* output)
 {
   const vtkIdType numberOfCells = static_cast<vtkIdType>(patches.size());
   vtkIdType numberOfPoints = 0;
   for (const sphcover::BezierPatch* patch : patches)
   {
-    numberOfPoints += IsTriangle(*patch) ? 3 : static_cast<vtkIdType>(patch->ControlPoints().size());
+    numberOfPoints +=
+      IsTriangle(*patch) ? 3 : static_cast<vtkIdType>(patch->ControlPoints().size());
   }
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
@@ -97,8 +98,9 @@ void vtkSurfaceGridBuilder::BuildCells(
   output->GetCellData()->SetHigherOrderDegrees(degrees);
 }
 
-void vtkSurfaceGridBuilder::AddMaterialArrays(
-  const sphcover::Scene& scene, const std::vector<int>& surfaceOfCell, vtkUnstructuredGrid* output)
+void vtkSurfaceGridBuilder::AddMaterialArrays(const sphcover::Scene& scene,
+  const std::vector<int>& surfaceOfCell,
+  vtkUnstructuredGrid* output)
 {
   const vtkIdType numberOfCells = static_cast<vtkIdType>(surfaceOfCell.size());
   auto surfaceNameId = vtkNamedArrays::Int(names::SurfaceNameId, 1, numberOfCells);
@@ -111,8 +113,10 @@ void vtkSurfaceGridBuilder::AddMaterialArrays(
   auto exponent = vtkNamedArrays::Double(names::PhongExponent, 1, numberOfCells);
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
-    const sphcover::Surface& surface = scene.Surfaces[static_cast<size_t>(surfaceOfCell[static_cast<size_t>(c)])];
-    const sphcover::Material& material = scene.Materials[static_cast<size_t>(surface.MaterialIndex)];
+    const sphcover::Surface& surface =
+      scene.Surfaces[static_cast<size_t>(surfaceOfCell[static_cast<size_t>(c)])];
+    const sphcover::Material& material =
+      scene.Materials[static_cast<size_t>(surface.MaterialIndex)];
     surfaceNameId->SetValue(c, surface.NameIndex);
     materialId->SetValue(c, surface.MaterialIndex);
     materialType->SetValue(c, static_cast<int>(material.Type));
@@ -157,7 +161,8 @@ void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredG
 void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
 {
   vtkFieldData* fd = output->GetFieldData();
-  auto surfaceNames = vtkNamedArrays::String(names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()));
+  auto surfaceNames =
+    vtkNamedArrays::String(names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()));
   for (size_t k = 0; k < scene.SurfaceNames.size(); ++k)
   {
     surfaceNames->SetValue(static_cast<vtkIdType>(k), scene.SurfaceNames[k]);
@@ -182,8 +187,18 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   const vtkIdType numberOfCameras = static_cast<vtkIdType>(scene.Cameras.size());
   auto cameraNames = vtkNamedArrays::String(names::CameraNames, numberOfCameras);
   auto cameraParameters = vtkNamedArrays::Double(names::CameraParameters, 12, numberOfCameras);
-  const char* cameraComponents[12] = { "PositionX", "PositionY", "PositionZ", "FocalPointX",
-    "FocalPointY", "FocalPointZ", "ViewUpX", "ViewUpY", "ViewUpZ", "ViewAngle", "Width", "Height" };
+  const char* cameraComponents[12] = { "PositionX",
+    "PositionY",
+    "PositionZ",
+    "FocalPointX",
+    "FocalPointY",
+    "FocalPointZ",
+    "ViewUpX",
+    "ViewUpY",
+    "ViewUpZ",
+    "ViewAngle",
+    "Width",
+    "Height" };
   for (int k = 0; k < 12; ++k)
   {
     cameraParameters->SetComponentName(k, cameraComponents[k]);
@@ -192,9 +207,17 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   {
     const sphcover::Camera& camera = scene.Cameras[static_cast<size_t>(k)];
     cameraNames->SetValue(k, camera.Name);
-    const double values[12] = { camera.Position.x, camera.Position.y, camera.Position.z,
-      camera.FocalPoint.x, camera.FocalPoint.y, camera.FocalPoint.z, camera.ViewUp.x,
-      camera.ViewUp.y, camera.ViewUp.z, camera.ViewAngle, double(camera.Width),
+    const double values[12] = { camera.Position.x,
+      camera.Position.y,
+      camera.Position.z,
+      camera.FocalPoint.x,
+      camera.FocalPoint.y,
+      camera.FocalPoint.z,
+      camera.ViewUp.x,
+      camera.ViewUp.y,
+      camera.ViewUp.z,
+      camera.ViewAngle,
+      double(camera.Width),
       double(camera.Height) };
     cameraParameters->SetTuple(k, values);
   }
@@ -206,8 +229,10 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   settings->SetComponentName(1, "phi_bins");
   settings->SetComponentName(2, "max_level");
   settings->SetComponentName(3, "tolerance");
-  const double settingValues[4] = { double(scene.Settings.ThetaBins), double(scene.Settings.PhiBins),
-    double(scene.Settings.MaxLevel), scene.Settings.Tolerance };
+  const double settingValues[4] = { double(scene.Settings.ThetaBins),
+    double(scene.Settings.PhiBins),
+    double(scene.Settings.MaxLevel),
+    scene.Settings.Tolerance };
   settings->SetTuple(0, settingValues);
   fd->AddArray(settings);
 

@@ -32,13 +32,14 @@ public:
 
   /// Replaces the points and cells of `output` with one cell per patch (with the
   /// HigherOrderDegrees cell array). A bilinear patch with P(1,1) = P(0,1) is a triangle.
-  static void BuildCells(
-    const std::vector<const sphcover::BezierPatch*>& patches, vtkUnstructuredGrid* output);
+  static void BuildCells(const std::vector<const sphcover::BezierPatch*>& patches,
+    vtkUnstructuredGrid* output);
 
   /// Adds the cell arrays SurfaceNameId, MaterialId, MaterialType, TwoSided, Emission, Diffuse,
   /// Specular and PhongExponent of the surface each cell belongs to.
-  static void AddMaterialArrays(
-    const sphcover::Scene& scene, const std::vector<int>& surfaceOfCell, vtkUnstructuredGrid* output);
+  static void AddMaterialArrays(const sphcover::Scene& scene,
+    const std::vector<int>& surfaceOfCell,
+    vtkUnstructuredGrid* output);
 
   /// Adds the field data: surface and material names, cameras, settings, source file.
   static void AddFieldData(const sphcover::Scene& scene, vtkUnstructuredGrid* output);

@@ -76,7 +76,8 @@ void PrintSceneSummary(const Scene& scene, std::ostream& os)
   {
     width = std::max(width, name.size());
   }
-  os << "  " << std::left << std::setw(static_cast<int>(width)) << "name" << "  patches  degrees"
+  os << "  " << std::left << std::setw(static_cast<int>(width)) << "name"
+     << "  patches  degrees"
      << "             material\n";
   for (size_t k = 0; k < entries.size(); ++k)
   {

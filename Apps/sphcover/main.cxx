@@ -28,16 +28,16 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
-#include <vtkPointData.h>
-#include <vtkStringArray.h>
 #include <vtkDataArray.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLMultiBlockDataWriter.h>
 
@@ -79,7 +79,8 @@ void Run(vtkAlgorithm* algorithm, ErrorCollector& errors)
 sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<std::string>& sets)
 {
   sphcover::SceneSettings settings;
-  vtkDataArray* values = surfaces->GetFieldData()->GetArray(vtkSphericalCoverArrayNames::SceneSettings);
+  vtkDataArray* values =
+    surfaces->GetFieldData()->GetArray(vtkSphericalCoverArrayNames::SceneSettings);
   if (values && values->GetNumberOfComponents() == 4)
   {
     settings.ThetaBins = static_cast<int>(values->GetComponent(0, 0));
@@ -136,8 +137,8 @@ void WriteAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::strin
   fs::remove_all(staging);
   if (!written || failure)
   {
-    throw std::runtime_error("cannot write '" + path + "': " +
-      (written ? failure.message() : errors.First()));
+    throw std::runtime_error(
+      "cannot write '" + path + "': " + (written ? failure.message() : errors.First()));
   }
 }
 
@@ -180,7 +181,8 @@ struct Solution
       ::Run(this->Reader, errors);
       this->ReadSeconds = bar.Seconds();
     }
-    const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
+    const sphcover::SceneSettings settings =
+      SettingsOf(this->Reader->GetOutput(), options.Settings);
     this->Subdivision->SetInputConnection(this->Reader->GetOutputPort());
     this->Subdivision->SetThetaBins(settings.ThetaBins);
     this->Subdivision->SetPhiBins(settings.PhiBins);
@@ -223,7 +225,8 @@ nlohmann::json Report(Solution& solution)
   }
   auto* names = vtkStringArray::SafeDownCast(
     points->GetFieldData()->GetAbstractArray(vtkSphericalCoverArrayNames::SurfaceNames));
-  vtkDataArray* nameId = points->GetPointData()->GetArray(vtkSphericalCoverArrayNames::SurfaceNameId);
+  vtkDataArray* nameId =
+    points->GetPointData()->GetArray(vtkSphericalCoverArrayNames::SurfaceNameId);
   vtkDataArray* area = points->GetPointData()->GetArray(vtkSphericalCoverArrayNames::Area);
   if (!names || !nameId || !area)
   {
@@ -235,7 +238,8 @@ nlohmann::json Report(Solution& solution)
   for (vtkIdType k = 0; k < points->GetNumberOfPoints(); ++k)
   {
     groupOfPatch[static_cast<size_t>(k)] = static_cast<int>(nameId->GetComponent(k, 0));
-    groupArea[static_cast<size_t>(groupOfPatch[static_cast<size_t>(k)])] += area->GetComponent(k, 0);
+    groupArea[static_cast<size_t>(groupOfPatch[static_cast<size_t>(k)])] +=
+      area->GetComponent(k, 0);
   }
   const std::vector<double> factors = cover.FormFactors(groupOfPatch, groups);
 
@@ -245,7 +249,8 @@ nlohmann::json Report(Solution& solution)
   report["form_factors"]["matrix"] = nlohmann::json::array();
   for (int a = 0; a < groups; ++a)
   {
-    report["surfaces"].push_back({ { "name", names->GetValue(a) }, { "area", groupArea[static_cast<size_t>(a)] } });
+    report["surfaces"].push_back(
+      { { "name", names->GetValue(a) }, { "area", groupArea[static_cast<size_t>(a)] } });
     report["form_factors"]["names"].push_back(names->GetValue(a));
     nlohmann::json row = nlohmann::json::array();
     for (int b = 0; b < groups; ++b)
@@ -256,9 +261,11 @@ nlohmann::json Report(Solution& solution)
   }
   report["counts"] = { { "surfaces", solution.Reader->GetOutput()->GetNumberOfCells() },
     { "patches", solution.Subdivision->GetOutput()->GetNumberOfCells() },
-    { "characteristic_points", points->GetNumberOfPoints() }, { "strips", cover.StripCount() },
+    { "characteristic_points", points->GetNumberOfPoints() },
+    { "strips", cover.StripCount() },
     { "pair_tests", solution.Subdivision->GetPairTests() } };
-  report["timings_s"] = { { "read", solution.ReadSeconds }, { "subdivide", solution.SubdivideSeconds },
+  report["timings_s"] = { { "read", solution.ReadSeconds },
+    { "subdivide", solution.SubdivideSeconds },
     { "cover", solution.CoverSeconds } };
   return report;
 }
@@ -283,8 +290,8 @@ int RunSolve(const Options& options)
     WriteAtomically(writer, blocks, options.Output);
   }
   std::cout << "patches: " << solution.Subdivision->GetOutput()->GetNumberOfCells() << "\n"
-            << "seconds: read " << solution.ReadSeconds << ", subdivide " << solution.SubdivideSeconds
-            << ", cover " << solution.CoverSeconds << "\n";
+            << "seconds: read " << solution.ReadSeconds << ", subdivide "
+            << solution.SubdivideSeconds << ", cover " << solution.CoverSeconds << "\n";
   return 0;
 }
 
@@ -351,12 +358,15 @@ int main(int argc, char** argv)
   // Global options may also follow the subcommand: `sphcover info X --threads 2`.
   app.fallthrough();
   Options options;
-  app.add_option("--threads", options.Threads, "Worker threads for the parallel stages (0: one per core)")
+  app
+    .add_option(
+      "--threads", options.Threads, "Worker threads for the parallel stages (0: one per core)")
     ->check(CLI::Range(0, 4096));
   app.add_flag("--quiet,-q", options.Quiet, "No progress bars");
 
-  CLI::App* info = app.add_subcommand("info", "Print a scene's summary: surfaces, patch degrees, "
-                                              "materials, cameras, bounds and settings");
+  CLI::App* info = app.add_subcommand("info",
+    "Print a scene's summary: surfaces, patch degrees, "
+    "materials, cameras, bounds and settings");
   info->add_option("SCENE", options.Scene, "A .scene or .bpt file")->required();
 
   CLI::App* subdivide = app.add_subcommand("subdivide",
@@ -366,7 +376,8 @@ int main(int argc, char** argv)
   subdivide->add_option("-o,--output", options.Output, "Output file (.vtm)")->required();
   subdivide->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
-  subdivide->add_option("--set", options.Settings,
+  subdivide->add_option("--set",
+    options.Settings,
     "Override a setting of the scene file, e.g. --set max_level=3 (theta_bins, phi_bins, "
     "max_level, tolerance)");
 
@@ -380,7 +391,8 @@ int main(int argc, char** argv)
     ->check(CLI::IsMember({ "projection", "raycasting" }));
   solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
-  solve->add_option("--set", options.Settings, "Override a setting of the scene file (see subdivide)");
+  solve->add_option(
+    "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
 
   try
   {

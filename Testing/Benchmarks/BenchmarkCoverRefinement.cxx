@@ -49,7 +49,9 @@ struct Reciprocity
   double WorstRow = 0.0;
 };
 
-Reciprocity Measure(const Scene& scene, const std::vector<Patch>& patches, const SphericalCover& cover)
+Reciprocity Measure(const Scene& scene,
+  const std::vector<Patch>& patches,
+  const SphericalCover& cover)
 {
   const size_t count = scene.Surfaces.size();
   std::vector<int> groups;
@@ -129,24 +131,39 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
   const Reciprocity reciprocityAfter = Measure(scene, after, coverAfter);
 
   const RefinementStatistics& s = refinement.Statistics();
-  std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d)\n", name.c_str(),
-    coverOptions.ThetaBins, coverOptions.PhiBins, scene.Settings.MaxLevel,
+  std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d)\n",
+    name.c_str(),
+    coverOptions.ThetaBins,
+    coverOptions.PhiBins,
+    scene.Settings.MaxLevel,
     refinementSettings.MaxLevel);
   std::printf("  subdivision          %8zu patches  %8.2f s\n", before.size(), subdivisionSeconds);
   std::printf("  cover before         %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
               "worst |row - 1| %.2e\n",
-    before.size(), coverBeforeSeconds, reciprocityBefore.Worst, reciprocityBefore.Pair.c_str(),
+    before.size(),
+    coverBeforeSeconds,
+    reciprocityBefore.Worst,
+    reciprocityBefore.Pair.c_str(),
     reciprocityBefore.WorstRow);
   std::printf("  refinement           %8zu patches  %8.2f s  rounds %d, hemispheres analysed %zu, "
               "splits %zu (%zu for disconnection only), refused by limits %zu\n",
-    after.size(), refinementSeconds, s.Rounds, s.RowsAnalysed, s.Splits, s.DisconnectedSplits,
+    after.size(),
+    refinementSeconds,
+    s.Rounds,
+    s.RowsAnalysed,
+    s.Splits,
+    s.DisconnectedSplits,
     s.LimitedRequests);
   std::printf("  cover after          %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
               "worst |row - 1| %.2e\n",
-    after.size(), coverAfterSeconds, reciprocityAfter.Worst, reciprocityAfter.Pair.c_str(),
+    after.size(),
+    coverAfterSeconds,
+    reciprocityAfter.Worst,
+    reciprocityAfter.Pair.c_str(),
     reciprocityAfter.WorstRow);
   std::printf("  hemispheres computed after subdivision: %zu (refinement) + %zu (final cover)\n",
-    s.RowsAnalysed, after.size());
+    s.RowsAnalysed,
+    after.size());
 }
 }
 
@@ -171,7 +188,8 @@ int main(int argc, char* argv[])
     }
     else
     {
-      std::fprintf(stderr, "usage: %s [--threads N] [--extra-levels K] [--scene name.scene]...\n", argv[0]);
+      std::fprintf(
+        stderr, "usage: %s [--threads N] [--extra-levels K] [--scene name.scene]...\n", argv[0]);
       return 2;
     }
   }

@@ -35,21 +35,23 @@ void Run(const char* name, RangeMethod method, int threads)
   const auto start = std::chrono::steady_clock::now();
   IntervalSubdivision subdivision(scene, settings);
   subdivision.Run(nullptr, threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads));
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const size_t patches = subdivision.Patches().size();
   const SubdivisionStatistics& s = subdivision.Statistics();
   std::cout << std::left << std::setw(20) << name << std::setw(10)
-            << (method == RangeMethod::Bernstein ? "Bernstein" : "natural") << std::setw(9) << threads
-            << std::setw(9) << patches << std::setw(9) << patches << std::setw(12) << s.PairTests
-            << std::setw(8) << s.Sweeps << std::fixed << std::setprecision(2) << seconds
-            << std::defaultfloat << "\n";
+            << (method == RangeMethod::Bernstein ? "Bernstein" : "natural") << std::setw(9)
+            << threads << std::setw(9) << patches << std::setw(9) << patches << std::setw(12)
+            << s.PairTests << std::setw(8) << s.Sweeps << std::fixed << std::setprecision(2)
+            << seconds << std::defaultfloat << "\n";
 }
 }
 
 int main(int argc, char* argv[])
 {
   const bool natural = argc > 1 && std::strcmp(argv[1], "--natural") == 0;
-  std::cout << "scene               method    threads  patches  points   pair tests  sweeps  seconds\n";
+  std::cout
+    << "scene               method    threads  patches  points   pair tests  sweeps  seconds\n";
   for (const char* scene : { "cornell_box.scene", "teapot_room.scene" })
   {
     for (int threads : { 1, 2 })

@@ -122,10 +122,8 @@ void ExpectTiling(const Scene& scene, const std::vector<Patch>& patches)
       sum += (rects[a].U1 - rects[a].U0) * (rects[a].V1 - rects[a].V0);
       for (size_t b = a + 1; b < rects.size(); ++b)
       {
-        const double du =
-          std::min(rects[a].U1, rects[b].U1) - std::max(rects[a].U0, rects[b].U0);
-        const double dv =
-          std::min(rects[a].V1, rects[b].V1) - std::max(rects[a].V0, rects[b].V0);
+        const double du = std::min(rects[a].U1, rects[b].U1) - std::max(rects[a].U0, rects[b].U0);
+        const double dv = std::min(rects[a].V1, rects[b].V1) - std::max(rects[a].V0, rects[b].V0);
         ASSERT_FALSE(du > 1e-12 && dv > 1e-12) << "surface " << s << ": patches overlap";
       }
     }
@@ -311,10 +309,12 @@ TEST(CoverRefinement, ProgressAndAbort)
 
   std::vector<double> reported;
   CoverRefinement complete(scene, before, pipeline.Refinement);
-  ASSERT_TRUE(complete.Run([&](double fraction) {
-    reported.push_back(fraction);
-    return true;
-  }));
+  ASSERT_TRUE(complete.Run(
+    [&](double fraction)
+    {
+      reported.push_back(fraction);
+      return true;
+    }));
   ASSERT_FALSE(reported.empty());
   EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
   EXPECT_EQ(reported.back(), 1.0);
@@ -323,7 +323,8 @@ TEST(CoverRefinement, ProgressAndAbort)
   // Abort in the second round: the patches are those after the first, still a tiling.
   CoverRefinement aborted(scene, before, pipeline.Refinement);
   int calls = 0;
-  EXPECT_FALSE(aborted.Run([&](double) { return ++calls < 2 + static_cast<int>(before.size() / 64); }));
+  EXPECT_FALSE(
+    aborted.Run([&](double) { return ++calls < 2 + static_cast<int>(before.size() / 64); }));
   ExpectTiling(scene, aborted.Patches());
   EXPECT_LE(aborted.Patches().size(), complete.Patches().size());
 }

@@ -352,7 +352,7 @@ private:
  * @brief Trials of a binary operation: interval result versus exact result at random points.
  * @param nonZeroDivisor draw the second operand so that it excludes zero (for division).
  */
-template <typename IntervalOp, typename ExactOp>
+template<typename IntervalOp, typename ExactOp>
 void CheckBinary(std::uint64_t seed, bool nonZeroDivisor, IntervalOp intervalOp, ExactOp exactOp)
 {
   OperandGenerator gen(seed);
@@ -376,7 +376,7 @@ void CheckBinary(std::uint64_t seed, bool nonZeroDivisor, IntervalOp intervalOp,
   }
 }
 
-template <typename IntervalOp, typename ExactOp>
+template<typename IntervalOp, typename ExactOp>
 void CheckUnary(std::uint64_t seed, IntervalOp intervalOp, ExactOp exactOp)
 {
   OperandGenerator gen(seed);
@@ -403,42 +403,52 @@ void CheckUnary(std::uint64_t seed, IntervalOp intervalOp, ExactOp exactOp)
 TEST(IntervalRandom, Addition)
 {
   CheckBinary(
-    BaseSeed + 1, false, [](const Interval& a, const Interval& b) { return a + b; },
+    BaseSeed + 1,
+    false,
+    [](const Interval& a, const Interval& b) { return a + b; },
     [](mpq_class& r, const mpq_class& x, const mpq_class& y) { r = x + y; });
 }
 
 TEST(IntervalRandom, Subtraction)
 {
   CheckBinary(
-    BaseSeed + 2, false, [](const Interval& a, const Interval& b) { return a - b; },
+    BaseSeed + 2,
+    false,
+    [](const Interval& a, const Interval& b) { return a - b; },
     [](mpq_class& r, const mpq_class& x, const mpq_class& y) { r = x - y; });
 }
 
 TEST(IntervalRandom, Multiplication)
 {
   CheckBinary(
-    BaseSeed + 3, false, [](const Interval& a, const Interval& b) { return a * b; },
+    BaseSeed + 3,
+    false,
+    [](const Interval& a, const Interval& b) { return a * b; },
     [](mpq_class& r, const mpq_class& x, const mpq_class& y) { r = x * y; });
 }
 
 TEST(IntervalRandom, Division)
 {
   CheckBinary(
-    BaseSeed + 4, true, [](const Interval& a, const Interval& b) { return a / b; },
+    BaseSeed + 4,
+    true,
+    [](const Interval& a, const Interval& b) { return a / b; },
     [](mpq_class& r, const mpq_class& x, const mpq_class& y) { r = x / y; });
 }
 
 TEST(IntervalRandom, Negation)
 {
   CheckUnary(
-    BaseSeed + 5, [](const Interval& a) { return -a; },
+    BaseSeed + 5,
+    [](const Interval& a) { return -a; },
     [](mpq_class& r, const mpq_class& x) { r = -x; });
 }
 
 TEST(IntervalRandom, Sqr)
 {
   CheckUnary(
-    BaseSeed + 6, [](const Interval& a) { return sphcover::Sqr(a); },
+    BaseSeed + 6,
+    [](const Interval& a) { return sphcover::Sqr(a); },
     [](mpq_class& r, const mpq_class& x) { r = x * x; });
 }
 
@@ -511,8 +521,9 @@ TEST(IntervalRandom, CompoundAssignment)
     ASSERT_EQ(r.Lower(), expected.Lower()) << "trial " << trial << " op " << op;
     ASSERT_EQ(r.Upper(), expected.Upper()) << "trial " << trial << " op " << op;
     ASSERT_TRUE(checker.Encloses(r, exact))
-      << "trial " << trial << " op " << "+-*/"[op] << "=: a = " << Hex(a) << ", b = " << Hex(b)
-      << ", x = " << Hex(xa) << ", y = " << Hex(xb);
+      << "trial " << trial << " op "
+      << "+-*/"[op] << "=: a = " << Hex(a) << ", b = " << Hex(b) << ", x = " << Hex(xa)
+      << ", y = " << Hex(xb);
   }
 }
 
@@ -552,8 +563,8 @@ TEST(IntervalRandom, CompoundAssignmentAliasing)
         break;
     }
     ASSERT_TRUE(checker.Encloses(a, exact))
-      << "trial " << trial << " op " << "+-*/"[op] << "=: a = " << Hex(original)
-      << ", x = " << Hex(xa);
+      << "trial " << trial << " op "
+      << "+-*/"[op] << "=: a = " << Hex(original) << ", x = " << Hex(xa);
   }
 }
 
@@ -1015,7 +1026,8 @@ TEST(IntervalRandom, ExpressionTrees)
   // but most trees must still have bounded enclosures for the containment to mean anything.
   EXPECT_GT(bounded, TrialsPerOperation / 2) << "undefined: " << undefined;
   std::printf("[          ] %d trees with bounded enclosures, %d with an exact division by 0\n",
-    bounded, undefined);
+    bounded,
+    undefined);
 }
 
 //------------------------------------------------------------------------------------------------
@@ -1027,11 +1039,24 @@ namespace
 /// Operands with infinite, zero and extreme ends, for the NaN-freedom tests.
 std::vector<Interval> SpecialOperands()
 {
-  return { Interval::Entire(), Interval(1.0, Inf), Interval(-Inf, -1.0), Interval(0.0, Inf),
-    Interval(-Inf, 0.0), Interval(-0.0, Inf), Interval(-Inf, -0.0), Interval(0.0),
-    Interval(-0.0, 0.0), Interval(-1.0, 1.0), Interval(2.0, 3.0), Interval(-3.0, -2.0),
-    Interval(MaxDouble), Interval(-MaxDouble, MaxDouble), Interval(MinSubnormal),
-    Interval(-MinSubnormal, 0.0), Interval(0x1.0p-600, 0x1.0p-500), Interval(-Inf, 5.0),
+  return { Interval::Entire(),
+    Interval(1.0, Inf),
+    Interval(-Inf, -1.0),
+    Interval(0.0, Inf),
+    Interval(-Inf, 0.0),
+    Interval(-0.0, Inf),
+    Interval(-Inf, -0.0),
+    Interval(0.0),
+    Interval(-0.0, 0.0),
+    Interval(-1.0, 1.0),
+    Interval(2.0, 3.0),
+    Interval(-3.0, -2.0),
+    Interval(MaxDouble),
+    Interval(-MaxDouble, MaxDouble),
+    Interval(MinSubnormal),
+    Interval(-MinSubnormal, 0.0),
+    Interval(0x1.0p-600, 0x1.0p-500),
+    Interval(-Inf, 5.0),
     Interval(-5.0, Inf) };
 }
 
@@ -1039,8 +1064,20 @@ std::vector<Interval> SpecialOperands()
 std::vector<double> SamplePoints(const Interval& a)
 {
   std::vector<double> points;
-  for (const double x : { a.Lower(), a.Upper(), 0.0, -0.0, 1.0, -1.0, 0.5, 7.0, -7.0, 1e300,
-         -1e300, MaxDouble, -MaxDouble, MinSubnormal })
+  for (const double x : { a.Lower(),
+         a.Upper(),
+         0.0,
+         -0.0,
+         1.0,
+         -1.0,
+         0.5,
+         7.0,
+         -7.0,
+         1e300,
+         -1e300,
+         MaxDouble,
+         -MaxDouble,
+         MinSubnormal })
   {
     if (std::isfinite(x) && a.Contains(x))
     {
@@ -1099,8 +1136,12 @@ TEST(IntervalEdge, SqrOfIntervalStraddlingZero)
   EXPECT_LE(s.Upper(), sphcover::RoundUp(9.0));
   EXPECT_LT((a * a).Lower(), 0.0);
 
-  for (const Interval& b : { Interval(-0.0, 0.0), Interval(0.0, 1.0), Interval(-1.0, 0.0),
-         Interval(-0x1.0p-1074, 0x1.0p-1074), Interval(-1e300, 1e-300), Interval::Entire() })
+  for (const Interval& b : { Interval(-0.0, 0.0),
+         Interval(0.0, 1.0),
+         Interval(-1.0, 0.0),
+         Interval(-0x1.0p-1074, 0x1.0p-1074),
+         Interval(-1e300, 1e-300),
+         Interval::Entire() })
   {
     const Interval r = sphcover::Sqr(b);
     EXPECT_TRUE(WellFormed(r)) << Hex(b);
@@ -1176,7 +1217,8 @@ TEST(IntervalEdge, InfinitiesDoNotProduceNaN)
       const std::array<Interval, 4> results = { a + b, a - b, a * b, a / b };
       for (int op = 0; op < 4; ++op)
       {
-        ASSERT_TRUE(WellFormed(results[op])) << Hex(a) << " " << "+-*/"[op] << " " << Hex(b);
+        ASSERT_TRUE(WellFormed(results[op])) << Hex(a) << " "
+                                             << "+-*/"[op] << " " << Hex(b);
       }
       for (const double px : pa)
       {
@@ -1300,8 +1342,12 @@ TEST(IntervalPredicates, SignTestsAndMagnitudes)
   EXPECT_EQ(straddling.Magnitude(), 4.0);
 
   // A zero end point is neither positive nor negative: the sign tests are strict.
-  for (const Interval& a : { Interval(0.0, 1.0), Interval(-0.0, 1.0), Interval(-1.0, 0.0),
-         Interval(-1.0, -0.0), Interval(0.0), Interval(-0.0) })
+  for (const Interval& a : { Interval(0.0, 1.0),
+         Interval(-0.0, 1.0),
+         Interval(-1.0, 0.0),
+         Interval(-1.0, -0.0),
+         Interval(0.0),
+         Interval(-0.0) })
   {
     EXPECT_FALSE(a.IsPositive()) << Hex(a);
     EXPECT_FALSE(a.IsNegative()) << Hex(a);

@@ -57,8 +57,9 @@ BezierPatch Quad(const glm::dvec3& c, const glm::dvec3& a, const glm::dvec3& b)
 BezierPatch Dome()
 {
   std::vector<glm::dvec3> points;
-  const double heights[4][4] = { { 0.0, 0.0, 0.0, 0.0 }, { 0.0, 2.0, 2.0, 0.0 },
-    { 0.0, 2.0, 2.0, 0.0 }, { 0.0, 0.0, 0.0, 0.0 } };
+  const double heights[4][4] = {
+    { 0.0, 0.0, 0.0, 0.0 }, { 0.0, 2.0, 2.0, 0.0 }, { 0.0, 2.0, 2.0, 0.0 }, { 0.0, 0.0, 0.0, 0.0 }
+  };
   for (int j = 0; j <= 3; ++j)
   {
     for (int i = 0; i <= 3; ++i)
@@ -69,9 +70,10 @@ BezierPatch Dome()
   return BezierPatch(3, 3, points);
 }
 
-
-std::vector<Patch> Subdivide(const Scene& scene, const SubdivisionSettings& settings,
-  SubdivisionStatistics* statistics = nullptr, const ParallelFor& parallelFor = SequentialFor)
+std::vector<Patch> Subdivide(const Scene& scene,
+  const SubdivisionSettings& settings,
+  SubdivisionStatistics* statistics = nullptr,
+  const ParallelFor& parallelFor = SequentialFor)
 {
   IntervalSubdivision subdivision(scene, settings);
   EXPECT_TRUE(subdivision.Run(nullptr, parallelFor));
@@ -100,13 +102,15 @@ void ExpectTiling(const Scene& scene, const std::vector<Patch>& patches)
     for (size_t a = 0; a < rects.size(); ++a)
     {
       const UVRect& r = rects[a];
-      ASSERT_TRUE(r.U0 >= 0.0 && r.U1 <= 1.0 && r.V0 >= 0.0 && r.V1 <= 1.0 && r.U0 < r.U1 && r.V0 < r.V1);
+      ASSERT_TRUE(
+        r.U0 >= 0.0 && r.U1 <= 1.0 && r.V0 >= 0.0 && r.V1 <= 1.0 && r.U0 < r.U1 && r.V0 < r.V1);
       parameterArea += (r.U1 - r.U0) * (r.V1 - r.V0);
       for (size_t b = a + 1; b < rects.size(); ++b)
       {
         const UVRect& s = rects[b];
         const bool overlap = r.U0 < s.U1 && s.U0 < r.U1 && r.V0 < s.V1 && s.V0 < r.V1;
-        ASSERT_FALSE(overlap) << "surface " << entry.first << ": patches " << a << " and " << b << " overlap";
+        ASSERT_FALSE(overlap) << "surface " << entry.first << ": patches " << a << " and " << b
+                              << " overlap";
       }
     }
     EXPECT_NEAR(parameterArea, 1.0, 1e-12) << "surface " << entry.first;
@@ -139,10 +143,13 @@ Sampled Sample(const PatchView& receiver, const PatchView& source)
       const double v = double(b) / (SamplesPerSide - 1);
       const glm::dvec3 q = source.Geometry->Evaluate(u, v);
       Extend(glm::dot(receiver.Normal, q - receiver.Point), s.HeightMin, s.HeightMax);
-      Extend(glm::dot(source.Geometry->UnnormalizedNormal(u, v), q - receiver.Point), s.FacingMin, s.FacingMax);
+      Extend(glm::dot(source.Geometry->UnnormalizedNormal(u, v), q - receiver.Point),
+        s.FacingMin,
+        s.FacingMax);
       Extend(glm::length(q - receiver.Point), s.DistanceMin, s.DistanceMax);
       const glm::dvec3 r = receiver.Geometry->Evaluate(u, v);
-      Extend(glm::dot(receiver.Geometry->UnnormalizedNormal(u, v), r - source.Point), s.ReceivingMin,
+      Extend(glm::dot(receiver.Geometry->UnnormalizedNormal(u, v), r - source.Point),
+        s.ReceivingMin,
         s.ReceivingMax);
     }
   }
@@ -150,7 +157,8 @@ Sampled Sample(const PatchView& receiver, const PatchView& source)
 }
 
 /// Every verdict of AssessPair on every pair of the final patches holds at sampled points.
-size_t ExpectSoundVerdicts(const IntervalSubdivision& subdivision, const std::vector<Patch>& patches,
+size_t ExpectSoundVerdicts(const IntervalSubdivision& subdivision,
+  const std::vector<Patch>& patches,
   const SubdivisionSettings& settings)
 {
   size_t verdicts = 0;
@@ -185,7 +193,8 @@ size_t ExpectSoundVerdicts(const IntervalSubdivision& subdivision, const std::ve
       }
       if (verdict.Relation == PairRelation::BackFacing)
       {
-        EXPECT_GE(sampled.FacingMin, -tolShadow * s.CentreNormalLength * d - slack) << i << " " << j;
+        EXPECT_GE(sampled.FacingMin, -tolShadow * s.CentreNormalLength * d - slack)
+          << i << " " << j;
         ++verdicts;
         continue;
       }
@@ -208,7 +217,8 @@ size_t ExpectSoundVerdicts(const IntervalSubdivision& subdivision, const std::ve
         }
         else
         {
-          EXPECT_LE(sampled.FacingMax - sampled.FacingMin, tolShape * s.CentreNormalLength * d + slack);
+          EXPECT_LE(
+            sampled.FacingMax - sampled.FacingMin, tolShape * s.CentreNormalLength * d + slack);
         }
         ++verdicts;
       }
@@ -249,7 +259,8 @@ TEST(IntervalSubdivision, PatchesTileEachSurfaceAndAreasAddUp)
     {
       for (int a = 0; a < 9; ++a)
       {
-        reference += PatchArea(scene.Surfaces[s].Patch.SubPatch(a / 9.0, (a + 1) / 9.0, b / 9.0, (b + 1) / 9.0));
+        reference += PatchArea(
+          scene.Surfaces[s].Patch.SubPatch(a / 9.0, (a + 1) / 9.0, b / 9.0, (b + 1) / 9.0));
       }
     }
     EXPECT_NEAR(sums[s] / reference, 1.0, 1e-9) << "surface " << s;
@@ -305,7 +316,9 @@ TEST(IntervalSubdivision, DomeSplitsAlongItsSilhouette)
   const Scene scene = SceneOf({ Dome(), Quad({ 1.6, 0.05, 0.6 }, { 0, -0.1, 0 }, { 0, 0, 0.1 }) });
   SubdivisionSettings settings;
   settings.MaxLevel = 5;
-  for (Criterion c : { Criterion::HemisphericalContainment, Criterion::SphericalShape, Criterion::Characterisability })
+  for (Criterion c : { Criterion::HemisphericalContainment,
+         Criterion::SphericalShape,
+         Criterion::Characterisability })
   {
     settings.Enabled[static_cast<int>(c)] = false;
   }
@@ -343,23 +356,26 @@ TEST(IntervalSubdivision, DomeSplitsAlongItsSilhouette)
     {
       shallowVisible += hi < 0 ? 1 : 0;
       shallowBack += lo > 0 ? 1 : 0;
-      shallowParameterArea += (patch.Domain.U1 - patch.Domain.U0) * (patch.Domain.V1 - patch.Domain.V0);
+      shallowParameterArea +=
+        (patch.Domain.U1 - patch.Domain.U0) * (patch.Domain.V1 - patch.Domain.V0);
     }
     // A piece the silhouette crosses was split as far as allowed, unless the criterion holds
     // within its tolerance (a sliver of back side seen nearly edge-on).
     if (lo < 0 && hi > 0 && patch.Level < settings.MaxLevel)
     {
-      const PairAssessment verdict = AssessPair(subdivision.ViewOfPatch(patches.back()),
-        subdivision.ViewOfPatch(patch), settings);
+      const PairAssessment verdict = AssessPair(
+        subdivision.ViewOfPatch(patches.back()), subdivision.ViewOfPatch(patch), settings);
       EXPECT_TRUE(verdict.FrontFacing || verdict.Relation == PairRelation::BackFacing)
         << "a piece with a silhouette was not split: level " << patch.Level;
     }
   }
-  std::cout << "dome: " << domePieces << " pieces; fully visible / back-facing below the deepest level: "
-            << shallowVisible << " / " << shallowBack << ", parameter area " << shallowParameterArea << "\n";
+  std::cout << "dome: " << domePieces
+            << " pieces; fully visible / back-facing below the deepest level: " << shallowVisible
+            << " / " << shallowBack << ", parameter area " << shallowParameterArea << "\n";
   EXPECT_GT(shallowVisible, 0) << "no large fully visible piece";
   EXPECT_GT(shallowBack, 0) << "no large fully back-facing piece";
-  EXPECT_GT(shallowParameterArea, 0.2) << "too little of the dome resolved before the deepest level";
+  EXPECT_GT(shallowParameterArea, 0.2)
+    << "too little of the dome resolved before the deepest level";
   // Adaptive, not uniform: uniform refinement to MaxLevel gives 3^5 = 243 pieces.
   EXPECT_LT(domePieces, 243);
   EXPECT_GT(subdivision.Statistics().Splits[static_cast<size_t>(SplitReason::SelfShadowing)], 0u);
@@ -442,10 +458,12 @@ TEST(IntervalSubdivision, AbortKeepsTheLastCompleteSweep)
   const Scene scene = LoadSceneFile(SPHCOVER_DATA_DIR "/scenes/cornell_box.scene");
   IntervalSubdivision subdivision(scene, SubdivisionSettings());
   int calls = 0;
-  EXPECT_FALSE(subdivision.Run([&](double) {
-    ++calls;
-    return false;
-  }));
+  EXPECT_FALSE(subdivision.Run(
+    [&](double)
+    {
+      ++calls;
+      return false;
+    }));
   EXPECT_EQ(calls, 1);
   // Aborted in the first sweep: Q is still the surfaces.
   EXPECT_EQ(subdivision.Patches().size(), scene.Surfaces.size());

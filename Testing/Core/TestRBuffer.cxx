@@ -22,7 +22,6 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-
 /// Projected solid angle of the samples covered by `source` (sample resolution, no rounding
 /// to cells).
 double SampledProjectedSolidAngle(const RBuffer& buffer, int32_t source)

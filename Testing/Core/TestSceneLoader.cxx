@@ -24,7 +24,7 @@ std::vector<BezierPatch> ParseText(const std::string& text)
 }
 
 /// The InputError message the callable throws, or "" if it does not throw.
-template <typename F>
+template<typename F>
 std::string ErrorOf(F&& f)
 {
   try
@@ -87,17 +87,19 @@ TEST(BptReader, ErrorsNameTheLineAndProblem)
     "test.bpt: line 4: expected a number (control point coordinate), got 'x'");
   EXPECT_EQ(ErrorOf([] { ParseText("1\n1 1\n0 0 0\n1 nan 0\n0 1 0\n1 1 0\n"); }),
     "test.bpt: line 4: not a finite number (control point coordinate): 'nan'");
-  EXPECT_NE(ErrorOf([] { ParseText("1\n16 1\n"); }).find("degree must be in [1, 15]"),
-    std::string::npos);
+  EXPECT_NE(
+    ErrorOf([] { ParseText("1\n16 1\n"); }).find("degree must be in [1, 15]"), std::string::npos);
   EXPECT_NE(ErrorOf([] { ParseText("1\n1 1\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n7\n"); })
               .find("line 7: unexpected data after the last patch"),
     std::string::npos);
-  EXPECT_NE(ErrorOf([] { ParseText("0\n"); }).find("must be a positive integer"), std::string::npos);
+  EXPECT_NE(
+    ErrorOf([] { ParseText("0\n"); }).find("must be a positive integer"), std::string::npos);
   // A huge declared count is not trusted: it fails at the end of the data, without allocating.
   EXPECT_NE(ErrorOf([] { ParseText("999999999\n1 1\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n"); })
               .find("unexpected end of file"),
     std::string::npos);
-  EXPECT_EQ(ErrorOf([] { ReadBptFile("/no/such/file.bpt"); }), "/no/such/file.bpt: cannot open file");
+  EXPECT_EQ(
+    ErrorOf([] { ReadBptFile("/no/such/file.bpt"); }), "/no/such/file.bpt: cannot open file");
 }
 
 TEST(SceneLoader, BilinearPointOrderAndFrontSide)
@@ -160,7 +162,8 @@ TEST(SceneLoader, MeshFacesBecomeBilinearPatches)
   const std::string text = R"({"materials": {"m": {"type": "diffuse", "reflectance": [1,1,1]}},
     "surfaces": [{"name": "part", "type": "mesh", "file": ")" SPHCOVER_DATA_DIR
                            R"(/models/cornell_box/cbox_floor.obj", "material": "m"}]})";
-  const MeshFaceReader fake = [](const std::string&) {
+  const MeshFaceReader fake = [](const std::string&)
+  {
     return std::vector<MeshFace>{ { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 } },
       { { 0, 0, 1 }, { 1, 0, 1 }, { 1, 1, 1 }, { 0, 1, 1 } } };
   };
@@ -177,10 +180,14 @@ TEST(SceneLoader, MeshFacesBecomeBilinearPatches)
   EXPECT_EQ(scene.SurfaceNames.size(), 1u);
   EXPECT_EQ(scene.Surfaces[1].NameIndex, 0);
 
-  const MeshFaceReader pentagon = [](const std::string&) {
-    return std::vector<MeshFace>{ { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0.5, 2, 0 }, { 0, 1, 0 } } };
+  const MeshFaceReader pentagon = [](const std::string&)
+  {
+    return std::vector<MeshFace>{
+      { { 0, 0, 0 }, { 1, 0, 0 }, { 1, 1, 0 }, { 0.5, 2, 0 }, { 0, 1, 0 } }
+    };
   };
-  EXPECT_NE(ErrorOf([&] { Parse(text, pentagon); }).find("face 1: only triangles and quads are supported"),
+  EXPECT_NE(
+    ErrorOf([&] { Parse(text, pentagon); }).find("face 1: only triangles and quads are supported"),
     std::string::npos);
   EXPECT_NE(ErrorOf([&] { Parse(text); }).find("mesh surfaces need the VTK scene reader"),
     std::string::npos);
@@ -198,26 +205,35 @@ TEST(SceneLoader, ErrorsNameTheJsonPointer)
     "/virtual/test.scene: line 3, column 16: JSON syntax error: ");
   EXPECT_EQ(ErrorOf([] { Parse(R"({"materials": {}, "surfaces": []})"); }),
     "/virtual/test.scene: /surfaces: scene has no surfaces");
-  EXPECT_EQ(ErrorOf([] {
-    Parse(R"({"materials": {"a/b": {"type": "diffuse", "reflectance": [0.5, 1.5, 0]}},
+  EXPECT_EQ(ErrorOf(
+              []
+              {
+                Parse(R"({"materials": {"a/b": {"type": "diffuse", "reflectance": [0.5, 1.5, 0]}},
               "surfaces": []})");
-  }),
+              }),
     "/virtual/test.scene: /materials/a~1b/reflectance/1: must be in [0, 1], got 1.5");
-  EXPECT_EQ(ErrorOf([] { Parse(R"({"version": 1, "materials": {}, "surfaces": [{"name": "x",
-      "type": "bezier", "degree": [2, 1], "material": "m", "points": []}]})"); }),
+  EXPECT_EQ(ErrorOf(
+              []
+              {
+                Parse(R"({"version": 1, "materials": {}, "surfaces": [{"name": "x",
+      "type": "bezier", "degree": [2, 1], "material": "m", "points": []}]})");
+              }),
     "/virtual/test.scene: /surfaces/0/material: unknown material 'm'");
   // JSON has no NaN or infinity; a number beyond the double range is located by line, column.
-  const std::string overflow = ErrorOf([] {
-    Parse("{\"materials\": {\"m\": {\"type\": \"diffuse\",\n \"reflectance\": [0, 1e999, 0]}}}");
-  });
-  EXPECT_EQ(overflow.find("/virtual/test.scene: /materials/m/reflectance/1: not a finite number"), 0u)
+  const std::string overflow = ErrorOf(
+    [] {
+      Parse("{\"materials\": {\"m\": {\"type\": \"diffuse\",\n \"reflectance\": [0, 1e999, 0]}}}");
+    });
+  EXPECT_EQ(
+    overflow.find("/virtual/test.scene: /materials/m/reflectance/1: not a finite number"), 0u)
     << overflow;
   EXPECT_NE(overflow.find("line 2, column 25"), std::string::npos) << overflow;
 }
 
 TEST(SceneLoader, ReadsSettingsAndCameras)
 {
-  const Scene scene = Parse(R"({"materials": {"m": {"type": "mirror", "reflectance": [0.9, 0.9, 0.9]}},
+  const Scene scene =
+    Parse(R"({"materials": {"m": {"type": "mirror", "reflectance": [0.9, 0.9, 0.9]}},
     "surfaces": [{"name": "q", "type": "bilinear", "material": "m",
                   "points": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}],
     "cameras": [{"name": "c", "position": [0,0,5], "focal_point": [0,0,0], "view_up": [0,1,0],
@@ -248,13 +264,14 @@ TEST(SceneLoader, ShippedScenesResolveRelativePaths)
 
 TEST(SceneLoader, DegeneratePatchIsDetected)
 {
-  EXPECT_TRUE(IsDegeneratePatch(BezierPatch(1, 1, { glm::dvec3(1), glm::dvec3(1), glm::dvec3(1), glm::dvec3(1) })));
-  // Collinear control points: a line, no area.
   EXPECT_TRUE(IsDegeneratePatch(
-    BezierPatch(1, 1, { { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 3, 0, 0 } })));
+    BezierPatch(1, 1, { glm::dvec3(1), glm::dvec3(1), glm::dvec3(1), glm::dvec3(1) })));
+  // Collinear control points: a line, no area.
+  EXPECT_TRUE(
+    IsDegeneratePatch(BezierPatch(1, 1, { { 0, 0, 0 }, { 1, 0, 0 }, { 2, 0, 0 }, { 3, 0, 0 } })));
   // A triangle stored as a degenerate bilinear patch has area.
-  EXPECT_FALSE(IsDegeneratePatch(
-    BezierPatch(1, 1, { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 1, 0 } })));
+  EXPECT_FALSE(
+    IsDegeneratePatch(BezierPatch(1, 1, { { 0, 0, 0 }, { 1, 0, 0 }, { 0, 1, 0 }, { 0, 1, 0 } })));
 }
 
 TEST(SceneLoader, BptModelsAsScenes)
@@ -288,16 +305,18 @@ TEST(SceneLoader, BadInputCorpus)
       continue; // needs VTK's OBJ reader: covered by Cxx.TestReaderBadInput
     }
     const bool isBpt = name.size() > 4 && name.compare(name.size() - 4, 4, ".bpt") == 0;
-    const std::string message = ErrorOf([&] {
-      if (isBpt)
+    const std::string message = ErrorOf(
+      [&]
       {
-        LoadBptAsScene(folder + name);
-      }
-      else
-      {
-        LoadSceneFile(folder + name);
-      }
-    });
+        if (isBpt)
+        {
+          LoadBptAsScene(folder + name);
+        }
+        else
+        {
+          LoadSceneFile(folder + name);
+        }
+      });
     EXPECT_FALSE(message.empty()) << name << " was accepted";
     for (const std::string& fragment : it.value().get<std::vector<std::string>>())
     {

@@ -34,7 +34,6 @@ std::vector<int> SurfaceGroups(const std::vector<Patch>& patches)
   return groups;
 }
 
-
 /**
  * One of Howell's configurations, receiving surface A (split receiverSplit x receiverSplit)
  * and source surface B (3 x 3): A = x in [0, a], z in [0, b] at y = 0 facing +y; B opposite

@@ -26,13 +26,16 @@ inline void Record(vtkObject*, unsigned long, void* clientData, void* callData)
 {
   const std::string message = callData ? static_cast<const char*>(callData) : "";
   // Keep the message, not VTK's "ERROR: In file, line" header (CTest fails on "ERROR:").
-  static_cast<std::vector<std::string>*>(clientData)->push_back(message.substr(message.find('\n') + 1));
+  static_cast<std::vector<std::string>*>(clientData)
+    ->push_back(message.substr(message.find('\n') + 1));
 }
 
 /// Updates `algorithm`; returns the number of failed checks (0 if it failed as expected with
 /// one error containing every fragment). The message is printed for the test log.
-inline int Check(vtkAlgorithm* algorithm, const std::vector<std::string>& fragments,
-  const std::string& what, std::string* message = nullptr)
+inline int Check(vtkAlgorithm* algorithm,
+  const std::vector<std::string>& fragments,
+  const std::string& what,
+  std::string* message = nullptr)
 {
   std::vector<std::string> errors;
   std::vector<std::string> executiveErrors;

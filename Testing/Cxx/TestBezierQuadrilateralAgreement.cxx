@@ -78,8 +78,18 @@ int TestBezierQuadrilateralAgreement(int, char*[])
   }
 
   // Random control nets of many degree pairs, square and anisotropic.
-  const int degreePairs[][2] = { { 2, 2 }, { 3, 3 }, { 2, 3 }, { 3, 2 }, { 4, 4 }, { 5, 2 },
-    { 1, 4 }, { 4, 1 }, { 6, 6 }, { 7, 7 }, { 7, 3 }, { 2, 7 } };
+  const int degreePairs[][2] = { { 2, 2 },
+    { 3, 3 },
+    { 2, 3 },
+    { 3, 2 },
+    { 4, 4 },
+    { 5, 2 },
+    { 1, 4 },
+    { 4, 1 },
+    { 6, 6 },
+    { 7, 7 },
+    { 7, 3 },
+    { 2, 7 } };
   std::uniform_real_distribution<double> coordinate(-1.0, 1.0);
   sphcover::Scene randomScene;
   randomScene.SurfaceNames.push_back("random");
@@ -95,7 +105,8 @@ int TestBezierQuadrilateralAgreement(int, char*[])
       {
         // A wavy sheet over the unit square, so the patch is not degenerate.
         points.emplace_back(double(i) / m + 0.2 * coordinate(random),
-          double(j) / n + 0.2 * coordinate(random), 0.5 * coordinate(random));
+          double(j) / n + 0.2 * coordinate(random),
+          0.5 * coordinate(random));
       }
     }
     randomScene.Surfaces.emplace_back(sphcover::BezierPatch(m, n, std::move(points)), 0, 0);

@@ -13,23 +13,23 @@
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCamera.h>
-#include <vtkCellData.h>
 #include <vtkCellArray.h>
+#include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataSetMapper.h>
 #include <vtkDataSetSurfaceFilter.h>
-#include <vtkPoints.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkSphereSource.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
 #include <vtkRegressionTestImage.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkSphereSource.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <iostream>
@@ -128,8 +128,12 @@ int TestIntervalSubdivisionFilter(int argc, char* argv[])
   vtkNew<vtkLookupTable> reasons;
   reasons->SetNumberOfTableValues(6);
   reasons->SetTableRange(0, 5);
-  const double colours[6][3] = { { 0.8, 0.8, 0.8 }, { 0.85, 0.2, 0.2 }, { 0.2, 0.45, 0.85 },
-    { 0.25, 0.7, 0.3 }, { 0.9, 0.65, 0.1 }, { 0.6, 0.3, 0.7 } };
+  const double colours[6][3] = { { 0.8, 0.8, 0.8 },
+    { 0.85, 0.2, 0.2 },
+    { 0.2, 0.45, 0.85 },
+    { 0.25, 0.7, 0.3 },
+    { 0.9, 0.65, 0.1 },
+    { 0.6, 0.3, 0.7 } };
   for (int r = 0; r < 6; ++r)
   {
     reasons->SetTableValue(r, colours[r][0], colours[r][1], colours[r][2]);

@@ -46,9 +46,15 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
 {
   vtkCellData* cd = grid->GetCellData();
   const std::pair<const char*, int> cellArrays[] = { { names::SurfaceId, 1 },
-    { names::SurfaceNameId, 1 }, { names::MaterialId, 1 }, { names::MaterialType, 1 },
-    { names::Emission, 3 }, { names::Diffuse, 3 }, { names::Specular, 3 },
-    { names::PhongExponent, 1 }, { names::TwoSided, 1 }, { names::HigherOrderDegrees, 3 } };
+    { names::SurfaceNameId, 1 },
+    { names::MaterialId, 1 },
+    { names::MaterialType, 1 },
+    { names::Emission, 3 },
+    { names::Diffuse, 3 },
+    { names::Specular, 3 },
+    { names::PhongExponent, 1 },
+    { names::TwoSided, 1 },
+    { names::HigherOrderDegrees, 3 } };
   for (const auto& array : cellArrays)
   {
     vtkDataArray* a = cd->GetArray(array.first);
@@ -56,10 +62,15 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
         a->GetNumberOfTuples() == grid->GetNumberOfCells(),
       file + ": cell array " + array.first);
   }
-  Check(cd->GetHigherOrderDegrees() != nullptr, file + ": HigherOrderDegrees is the degrees attribute");
+  Check(
+    cd->GetHigherOrderDegrees() != nullptr, file + ": HigherOrderDegrees is the degrees attribute");
   vtkFieldData* fd = grid->GetFieldData();
-  for (const char* name : { names::SurfaceNames, names::MaterialNames, names::MaterialTypeNames,
-         names::MaterialFiles, names::CameraNames, names::SourceFile })
+  for (const char* name : { names::SurfaceNames,
+         names::MaterialNames,
+         names::MaterialTypeNames,
+         names::MaterialFiles,
+         names::CameraNames,
+         names::SourceFile })
   {
     Check(vtkStringArray::SafeDownCast(fd->GetAbstractArray(name)) != nullptr,
       file + ": field array " + name);
@@ -109,8 +120,12 @@ bool Near(double a, double b)
 int TestPatchSceneReader(int, char*[])
 {
   const std::string scenes = SPHCOVER_DATA_DIR "/scenes/";
-  for (const char* name : { "cornell_box.scene", "cornell_box_meshes.scene", "teapot_room.scene",
-         "furnace_box.scene", "furnace_sphere.scene", "howell_parallel.scene",
+  for (const char* name : { "cornell_box.scene",
+         "cornell_box_meshes.scene",
+         "teapot_room.scene",
+         "furnace_box.scene",
+         "furnace_sphere.scene",
+         "howell_parallel.scene",
          "howell_perpendicular.scene" })
   {
     const std::string file = scenes + name;
@@ -131,7 +146,8 @@ int TestPatchSceneReader(int, char*[])
     vtkUnstructuredGrid* grid = reader->GetOutput();
     for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
     {
-      Check(grid->GetCellType(c) == VTK_QUAD, "cornell_box: cell " + std::to_string(c) + " is a quad");
+      Check(
+        grid->GetCellType(c) == VTK_QUAD, "cornell_box: cell " + std::to_string(c) + " is a quad");
     }
     double b[6];
     grid->GetBounds(b);

@@ -21,7 +21,8 @@
 namespace
 {
 /// Runs the reader on `file`; returns the number of failed checks.
-int CheckFails(vtkPatchSceneReader* reader, const std::string& file,
+int CheckFails(vtkPatchSceneReader* reader,
+  const std::string& file,
   const std::vector<std::string>& fragments)
 {
   reader->SetFileName(file.c_str());
@@ -82,7 +83,8 @@ int TestReaderBadInput(int, char*[])
   }
 
   vtkNew<vtkPatchSceneReader> missing;
-  failures += CheckFails(missing, folder + "no_such_file.scene", { "no_such_file.scene", "cannot open file" });
+  failures += CheckFails(
+    missing, folder + "no_such_file.scene", { "no_such_file.scene", "cannot open file" });
   vtkNew<vtkPatchSceneReader> unset;
   failures += CheckFails(unset, "", { "No FileName" });
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

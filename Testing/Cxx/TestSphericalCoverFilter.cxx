@@ -28,8 +28,8 @@
 
 #include <cmath>
 #include <cstring>
-#include <utility>
 #include <iostream>
+#include <utility>
 
 namespace
 {
@@ -44,10 +44,11 @@ void Check(bool condition, const std::string& what)
   }
 }
 
-template <typename T>
+template<typename T>
 bool SameBytes(const std::vector<T>& a, const std::vector<T>& b)
 {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+  return a.size() == b.size() &&
+    (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 bool SameCover(const sphcover::SphericalCover& a, const sphcover::SphericalCover& b)
@@ -83,16 +84,19 @@ int TestSphericalCoverFilter(int, char*[])
   vtkNew<vtkIntervalSubdivisionFilter> flatPatches;
   flatPatches->SetInputConnection(flatBox->GetOutputPort());
   flatPatches->SetMaxLevel(2);
-  const std::pair<vtkAlgorithm*, int> closed[] = { { subdivision, vtkSphericalCoverFilter::PROJECTION },
+  const std::pair<vtkAlgorithm*, int> closed[] = { { subdivision,
+                                                     vtkSphericalCoverFilter::PROJECTION },
     { subdivision, vtkSphericalCoverFilter::RAY_CASTING },
-    { flatPatches, vtkSphericalCoverFilter::PROJECTION }, { flatPatches, vtkSphericalCoverFilter::RAY_CASTING } };
+    { flatPatches, vtkSphericalCoverFilter::PROJECTION },
+    { flatPatches, vtkSphericalCoverFilter::RAY_CASTING } };
   for (const auto& run : closed)
   {
     vtkNew<vtkSphericalCoverFilter> cover;
     cover->SetInputConnection(run.first->GetOutputPort(0));
     cover->SetFillMethod(run.second);
     cover->Update();
-    vtkDataArray* covered = cover->GetOutput()->GetPointData()->GetArray("CoveredProjectedSolidAngle");
+    vtkDataArray* covered =
+      cover->GetOutput()->GetPointData()->GetArray("CoveredProjectedSolidAngle");
     double worst = 0.0;
     for (vtkIdType k = 0; k < covered->GetNumberOfTuples(); ++k)
     {
@@ -100,7 +104,8 @@ int TestSphericalCoverFilter(int, char*[])
     }
     std::cout << "closed enclosure, fill " << run.second << ": " << covered->GetNumberOfTuples()
               << " points, max |covered - pi| = " << worst << "\n";
-    Check(covered->GetNumberOfTuples() > 8 && worst < 1e-9, "closed enclosure: every hemisphere covers pi");
+    Check(covered->GetNumberOfTuples() > 8 && worst < 1e-9,
+      "closed enclosure: every hemisphere covers pi");
   }
 
   // The Cornell box, coarsely subdivided: round trip through the XML writer and reader.
@@ -115,13 +120,15 @@ int TestSphericalCoverFilter(int, char*[])
   vtkSMPTools::Initialize(1);
   cover->Update();
   sphcover::SphericalCover built;
-  Check(vtkSphericalCoverArrays::Load(cover->GetOutput(), built).empty(), "the cover loads from the output");
+  Check(vtkSphericalCoverArrays::Load(cover->GetOutput(), built).empty(),
+    "the cover loads from the output");
   Check(built.StripCount() > 0 &&
       static_cast<vtkIdType>(built.StripCount()) ==
         vtkTable::SafeDownCast(cover->GetOutputDataObject(1))->GetNumberOfRows(),
     "the strip table has one row per strip");
 
-  const std::string file = std::string(SPHCOVER_BINARY_DIR) + "/Testing/Temporary/TestSphericalCoverFilter.vtp";
+  const std::string file =
+    std::string(SPHCOVER_BINARY_DIR) + "/Testing/Temporary/TestSphericalCoverFilter.vtp";
   vtkNew<vtkXMLPolyDataWriter> writer;
   writer->SetInputData(cover->GetOutput());
   writer->SetFileName(file.c_str());
@@ -130,7 +137,8 @@ int TestSphericalCoverFilter(int, char*[])
   reader->SetFileName(file.c_str());
   reader->Update();
   sphcover::SphericalCover reloaded;
-  Check(vtkSphericalCoverArrays::Load(reader->GetOutput(), reloaded).empty(), "the written cover loads");
+  Check(vtkSphericalCoverArrays::Load(reader->GetOutput(), reloaded).empty(),
+    "the written cover loads");
   Check(SameCover(built, reloaded), "the cover read back is identical");
 
   // Two threads build the same cover.
@@ -145,14 +153,17 @@ int TestSphericalCoverFilter(int, char*[])
   vtkNew<vtkSphericalCoverFilter> refused;
   refused->SetInputConnection(boxPatches->GetOutputPort(0));
   refused->SetMemoryLimit(0.001);
-  failures += FailureExpectation::Check(refused, { "MemoryLimit" }, "a memory limit below the estimate");
+  failures +=
+    FailureExpectation::Check(refused, { "MemoryLimit" }, "a memory limit below the estimate");
   vtkNew<vtkUnstructuredGrid> bare;
   bare->ShallowCopy(boxPatches->GetOutput());
   bare->GetCellData()->RemoveArray("Emission");
   vtkNew<vtkSphericalCoverFilter> noMaterials;
   noMaterials->SetInputData(bare);
-  failures += FailureExpectation::Check(noMaterials, { "lacks the material cell arrays" }, "input without materials");
+  failures += FailureExpectation::Check(
+    noMaterials, { "lacks the material cell arrays" }, "input without materials");
   sphcover::SphericalCover none;
-  Check(!vtkSphericalCoverArrays::Load(boxPatches->GetOutput(), none).empty(), "patches hold no cover");
+  Check(
+    !vtkSphericalCoverArrays::Load(boxPatches->GetOutput(), none).empty(), "patches hold no cover");
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
