@@ -184,9 +184,9 @@ bool LightPropagation::Converged(double tolerance) const
   {
     return true;
   }
-  double power = 0.0;
-  this->Brightest(power);
-  return power / this->TotalEmitted < tolerance;
+  // All the light still to be shot, not only the brightest point's: with many patches each
+  // can be below the tolerance while their sum is not (a 1458-patch furnace stopped 1.6% short).
+  return this->UnshotEnergy() / this->TotalEmitted < tolerance;
 }
 
 bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCallback& progress)
@@ -201,10 +201,9 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   const double initialUnshot = this->UnshotEnergy();
   double reported = 0.0;
   std::size_t shots = 0;
-  // One scan per shot finds both the convergence measure and the brightest patch.
   double largest = 0.0;
   std::size_t brightest = this->Brightest(largest);
-  while (this->TotalEmitted > 0.0 && largest / this->TotalEmitted >= settings.ConvergenceTolerance)
+  while (!this->Converged(settings.ConvergenceTolerance))
   {
     if (settings.MaximumShots > 0 && shots >= settings.MaximumShots)
     {

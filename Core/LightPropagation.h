@@ -80,7 +80,8 @@ enum class ShootingOrder
 
 struct PropagationSettings
 {
-  /// Stop when the largest unshot power relative to the emitted power falls below this.
+  /// Stop when the unshot power (summed over all points) relative to the emitted power falls
+  /// below this: no later update can then change anything by more.
   double ConvergenceTolerance = 1e-4;
   /// Most shots in one Run call (0: no limit other than convergence).
   std::size_t MaximumShots = 0;

@@ -68,6 +68,19 @@ constexpr const char* R = "R";
 // SurfaceId, R).
 /// The cosine-weighted measure of a (theta, phi) cell, dphi (cos 2 theta0 - cos 2 theta1) / 4.
 constexpr const char* ProjectedSolidAngle = "ProjectedSolidAngle";
+
+// Propagation (SPEC §4.4): points' point data, field data, the convergence history.
+constexpr const char* Irradiance = "Irradiance";
+constexpr const char* Radiosity = "Radiosity";
+constexpr const char* Brightness = "Brightness";
+constexpr const char* IncidentRadiance = "IncidentRadiance";
+/// 2 tuples of 3 bands: emitted and absorbed power, W.
+constexpr const char* EnergyBalance = "EnergyBalance";
+constexpr const char* Shot = "Shot";
+constexpr const char* Shooter = "Shooter";
+constexpr const char* MaxChange = "MaxChange";
+constexpr const char* UnshotEnergy = "UnshotEnergy";
+constexpr const char* Seconds = "Seconds";
 }
 
 #endif

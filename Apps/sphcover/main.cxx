@@ -15,6 +15,7 @@
 #include "SceneSummary.h"
 
 #include "vtkIntervalSubdivisionFilter.h"
+#include "vtkLightPropagationFilter.h"
 #include "vtkPatchSceneReader.h"
 #include "vtkSceneFileLoader.h"
 #include "vtkSphericalCoverArrayNames.h"
@@ -42,6 +43,7 @@
 #include <vtkXMLMultiBlockDataWriter.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -168,9 +170,11 @@ struct Solution
   vtkNew<vtkPatchSceneReader> Reader;
   vtkNew<vtkIntervalSubdivisionFilter> Subdivision;
   vtkNew<vtkSphericalCoverFilter> Cover;
+  vtkNew<vtkLightPropagationFilter> Propagation;
   double ReadSeconds = 0.0;
   double SubdivideSeconds = 0.0;
   double CoverSeconds = 0.0;
+  double PropagateSeconds = 0.0;
 
   void Run(const Options& options)
   {
@@ -209,14 +213,21 @@ struct Solution
       ::Run(this->Cover, errors);
       this->CoverSeconds = bar.Seconds();
     }
+    this->Propagation->SetInputConnection(this->Cover->GetOutputPort(0));
+    {
+      ProgressBar bar(this->Propagation, "propagate", options.Quiet);
+      ::Run(this->Propagation, errors);
+      this->PropagateSeconds = bar.Seconds();
+    }
   }
 };
 
-/// The report of SPEC §5 as far as the stages that have run: surfaces, form factors between
-/// named surfaces (area-weighted over the source surface), counts and timings.
+/// The report of SPEC §5: per named surface its area and area-weighted mean irradiance and exitant
+/// radiance, form factors between named surfaces (area-weighted over the source surface), the
+/// energy balance, counts and timings.
 nlohmann::json Report(Solution& solution)
 {
-  vtkPolyData* points = solution.Cover->GetOutput();
+  vtkPolyData* points = solution.Propagation->GetOutput();
   sphcover::SphericalCover cover;
   const std::string problem = vtkSphericalCoverArrays::Load(points, cover);
   if (!problem.empty())
@@ -242,6 +253,28 @@ nlohmann::json Report(Solution& solution)
       area->GetComponent(k, 0);
   }
   const std::vector<double> factors = cover.FormFactors(groupOfPatch, groups);
+  vtkDataArray* irradiance =
+    points->GetPointData()->GetArray(vtkSphericalCoverArrayNames::Irradiance);
+  vtkDataArray* radiance = points->GetPointData()->GetArray(vtkSphericalCoverArrayNames::Radiosity);
+  vtkDataArray* balance =
+    points->GetFieldData()->GetArray(vtkSphericalCoverArrayNames::EnergyBalance);
+  if (!irradiance || !radiance || !balance)
+  {
+    throw std::runtime_error("the illumination lacks Irradiance, Radiosity or EnergyBalance");
+  }
+  std::vector<glm::dvec3> meanIrradiance(static_cast<size_t>(groups), glm::dvec3(0.0));
+  std::vector<glm::dvec3> meanRadiance(static_cast<size_t>(groups), glm::dvec3(0.0));
+  for (vtkIdType k = 0; k < points->GetNumberOfPoints(); ++k)
+  {
+    const size_t g = static_cast<size_t>(groupOfPatch[static_cast<size_t>(k)]);
+    const double weight = area->GetComponent(k, 0) / groupArea[g];
+    for (int band = 0; band < 3; ++band)
+    {
+      meanIrradiance[g][band] += weight * irradiance->GetComponent(k, band);
+      meanRadiance[g][band] += weight * radiance->GetComponent(k, band);
+    }
+  }
+  auto triple = [](const glm::dvec3& v) { return nlohmann::json::array({ v.x, v.y, v.z }); };
 
   nlohmann::json report;
   report["surfaces"] = nlohmann::json::array();
@@ -249,8 +282,10 @@ nlohmann::json Report(Solution& solution)
   report["form_factors"]["matrix"] = nlohmann::json::array();
   for (int a = 0; a < groups; ++a)
   {
-    report["surfaces"].push_back(
-      { { "name", names->GetValue(a) }, { "area", groupArea[static_cast<size_t>(a)] } });
+    report["surfaces"].push_back({ { "name", names->GetValue(a) },
+      { "area", groupArea[static_cast<size_t>(a)] },
+      { "mean_irradiance", triple(meanIrradiance[static_cast<size_t>(a)]) },
+      { "mean_exitant_radiance", triple(meanRadiance[static_cast<size_t>(a)]) } });
     report["form_factors"]["names"].push_back(names->GetValue(a));
     nlohmann::json row = nlohmann::json::array();
     for (int b = 0; b < groups; ++b)
@@ -259,14 +294,31 @@ nlohmann::json Report(Solution& solution)
     }
     report["form_factors"]["matrix"].push_back(row);
   }
+  glm::dvec3 emitted;
+  glm::dvec3 absorbed;
+  balance->GetTuple(0, &emitted[0]);
+  balance->GetTuple(1, &absorbed[0]);
+  double imbalance = 0.0;
+  for (int band = 0; band < 3; ++band)
+  {
+    if (emitted[band] > 0.0)
+    {
+      imbalance = std::max(imbalance, std::fabs(emitted[band] - absorbed[band]) / emitted[band]);
+    }
+  }
+  report["energy"] = { { "emitted_w", triple(emitted) },
+    { "absorbed_w", triple(absorbed) },
+    { "relative_imbalance", imbalance } };
   report["counts"] = { { "surfaces", solution.Reader->GetOutput()->GetNumberOfCells() },
     { "patches", solution.Subdivision->GetOutput()->GetNumberOfCells() },
     { "characteristic_points", points->GetNumberOfPoints() },
     { "strips", cover.StripCount() },
-    { "pair_tests", solution.Subdivision->GetPairTests() } };
+    { "pair_tests", solution.Subdivision->GetPairTests() },
+    { "shots", solution.Propagation->GetShots() } };
   report["timings_s"] = { { "read", solution.ReadSeconds },
     { "subdivide", solution.SubdivideSeconds },
-    { "cover", solution.CoverSeconds } };
+    { "cover", solution.CoverSeconds },
+    { "propagate", solution.PropagateSeconds } };
   return report;
 }
 
@@ -284,14 +336,15 @@ int RunSolve(const Options& options)
     blocks->SetNumberOfBlocks(2);
     blocks->SetBlock(0, solution.Subdivision->GetOutput());
     blocks->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "Patches");
-    blocks->SetBlock(1, solution.Cover->GetOutput());
-    blocks->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Cover");
+    blocks->SetBlock(1, solution.Propagation->GetOutput());
+    blocks->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Illumination");
     vtkNew<vtkXMLMultiBlockDataWriter> writer;
     WriteAtomically(writer, blocks, options.Output);
   }
   std::cout << "patches: " << solution.Subdivision->GetOutput()->GetNumberOfCells() << "\n"
             << "seconds: read " << solution.ReadSeconds << ", subdivide "
-            << solution.SubdivideSeconds << ", cover " << solution.CoverSeconds << "\n";
+            << solution.SubdivideSeconds << ", cover " << solution.CoverSeconds << ", propagate "
+            << solution.PropagateSeconds << " (" << solution.Propagation->GetShots() << " shots)\n";
   return 0;
 }
 
@@ -382,8 +435,9 @@ int main(int argc, char** argv)
     "max_level, tolerance)");
 
   CLI::App* solve = app.add_subcommand("solve",
-    "Run the method up to the spherical cover (subdivision, cover) and write the solution and a "
-    "JSON report (counts, form factors between named surfaces, timings)");
+    "Run the method up to equilibrium (subdivision, spherical cover, light propagation) and "
+    "write the solution and a JSON report (surfaces' mean irradiance and exitant radiance, form "
+    "factors between named surfaces, energy balance, counts, timings)");
   solve->add_option("SCENE", options.Scene, "A .scene or .bpt file")->required();
   solve->add_option("-o,--output", options.Output, "Solution file (.vtm): patches and cover");
   solve->add_option("--report", options.Report, "Report file (.json)");

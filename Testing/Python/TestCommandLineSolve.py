@@ -1,5 +1,5 @@
-"""`sphcover solve`: the report of SPEC §5 (surfaces, form factors, counts, timings) from the
-spherical cover at the scenes' default settings, checked against Howell's closed forms C-11
+"""`sphcover solve`: the report of SPEC §5 (surfaces with mean irradiance and exitant radiance,
+form factors, energy, counts, timings) at the scenes' default settings: the white furnace, checked against Howell's closed forms C-11
 (parallel opposed rectangles) and C-14 (perpendicular rectangles with a common edge) within
 0.5%, dimensions read from the scenes, not assumed; reciprocity; the solution file read back by
 VTK; and a clean failure."""
@@ -97,6 +97,27 @@ if perpendicular:
     cover = reader.GetOutput().GetBlock(1)
     if cover is None or cover.GetFieldData().GetArray("CoverStrips") is None:
         failures.append("the solution file lacks the cover")
+
+# White furnace (SPEC §6): every surface's mean exitant radiance is Le / (1 - rho), and the
+# closed box absorbs what it emits; material values read from the scene.
+furnace_file = f"{data}/scenes/furnace_box.scene"
+furnace = solve(furnace_file)
+if furnace:
+    material = list(json.load(open(furnace_file))["materials"].values())[0]
+    expected = [e / (1 - r) for e, r in zip(material["emission"], material["reflectance"])]
+    worst = max(abs(got / want - 1) for s in furnace["surfaces"]
+                for got, want in zip(s["mean_exitant_radiance"], expected))
+    print(f"furnace box: worst |L / (Le/(1-rho)) - 1| = {worst:.2e}, "
+          f"imbalance {furnace['energy']['relative_imbalance']:.2e}, {furnace['counts']['shots']} shots")
+    if worst > 0.005:
+        failures.append(f"furnace radiance off by {100 * worst:.3f}%")
+    if furnace["energy"]["relative_imbalance"] > 1e-3:
+        failures.append("furnace: emitted and absorbed power differ by more than 0.1%")
+    for key in ["mean_irradiance", "mean_exitant_radiance"]:
+        if any(key not in s for s in furnace["surfaces"]):
+            failures.append(f"surfaces lack {key}")
+    if furnace["counts"].get("shots", 0) <= 0 or "propagate" not in furnace["timings_s"]:
+        failures.append("no shots or propagation time reported")
 
 bad = subprocess.run([sphcover, "solve", f"{data}/../Testing/Data/bad/unknown_material.scene", "--report",
                       os.path.join(folder, "bad.json")], capture_output=True, text=True, timeout=60)

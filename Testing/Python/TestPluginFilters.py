@@ -12,7 +12,8 @@ from paraview.simple import LoadPlugin, OpenDataFile, OutputPort
 
 plugin, data = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
-from sphericalcover import vtkIntervalSubdivisionFilter, vtkSphericalCoverFilter  # noqa: E402
+from sphericalcover import (vtkIntervalSubdivisionFilter, vtkLightPropagationFilter,  # noqa: E402
+                            vtkSphericalCoverFilter)
 
 failures = []
 scene = OpenDataFile(f"{data}/scenes/cornell_box.scene")
@@ -101,6 +102,20 @@ if max(values) > 3.14159265358979 + 1e-9 or sum(v > 0 for v in values) < 0.9 * l
     failures.append(f"covered projected solid angles out of range: {min(values)}..{max(values)}")
 if cover.GetDataInformation(1).GetNumberOfRows() == 0:
     failures.append("the strip table is empty")
+
+# Light propagation over the cover: the Cornell box is all diffuse.
+propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
+check_properties(propagation, vtkLightPropagationFilter(), ["ConvergenceTolerance", "MaximumShots",
+                 "ShootingOrder"])
+propagation.UpdatePipeline()
+lit = servermanager.Fetch(propagation)
+for name in ["Irradiance", "Radiosity", "Brightness"]:
+    if lit.GetPointData().GetArray(name) is None:
+        failures.append(f"illumination lacks {name}")
+if lit.GetFieldData().GetArray("IncidentRadiance") is None:
+    failures.append("illumination lacks the incident radiance of the hemisphere regions")
+if propagation.GetDataInformation(1).GetNumberOfRows() == 0:
+    failures.append("the convergence history is empty")
 
 bad = globals()["IntervalSubdivision"](Input=scene)
 bad.SelfShadowingTolerance = -1

@@ -1,0 +1,186 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkLightPropagationFilter.h"
+
+#include "vtkNamedArrays.h"
+#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSphericalCoverArrays.h"
+
+#include "LightPropagation.h"
+#include "Material.h"
+#include "SphericalCover.h"
+
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkTable.h>
+
+#include <exception>
+
+namespace names = vtkSphericalCoverArrayNames;
+
+vtkStandardNewMacro(vtkLightPropagationFilter);
+
+vtkLightPropagationFilter::vtkLightPropagationFilter()
+{
+  this->SetNumberOfOutputPorts(2);
+}
+
+vtkLightPropagationFilter::~vtkLightPropagationFilter() = default;
+
+int vtkLightPropagationFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  return 1;
+}
+
+int vtkLightPropagationFilter::FillOutputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkDataObject::DATA_TYPE_NAME(), port == 0 ? "vtkPolyData" : "vtkTable");
+  return 1;
+}
+
+int vtkLightPropagationFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkTable* history = vtkTable::GetData(outputVector, 1);
+  this->Shots = 0;
+
+  sphcover::SphericalCover cover;
+  const std::string problem = vtkSphericalCoverArrays::Load(input, cover);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< "Cannot propagate light: " << problem);
+    return 0;
+  }
+  vtkPointData* inputPoints = input->GetPointData();
+  vtkDataArray* diffuse = inputPoints->GetArray(names::Diffuse);
+  vtkDataArray* emission = inputPoints->GetArray(names::Emission);
+  vtkDataArray* type = inputPoints->GetArray(names::MaterialType);
+  if (!diffuse || !emission || diffuse->GetNumberOfComponents() != 3 ||
+    emission->GetNumberOfComponents() != 3)
+  {
+    vtkErrorMacro(<< "Cannot propagate light: the cover points lack the Diffuse and Emission "
+                     "arrays (3 components)");
+    return 0;
+  }
+  const vtkIdType count = input->GetNumberOfPoints();
+  std::vector<glm::dvec3> reflectance(static_cast<size_t>(count));
+  std::vector<glm::dvec3> emitted(static_cast<size_t>(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const int kind = type ? static_cast<int>(type->GetComponent(i, 0)) : 0;
+    if (kind == static_cast<int>(sphcover::MaterialType::Mirror) ||
+      kind == static_cast<int>(sphcover::MaterialType::Tabulated))
+    {
+      vtkErrorMacro(<< "Cannot propagate light: point " << i << " has a "
+                    << sphcover::MaterialTypeName(static_cast<sphcover::MaterialType>(kind))
+                    << " material; this version propagates diffuse (and the diffuse part of "
+                       "phong) reflection only");
+      return 0;
+    }
+    diffuse->GetTuple(i, &reflectance[static_cast<size_t>(i)][0]);
+    emission->GetTuple(i, &emitted[static_cast<size_t>(i)][0]);
+  }
+
+  sphcover::PropagationSettings settings;
+  settings.ConvergenceTolerance = this->ConvergenceTolerance;
+  settings.MaximumShots = static_cast<size_t>(this->MaximumShots);
+  settings.Order = this->ShootingOrder == FIXED_ORDER ? sphcover::ShootingOrder::FixedOrder
+                                                      : sphcover::ShootingOrder::BrightestFirst;
+  try
+  {
+    sphcover::LightPropagation propagation(cover, std::move(reflectance), std::move(emitted));
+    bool aborted = false;
+    propagation.Run(settings,
+      [this, &aborted](double fraction)
+      {
+        this->UpdateProgress(0.95 * fraction);
+        aborted = this->GetAbortExecute() != 0;
+        return !aborted;
+      });
+    if (aborted)
+    {
+      vtkWarningMacro("Light propagation aborted.");
+      return 0;
+    }
+    this->Shots = static_cast<int>(propagation.History().size());
+
+    output->ShallowCopy(input);
+    auto irradiance = vtkNamedArrays::Double(names::Irradiance, 3, count);
+    auto radiosity = vtkNamedArrays::Double(names::Radiosity, 3, count);
+    auto brightness = vtkNamedArrays::Double(names::Brightness, 3, count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      const glm::dvec3 e = propagation.Irradiance(static_cast<size_t>(i));
+      const glm::dvec3 l = propagation.ExitantRadiance(static_cast<size_t>(i));
+      const glm::dvec3 b = propagation.Brightness(static_cast<size_t>(i));
+      irradiance->SetTuple(i, &e[0]);
+      radiosity->SetTuple(i, &l[0]);
+      brightness->SetTuple(i, &b[0]);
+    }
+    output->GetPointData()->AddArray(irradiance);
+    output->GetPointData()->AddArray(radiosity);
+    output->GetPointData()->AddArray(brightness);
+
+    const std::vector<glm::dvec3>& incident = propagation.IncidentRadiances();
+    auto regions =
+      vtkNamedArrays::Double(names::IncidentRadiance, 3, static_cast<vtkIdType>(incident.size()));
+    for (size_t e = 0; e < incident.size(); ++e)
+    {
+      regions->SetTuple(static_cast<vtkIdType>(e), &incident[e][0]);
+    }
+    output->GetFieldData()->AddArray(regions);
+    const sphcover::EnergyBalance energy = propagation.Energy();
+    auto balance = vtkNamedArrays::Double(names::EnergyBalance, 3, 2);
+    balance->SetTuple(0, &energy.Emitted[0]);
+    balance->SetTuple(1, &energy.Absorbed[0]);
+    output->GetFieldData()->AddArray(balance);
+
+    const std::vector<sphcover::ShotRecord>& shots = propagation.History();
+    const vtkIdType rows = static_cast<vtkIdType>(shots.size());
+    auto shot = vtkNamedArrays::Int(names::Shot, 1, rows);
+    auto shooter = vtkNamedArrays::Int(names::Shooter, 1, rows);
+    auto change = vtkNamedArrays::Double(names::MaxChange, 1, rows);
+    auto unshot = vtkNamedArrays::Double(names::UnshotEnergy, 1, rows);
+    auto seconds = vtkNamedArrays::Double(names::Seconds, 1, rows);
+    for (vtkIdType k = 0; k < rows; ++k)
+    {
+      const sphcover::ShotRecord& record = shots[static_cast<size_t>(k)];
+      shot->SetValue(k, static_cast<int>(record.Shot));
+      shooter->SetValue(k, static_cast<int>(record.Shooter));
+      change->SetValue(k, record.RelativeChange);
+      unshot->SetValue(k, record.UnshotEnergy);
+      seconds->SetValue(k, record.Seconds);
+    }
+    history->Initialize();
+    history->AddColumn(shot);
+    history->AddColumn(shooter);
+    history->AddColumn(change);
+    history->AddColumn(unshot);
+    history->AddColumn(seconds);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Light propagation failed: " << e.what());
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkLightPropagationFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ConvergenceTolerance: " << this->ConvergenceTolerance << "\n";
+  os << indent << "MaximumShots: " << this->MaximumShots << "\n";
+  os << indent << "ShootingOrder: "
+     << (this->ShootingOrder == BRIGHTEST_FIRST ? "BrightestFirst" : "FixedOrder") << "\n";
+  os << indent << "Shots: " << this->Shots << "\n";
+}

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkLightPropagationFilter
+ * @brief Progressive propagation of light over the spherical cover until equilibrium (paper
+ * §5.1): the brightest characteristic point shoots its unshot light to every point whose
+ * hemisphere contains it (the cover's column, §5.2), updating their incident radiance.
+ *
+ * Input: the cover points of vtkSphericalCoverFilter (with the material arrays `Diffuse`,
+ * `Emission`, `MaterialType` and the cover in field data).
+ *
+ * Incident radiance E is stored per region h_ij of the hemispheres (paper §3.1 decision 4),
+ * three bands. This version propagates diffuse reflection (paper §3.5, closed form);
+ * phong surfaces reflect with their diffuse part only, and mirror and tabulated surfaces are
+ * refused with an error (they come with the general-reflectance stage).
+ *
+ * Output 0 (vtkPolyData): the cover points with point data `Irradiance` (3, W m^-2),
+ * `Radiosity` (3, exitant radiance, diffuse part plus emission, W m^-2 sr^-1), `Brightness`
+ * (3, the measure of paper §5: pi times the exitant radiance) and, in field data,
+ * `IncidentRadiance` (3 per entry of the cover: the incident radiance of every region h_ij,
+ * in the cover's entry order) and `EnergyBalance` (emitted, absorbed W per band).
+ *
+ * Output 1 (vtkTable): the convergence history, `Shot`, `Shooter`, `MaxChange` (the power
+ * shot relative to the emitted power), `UnshotEnergy` (W), `Seconds`.
+ *
+ * MaximumShots stops early, so a ParaView user can watch the light spread.
+ */
+#ifndef vtkLightPropagationFilter_h
+#define vtkLightPropagationFilter_h
+
+#include "SphericalCoverFiltersModule.h" // for export macro
+#include "vtkPolyDataAlgorithm.h"
+
+class SPHERICALCOVERFILTERS_EXPORT vtkLightPropagationFilter : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkLightPropagationFilter* New();
+  vtkTypeMacro(vtkLightPropagationFilter, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum ShootingOrders
+  {
+    BRIGHTEST_FIRST = 0,
+    FIXED_ORDER = 1
+  };
+
+  ///@{
+  /**
+   * Equilibrium is reached when the unshot power (all points together) is below this fraction
+   * of the emitted power. Default is 1e-5.
+   */
+  vtkSetClampMacro(ConvergenceTolerance, double, 0.0, 1.0);
+  vtkGetMacro(ConvergenceTolerance, double);
+  ///@}
+
+  ///@{
+  /** Stop after this many shots (0: until equilibrium). Default is 0. */
+  vtkSetClampMacro(MaximumShots, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaximumShots, int);
+  ///@}
+
+  ///@{
+  /**
+   * Which point shoots next: BRIGHTEST_FIRST (the largest unshot power, paper §5) or
+   * FIXED_ORDER (the points in turn). Default is BRIGHTEST_FIRST.
+   */
+  vtkSetClampMacro(ShootingOrder, int, BRIGHTEST_FIRST, FIXED_ORDER);
+  vtkGetMacro(ShootingOrder, int);
+  ///@}
+
+  /// Shots of the last update.
+  vtkGetMacro(Shots, int);
+
+protected:
+  vtkLightPropagationFilter();
+  ~vtkLightPropagationFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int FillOutputPortInformation(int port, vtkInformation* info) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  double ConvergenceTolerance = 1e-5;
+  int MaximumShots = 0;
+  int ShootingOrder = BRIGHTEST_FIRST;
+  int Shots = 0;
+
+private:
+  vtkLightPropagationFilter(const vtkLightPropagationFilter&) = delete;
+  void operator=(const vtkLightPropagationFilter&) = delete;
+};
+
+#endif
