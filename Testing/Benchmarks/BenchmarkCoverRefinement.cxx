@@ -22,6 +22,8 @@
 #include "IntervalSubdivision.h"
 #include "ParallelFor.h"
 #include "SceneLoader.h"
+
+#include "CoverTestUtilities.h"
 #include "SphericalCover.h"
 
 #include <algorithm>
@@ -40,52 +42,6 @@ namespace
 double Seconds(std::chrono::steady_clock::time_point start)
 {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-struct Reciprocity
-{
-  double Worst = 0.0;
-  std::string Pair;
-  double WorstRow = 0.0;
-};
-
-Reciprocity Measure(const Scene& scene,
-  const std::vector<Patch>& patches,
-  const SphericalCover& cover)
-{
-  const size_t count = scene.Surfaces.size();
-  std::vector<int> groups;
-  std::vector<double> area(count, 0.0);
-  for (const Patch& patch : patches)
-  {
-    groups.push_back(patch.SurfaceIndex);
-    area[static_cast<size_t>(patch.SurfaceIndex)] += patch.Area;
-  }
-  const std::vector<double> f = cover.FormFactors(groups, static_cast<int>(count));
-  Reciprocity result;
-  for (size_t a = 0; a < count; ++a)
-  {
-    double row = 0.0;
-    for (size_t b = 0; b < count; ++b)
-    {
-      row += f[a * count + b];
-      const double ab = area[a] * f[a * count + b];
-      const double ba = area[b] * f[b * count + a];
-      if (b <= a || std::min(ab, ba) <= 1e-3 * std::min(area[a], area[b]))
-      {
-        continue;
-      }
-      const double error = std::fabs(ab - ba) / std::max(ab, ba);
-      if (error > result.Worst)
-      {
-        result.Worst = error;
-        result.Pair = scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[a].NameIndex)] + " / " +
-          scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[b].NameIndex)];
-      }
-    }
-    result.WorstRow = std::max(result.WorstRow, std::fabs(row - 1.0));
-  }
-  return result;
 }
 
 void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFor)
@@ -113,7 +69,8 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
   SphericalCover coverBefore;
   coverBefore.Build(before, coverOptions, parallelFor);
   const double coverBeforeSeconds = Seconds(start);
-  const Reciprocity reciprocityBefore = Measure(scene, before, coverBefore);
+  const sphcover_test::Exchange reciprocityBefore =
+    sphcover_test::MeasureExchange(scene, before, coverBefore);
 
   RefinementSettings refinementSettings;
   refinementSettings.Cover = coverOptions;
@@ -128,7 +85,8 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
   SphericalCover coverAfter;
   coverAfter.Build(after, coverOptions, parallelFor);
   const double coverAfterSeconds = Seconds(start);
-  const Reciprocity reciprocityAfter = Measure(scene, after, coverAfter);
+  const sphcover_test::Exchange reciprocityAfter =
+    sphcover_test::MeasureExchange(scene, after, coverAfter);
 
   const RefinementStatistics& s = refinement.Statistics();
   std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d)\n",
@@ -142,9 +100,9 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
               "worst |row - 1| %.2e\n",
     before.size(),
     coverBeforeSeconds,
-    reciprocityBefore.Worst,
-    reciprocityBefore.Pair.c_str(),
-    reciprocityBefore.WorstRow);
+    reciprocityBefore.WorstReciprocity,
+    reciprocityBefore.WorstPair.c_str(),
+    reciprocityBefore.WorstRowError);
   std::printf("  refinement           %8zu patches  %8.2f s  rounds %d, hemispheres analysed %zu, "
               "splits %zu (%zu for disconnection only), refused by limits %zu\n",
     after.size(),
@@ -158,9 +116,9 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
               "worst |row - 1| %.2e\n",
     after.size(),
     coverAfterSeconds,
-    reciprocityAfter.Worst,
-    reciprocityAfter.Pair.c_str(),
-    reciprocityAfter.WorstRow);
+    reciprocityAfter.WorstReciprocity,
+    reciprocityAfter.WorstPair.c_str(),
+    reciprocityAfter.WorstRowError);
   std::printf("  hemispheres computed after subdivision: %zu (refinement) + %zu (final cover)\n",
     s.RowsAnalysed,
     after.size());

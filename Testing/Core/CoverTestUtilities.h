@@ -13,10 +13,12 @@
 #include "Patch.h"
 #include "Scene.h"
 #include "SceneLoader.h"
+#include "SphericalCover.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -129,6 +131,56 @@ inline double LambertProjectedSolidAngle(const glm::dvec3& p,
     }
   }
   return std::fabs(sum) / 2.0;
+}
+
+struct Exchange
+{
+  double WorstReciprocity = 0.0;
+  std::string WorstPair;
+  double WorstRowError = 0.0;
+  std::size_t Pairs = 0;
+};
+
+/// Surface-pair reciprocity |A_a F_ab - A_b F_ba| / max(...) over the pairs whose exchange
+/// min(A_a F_ab, A_b F_ba) exceeds 0.1% of the smaller area, and the worst |row sum - 1|.
+inline Exchange MeasureExchange(const sphcover::Scene& scene,
+  const std::vector<sphcover::Patch>& patches,
+  const sphcover::SphericalCover& cover)
+{
+  const size_t count = scene.Surfaces.size();
+  std::vector<int> groups;
+  std::vector<double> area(count, 0.0);
+  for (const sphcover::Patch& patch : patches)
+  {
+    groups.push_back(patch.SurfaceIndex);
+    area[static_cast<size_t>(patch.SurfaceIndex)] += patch.Area;
+  }
+  const std::vector<double> f = cover.FormFactors(groups, static_cast<int>(count));
+  Exchange result;
+  for (size_t a = 0; a < count; ++a)
+  {
+    double row = 0.0;
+    for (size_t b = 0; b < count; ++b)
+    {
+      row += f[a * count + b];
+      const double ab = area[a] * f[a * count + b];
+      const double ba = area[b] * f[b * count + a];
+      if (b <= a || std::min(ab, ba) <= 1e-3 * std::min(area[a], area[b]))
+      {
+        continue;
+      }
+      ++result.Pairs;
+      const double error = std::fabs(ab - ba) / std::max(ab, ba);
+      if (error > result.WorstReciprocity)
+      {
+        result.WorstReciprocity = error;
+        result.WorstPair = scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[a].NameIndex)] +
+          " / " + scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[b].NameIndex)];
+      }
+    }
+    result.WorstRowError = std::max(result.WorstRowError, std::fabs(row - 1.0));
+  }
+  return result;
 }
 
 } // namespace sphcover_test

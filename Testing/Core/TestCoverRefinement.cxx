@@ -51,56 +51,6 @@ std::vector<Patch> Subdivide(const Scene& scene, const SubdivisionSettings& sett
   return subdivision.Patches();
 }
 
-struct Exchange
-{
-  double WorstReciprocity = 0.0;
-  std::string WorstPair;
-  double WorstRowError = 0.0;
-  std::size_t Pairs = 0;
-};
-
-/// Surface-pair reciprocity |A_a F_ab - A_b F_ba| / max(...) over the pairs whose exchange
-/// min(A_a F_ab, A_b F_ba) exceeds 0.1% of the smaller area, and the worst |row sum - 1|.
-Exchange MeasureExchange(const Scene& scene,
-  const std::vector<Patch>& patches,
-  const SphericalCover& cover)
-{
-  const size_t count = scene.Surfaces.size();
-  std::vector<int> groups;
-  std::vector<double> area(count, 0.0);
-  for (const Patch& patch : patches)
-  {
-    groups.push_back(patch.SurfaceIndex);
-    area[static_cast<size_t>(patch.SurfaceIndex)] += patch.Area;
-  }
-  const std::vector<double> f = cover.FormFactors(groups, static_cast<int>(count));
-  Exchange result;
-  for (size_t a = 0; a < count; ++a)
-  {
-    double row = 0.0;
-    for (size_t b = 0; b < count; ++b)
-    {
-      row += f[a * count + b];
-      const double ab = area[a] * f[a * count + b];
-      const double ba = area[b] * f[b * count + a];
-      if (b <= a || std::min(ab, ba) <= 1e-3 * std::min(area[a], area[b]))
-      {
-        continue;
-      }
-      ++result.Pairs;
-      const double error = std::fabs(ab - ba) / std::max(ab, ba);
-      if (error > result.WorstReciprocity)
-      {
-        result.WorstReciprocity = error;
-        result.WorstPair = scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[a].NameIndex)] +
-          " / " + scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[b].NameIndex)];
-      }
-    }
-    result.WorstRowError = std::max(result.WorstRowError, std::fabs(row - 1.0));
-  }
-  return result;
-}
-
 /// The patches of every surface tile its parameter domain [0,1]^2: their rectangles do not
 /// overlap and their areas sum to 1.
 void ExpectTiling(const Scene& scene, const std::vector<Patch>& patches)
