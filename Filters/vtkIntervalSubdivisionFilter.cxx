@@ -158,12 +158,8 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
   {
     uvRange->SetComponentName(k, k == 0 ? "u0" : k == 1 ? "u1" : k == 2 ? "v0" : "v1");
   }
-  // Points: characteristic points and their attributes.
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(count);
-  vtkNew<vtkCellArray> vertices;
-  vertices->AllocateExact(count, count);
+  // Output 1: the characteristic points, with the attributes of their patches.
+  vtkSurfaceGridBuilder::BuildCharacteristicPoints(patches, pointsOut);
   auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
   auto uv = vtkNamedArrays::Double(names::UV, 2, count);
   for (vtkIdType p = 0; p < count; ++p)
@@ -176,8 +172,6 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
     const double range[4] = { patch.Domain.U0, patch.Domain.U1, patch.Domain.V0, patch.Domain.V1 };
     uvRange->SetTuple(p, range);
     area->SetValue(p, patch.Area);
-    points->SetPoint(p, &patch.Point[0]);
-    vertices->InsertNextCell(1, &p);
     normals->SetTuple(p, &patch.Normal[0]);
     const double centre[2] = { patch.Domain.CenterU(), patch.Domain.CenterV() };
     uv->SetTuple(p, centre);
@@ -198,15 +192,10 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
   }
   patchesOut->GetFieldData()->AddArray(reasonNames);
 
-  pointsOut->Initialize();
-  pointsOut->SetPoints(points);
-  pointsOut->SetVerts(vertices);
   vtkPointData* pd = pointsOut->GetPointData();
   pd->SetNormals(normals);
-  pd->AddArray(patchId);
   pd->AddArray(surfaceId);
   pd->AddArray(uv);
-  pd->AddArray(area);
   pd->AddArray(level);
   this->UpdateProgress(1.0);
   return 1;

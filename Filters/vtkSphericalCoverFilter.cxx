@@ -6,6 +6,7 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 #include "vtkSurfaceGridAdapter.h"
+#include "vtkSurfaceGridBuilder.h"
 
 #include "HemisphereGrid.h"
 #include "Patch.h"
@@ -116,42 +117,34 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
 
   // Output 0: the characteristic points and the cover.
   const vtkIdType count = static_cast<vtkIdType>(patches.size());
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(count);
-  vtkNew<vtkCellArray> vertices;
-  vertices->AllocateExact(count, count);
   auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
   auto tangents = vtkNamedArrays::Double(names::Tangents, 3, count);
-  auto area = vtkNamedArrays::Double(names::Area, 1, count);
-  auto patchId = vtkNamedArrays::Int(names::PatchId, 1, count);
   auto covered = vtkNamedArrays::Double(names::CoveredProjectedSolidAngle, 1, count);
   auto visible = vtkNamedArrays::Int(names::VisibleSources, 1, count);
   for (vtkIdType i = 0; i < count; ++i)
   {
     const sphcover::Patch& patch = patches[static_cast<size_t>(i)];
     const sphcover::HemisphereFrame frame = sphcover::HemisphereFrame::OfPatch(patch);
-    points->SetPoint(i, &patch.Point[0]);
-    vertices->InsertNextCell(1, &i);
     normals->SetTuple(i, &frame.Normal[0]);
     tangents->SetTuple(i, &frame.Tangent[0]);
-    area->SetValue(i, patch.Area);
-    patchId->SetValue(i, static_cast<int>(i));
     covered->SetValue(i, cover.CoveredProjectedSolidAngle(static_cast<size_t>(i)));
     visible->SetValue(i, static_cast<int>(cover.VisibleSourceCount(static_cast<size_t>(i))));
   }
+  // The characteristic points with PatchId and Area; the patches' cell arrays (SurfaceId,
+  // materials, UV, Level, ...) become their point data, then the cover's own arrays, which
+  // take precedence.
+  vtkNew<vtkPolyData> characteristic;
+  vtkSurfaceGridBuilder::BuildCharacteristicPoints(patches, characteristic);
   pointsOut->Initialize();
-  pointsOut->SetPoints(points);
-  pointsOut->SetVerts(vertices);
+  pointsOut->SetPoints(characteristic->GetPoints());
+  pointsOut->SetVerts(characteristic->GetVerts());
   vtkPointData* pd = pointsOut->GetPointData();
-  // The patches' cell arrays (SurfaceId, materials, UV, Level, ...) become point data, one
-  // point per patch; then the cover's own arrays, which take precedence.
   pd->PassData(input->GetCellData());
   pd->RemoveArray(names::HigherOrderDegrees);
   pd->SetNormals(normals);
   pd->AddArray(tangents);
-  pd->AddArray(area);
-  pd->AddArray(patchId);
+  pd->AddArray(characteristic->GetPointData()->GetArray(names::Area));
+  pd->AddArray(characteristic->GetPointData()->GetArray(names::PatchId));
   pd->AddArray(covered);
   pd->AddArray(visible);
   pointsOut->GetFieldData()->PassData(input->GetFieldData());

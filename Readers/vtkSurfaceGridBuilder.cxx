@@ -5,6 +5,7 @@
 #include "vtkSphericalCoverArrayNames.h"
 
 #include "BezierPatch.h"
+#include "Patch.h"
 #include "Scene.h"
 
 #include <vtkCellArray.h>
@@ -16,7 +17,9 @@
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkPolyData.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
@@ -96,6 +99,32 @@ void vtkSurfaceGridBuilder::BuildCells(const std::vector<const sphcover::BezierP
   output->SetPoints(points);
   output->SetCells(types, cells);
   output->GetCellData()->SetHigherOrderDegrees(degrees);
+}
+
+void vtkSurfaceGridBuilder::BuildCharacteristicPoints(const std::vector<sphcover::Patch>& patches,
+  vtkPolyData* output)
+{
+  const vtkIdType count = static_cast<vtkIdType>(patches.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(count);
+  vtkNew<vtkCellArray> vertices;
+  vertices->AllocateExact(count, count);
+  auto patchId = vtkNamedArrays::Int(names::PatchId, 1, count);
+  auto area = vtkNamedArrays::Double(names::Area, 1, count);
+  for (vtkIdType p = 0; p < count; ++p)
+  {
+    const sphcover::Patch& patch = patches[static_cast<size_t>(p)];
+    points->SetPoint(p, &patch.Point[0]);
+    vertices->InsertNextCell(1, &p);
+    patchId->SetValue(p, static_cast<int>(p));
+    area->SetValue(p, patch.Area);
+  }
+  output->Initialize();
+  output->SetPoints(points);
+  output->SetVerts(vertices);
+  output->GetPointData()->AddArray(patchId);
+  output->GetPointData()->AddArray(area);
 }
 
 void vtkSurfaceGridBuilder::AddMaterialArrays(const sphcover::Scene& scene,

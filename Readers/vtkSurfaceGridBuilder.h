@@ -16,9 +16,11 @@
 
 #include <vector> // for std::vector
 
+class vtkPolyData;
 class vtkUnstructuredGrid;
 namespace sphcover
 {
+struct Patch;
 struct Scene;
 class BezierPatch;
 }
@@ -43,6 +45,12 @@ public:
 
   /// Adds the field data: surface and material names, cameras, settings, source file.
   static void AddFieldData(const sphcover::Scene& scene, vtkUnstructuredGrid* output);
+
+  /// Replaces the contents of `output` with the characteristic points of the patches (paper
+  /// §3.2): one vertex per patch at its parametric centre, with the point data `PatchId` (the
+  /// patch's index) and `Area`. The stages add their own arrays.
+  static void BuildCharacteristicPoints(const std::vector<sphcover::Patch>& patches,
+    vtkPolyData* output);
 
   /// True for the bilinear patch (P00, P10, P11, P01 = P11) that stores a triangle.
   static bool IsTriangle(const sphcover::BezierPatch& patch);
