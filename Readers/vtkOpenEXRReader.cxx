@@ -1,0 +1,310 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkOpenEXRReader.h"
+
+#include <vtkDataObject.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <ImathBox.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfVecAttribute.h>
+#include <ImfVersion.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+vtkStandardNewMacro(vtkOpenEXRReader);
+
+namespace
+{
+/// Scanlines read per OpenEXR call: the granularity of progress and abort.
+constexpr int RowsPerBlock = 64;
+
+/// What the header says about the image, checked before anything is allocated.
+struct ImageLayout
+{
+  Imath::Box2i Window;
+  int Width = 0;
+  int Height = 0;
+  /// All of R, G and B exist: they form `Radiance`.
+  bool HasColor = false;
+  /// The channels that become arrays of their own (all but R, G, B when HasColor).
+  std::vector<std::string> OtherChannels;
+  double Origin[3] = { 0, 0, 0 };
+  double Spacing[3] = { 1, 1, 1 };
+};
+
+/// Throws std::runtime_error unless the file exists, is not empty and starts with the EXR
+/// magic number: these cases get plainer messages than OpenEXR's.
+void CheckFileStart(const std::string& fileName)
+{
+  std::ifstream in(fileName, std::ios::binary);
+  if (!in)
+  {
+    throw std::runtime_error("cannot open the file (missing or unreadable)");
+  }
+  char magic[4] = { 0, 0, 0, 0 };
+  in.read(magic, 4);
+  if (in.gcount() == 0)
+  {
+    throw std::runtime_error("the file is empty");
+  }
+  if (in.gcount() < 4 || !Imf::isImfMagic(magic))
+  {
+    throw std::runtime_error(
+      "not an OpenEXR file (it does not start with the magic number 76 2f 31 01)");
+  }
+}
+
+/// Reads the layout from a header; throws std::runtime_error for what this reader refuses.
+ImageLayout ReadLayout(const Imf::Header& header, vtkIdType maximumPixels)
+{
+  ImageLayout layout;
+  layout.Window = header.dataWindow();
+  const Imath::Box2i& window = layout.Window;
+  const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
+  const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0)
+  {
+    throw std::runtime_error("the data window is empty");
+  }
+  if (width * height > maximumPixels)
+  {
+    std::ostringstream problem;
+    problem << "the data window (" << width << " x " << height << " pixels) exceeds the limit of "
+            << maximumPixels << " pixels (MaximumPixels)";
+    throw std::runtime_error(problem.str());
+  }
+  layout.Width = static_cast<int>(width);
+  layout.Height = static_cast<int>(height);
+
+  const Imf::ChannelList& channels = header.channels();
+  if (channels.begin() == channels.end())
+  {
+    throw std::runtime_error("the file has no channels");
+  }
+  layout.HasColor =
+    channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+  for (auto it = channels.begin(); it != channels.end(); ++it)
+  {
+    const std::string name = it.name();
+    if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
+    {
+      throw std::runtime_error(
+        "the channel '" + name + "' is sub-sampled; only full-resolution channels are supported");
+    }
+    if (!(layout.HasColor && (name == "R" || name == "G" || name == "B")))
+    {
+      layout.OtherChannels.push_back(name);
+    }
+  }
+
+  // The writer's geometry attributes; absent in files from other tools.
+  if (const auto* origin = header.findTypedAttribute<Imf::V3dAttribute>("vtkOrigin"))
+  {
+    const Imath::V3d& o = origin->value();
+    if (std::isfinite(o.x) && std::isfinite(o.y) && std::isfinite(o.z))
+    {
+      layout.Origin[0] = o.x;
+      layout.Origin[1] = o.y;
+      layout.Origin[2] = o.z;
+    }
+  }
+  if (const auto* spacing = header.findTypedAttribute<Imf::V3dAttribute>("vtkSpacing"))
+  {
+    const Imath::V3d& s = spacing->value();
+    if (std::isfinite(s.x) && std::isfinite(s.y) && std::isfinite(s.z))
+    {
+      layout.Spacing[0] = s.x;
+      layout.Spacing[1] = s.y;
+      layout.Spacing[2] = s.z;
+    }
+  }
+  return layout;
+}
+
+/// Reverses the order of the rows of an array of `height` rows of `rowValues` floats.
+void FlipRows(float* values, int height, std::size_t rowValues)
+{
+  for (int j = 0; j < height / 2; ++j)
+  {
+    float* top = values + j * rowValues;
+    float* bottom = values + (height - 1 - j) * rowValues;
+    std::swap_ranges(top, top + rowValues, bottom);
+  }
+}
+}
+
+vtkOpenEXRReader::vtkOpenEXRReader()
+  : MaximumPixels(vtkIdType(1) << 28)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkOpenEXRReader::~vtkOpenEXRReader() = default;
+
+int vtkOpenEXRReader::CanReadFile(const char* fileName)
+{
+  if (!fileName)
+  {
+    return 0;
+  }
+  try
+  {
+    CheckFileStart(fileName);
+    Imf::InputFile file(fileName);
+    return 3;
+  }
+  catch (...)
+  {
+    return 0;
+  }
+}
+
+int vtkOpenEXRReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro(<< "No FileName set: cannot read an OpenEXR file.");
+    vtkDataObject::GetData(outInfo)->Initialize();
+    return 0;
+  }
+  try
+  {
+    CheckFileStart(this->FileName);
+    Imf::InputFile file(this->FileName.c_str());
+    const ImageLayout layout = ReadLayout(file.header(), this->MaximumPixels);
+    const int extent[6] = {
+      layout.Window.min.x, layout.Window.max.x, layout.Window.min.y, layout.Window.max.y, 0, 0
+    };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+    outInfo->Set(vtkDataObject::ORIGIN(), layout.Origin, 3);
+    outInfo->Set(vtkDataObject::SPACING(), layout.Spacing, 3);
+    if (layout.HasColor)
+    {
+      vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 3);
+    }
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot read OpenEXR file '" << this->FileName << "': " << e.what());
+  }
+  catch (...)
+  {
+    vtkErrorMacro(<< "Cannot read OpenEXR file '" << this->FileName << "': unknown error");
+  }
+  vtkDataObject::GetData(outInfo)->Initialize();
+  return 0;
+}
+
+int vtkOpenEXRReader::RequestData(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkImageData* output = vtkImageData::GetData(outputVector);
+  output->Initialize();
+  try
+  {
+    // Opened again: the file may have changed since RequestInformation.
+    CheckFileStart(this->FileName);
+    Imf::InputFile file(this->FileName.c_str());
+    const ImageLayout layout = ReadLayout(file.header(), this->MaximumPixels);
+    if (!file.isComplete())
+    {
+      throw std::runtime_error("the file is incomplete (truncated?): scanlines are missing");
+    }
+    const vtkIdType pixels = static_cast<vtkIdType>(layout.Width) * layout.Height;
+
+    // OpenEXR writes straight into the arrays (converting half and uint to float) in EXR
+    // scanline order; the rows are flipped afterwards.
+    Imf::FrameBuffer frameBuffer;
+    vtkNew<vtkFloatArray> radiance;
+    std::vector<vtkSmartPointer<vtkFloatArray>> others;
+    if (layout.HasColor)
+    {
+      radiance->SetName("Radiance");
+      radiance->SetNumberOfComponents(3);
+      radiance->SetNumberOfTuples(pixels);
+      const char* rgb[3] = { "R", "G", "B" };
+      for (int c = 0; c < 3; ++c)
+      {
+        frameBuffer.insert(rgb[c],
+          Imf::Slice::Make(Imf::FLOAT,
+            radiance->GetPointer(c),
+            layout.Window,
+            3 * sizeof(float),
+            3 * sizeof(float) * layout.Width));
+      }
+    }
+    for (const std::string& name : layout.OtherChannels)
+    {
+      auto array = vtkSmartPointer<vtkFloatArray>::New();
+      array->SetName(name.c_str());
+      array->SetNumberOfTuples(pixels);
+      frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, array->GetPointer(0), layout.Window));
+      others.push_back(array);
+    }
+    file.setFrameBuffer(frameBuffer);
+    for (int y = layout.Window.min.y; y <= layout.Window.max.y; y += RowsPerBlock)
+    {
+      if (this->GetAbortExecute())
+      {
+        output->Initialize();
+        return 1;
+      }
+      file.readPixels(y, std::min(y + RowsPerBlock - 1, layout.Window.max.y));
+      this->UpdateProgress(static_cast<double>(y - layout.Window.min.y + 1) / layout.Height);
+    }
+
+    output->SetExtent(
+      layout.Window.min.x, layout.Window.max.x, layout.Window.min.y, layout.Window.max.y, 0, 0);
+    output->SetOrigin(layout.Origin);
+    output->SetSpacing(layout.Spacing);
+    if (layout.HasColor)
+    {
+      FlipRows(radiance->GetPointer(0), layout.Height, 3 * static_cast<std::size_t>(layout.Width));
+      output->GetPointData()->SetScalars(radiance);
+    }
+    for (vtkFloatArray* array : others)
+    {
+      FlipRows(array->GetPointer(0), layout.Height, layout.Width);
+      output->GetPointData()->AddArray(array);
+    }
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot read OpenEXR file '" << this->FileName << "': " << e.what());
+  }
+  catch (...)
+  {
+    vtkErrorMacro(<< "Cannot read OpenEXR file '" << this->FileName << "': unknown error");
+  }
+  output->Initialize();
+  return 0;
+}
+
+void vtkOpenEXRReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << this->FileName << "\n";
+  os << indent << "MaximumPixels: " << this->MaximumPixels << "\n";
+}

@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkOpenEXRReader
+ * @brief Reads an OpenEXR image into a 2-D vtkImageData: R, G, B as the float point array
+ * `Radiance` (3 components) and every other channel as a float array of its own name.
+ *
+ * The inverse of vtkOpenEXRWriter (SPEC §4.5): the extent is the file's data window, rows
+ * are flipped back (EXR scanline y is VTK row ymin + ymax - y) and the origin and spacing
+ * come from the writer's `vtkOrigin` / `vtkSpacing` attributes (0 and 1 in files from other
+ * tools), so a write/read round trip gives the identical image, bit for bit for float data.
+ * Half and 32-bit unsigned channels are converted to float. `Radiance` is formed only when
+ * all of R, G and B exist; otherwise each of them is an array of its own. `Radiance` is the
+ * active scalars. Tiled and multi-part files are read (the first part); deep images and
+ * sub-sampled channels are refused.
+ *
+ * A missing, empty, truncated, corrupt or non-EXR file gives one error naming the file and
+ * the problem, a failed request and an empty output (OpenEXR's exceptions are caught).
+ */
+#ifndef vtkOpenEXRReader_h
+#define vtkOpenEXRReader_h
+
+#include "SphericalCoverReadersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+#include <string> // for std::string
+
+class SPHERICALCOVERREADERS_EXPORT vtkOpenEXRReader : public vtkImageAlgorithm
+{
+public:
+  static vtkOpenEXRReader* New();
+  vtkTypeMacro(vtkOpenEXRReader, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// The .exr file to read. Default is empty.
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  /**
+   * 3 if `fileName` starts with OpenEXR's magic number and its header reads, 0 otherwise
+   * (vtkImageReader2's convention). Never throws, never reports an error.
+   */
+  int CanReadFile(const char* fileName);
+
+  /// The file extension this reader handles: ".exr".
+  const char* GetFileExtensions() { return ".exr"; }
+
+  /// "OpenEXR".
+  const char* GetDescriptiveName() { return "OpenEXR"; }
+
+  /**
+   * Largest data window accepted, in pixels (width x height); bigger windows are reported as
+   * errors instead of exhausting memory on a corrupt header. Default is 2^28 (16384^2).
+   */
+  vtkSetClampMacro(MaximumPixels, vtkIdType, 1, VTK_ID_MAX);
+  vtkGetMacro(MaximumPixels, vtkIdType);
+
+protected:
+  vtkOpenEXRReader();
+  ~vtkOpenEXRReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  std::string FileName;
+  vtkIdType MaximumPixels;
+
+private:
+  vtkOpenEXRReader(const vtkOpenEXRReader&) = delete;
+  void operator=(const vtkOpenEXRReader&) = delete;
+};
+
+#endif
