@@ -179,40 +179,39 @@ int vtkOpenEXRReader::RequestInformation(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
+  // An unreadable file is reported once, by RequestData: ParaView asks for the data even
+  // after a failed information request, which would repeat the message. Here it only gets
+  // an empty extent.
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  if (this->FileName.empty())
-  {
-    vtkErrorMacro(<< "No FileName set: cannot read an OpenEXR file.");
-    vtkDataObject::GetData(outInfo)->Initialize();
-    return 0;
-  }
+  int extent[6] = { 0, -1, 0, -1, 0, 0 };
+  double origin[3] = { 0, 0, 0 };
+  double spacing[3] = { 1, 1, 1 };
   try
   {
-    CheckFileStart(this->FileName);
-    Imf::InputFile file(this->FileName.c_str());
-    const ImageLayout layout = ReadLayout(file.header(), this->MaximumPixels);
-    const int extent[6] = {
-      layout.Window.min.x, layout.Window.max.x, layout.Window.min.y, layout.Window.max.y, 0, 0
-    };
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
-    outInfo->Set(vtkDataObject::ORIGIN(), layout.Origin, 3);
-    outInfo->Set(vtkDataObject::SPACING(), layout.Spacing, 3);
-    if (layout.HasColor)
+    if (!this->FileName.empty())
     {
-      vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 3);
+      CheckFileStart(this->FileName);
+      Imf::InputFile file(this->FileName.c_str());
+      const ImageLayout layout = ReadLayout(file.header(), this->MaximumPixels);
+      extent[0] = layout.Window.min.x;
+      extent[1] = layout.Window.max.x;
+      extent[2] = layout.Window.min.y;
+      extent[3] = layout.Window.max.y;
+      std::copy(layout.Origin, layout.Origin + 3, origin);
+      std::copy(layout.Spacing, layout.Spacing + 3, spacing);
+      if (layout.HasColor)
+      {
+        vtkDataObject::SetPointDataActiveScalarInfo(outInfo, VTK_FLOAT, 3);
+      }
     }
-    return 1;
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Cannot read OpenEXR file '" << this->FileName << "': " << e.what());
   }
   catch (...)
   {
-    vtkErrorMacro(<< "Cannot read OpenEXR file '" << this->FileName << "': unknown error");
   }
-  vtkDataObject::GetData(outInfo)->Initialize();
-  return 0;
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  return 1;
 }
 
 int vtkOpenEXRReader::RequestData(vtkInformation*,
@@ -221,6 +220,11 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
 {
   vtkImageData* output = vtkImageData::GetData(outputVector);
   output->Initialize();
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro(<< "No FileName set: cannot read an OpenEXR file.");
+    return 0;
+  }
   try
   {
     // Opened again: the file may have changed since RequestInformation.

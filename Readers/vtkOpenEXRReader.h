@@ -14,7 +14,9 @@
  * sub-sampled channels are refused.
  *
  * A missing, empty, truncated, corrupt or non-EXR file gives one error naming the file and
- * the problem, a failed request and an empty output (OpenEXR's exceptions are caught).
+ * the problem, a failed request and an empty output (OpenEXR's exceptions are caught). The
+ * error comes from the data request; the information request only reports an empty extent
+ * (ParaView requests the data even after a failed information request: no second message).
  */
 #ifndef vtkOpenEXRReader_h
 #define vtkOpenEXRReader_h

@@ -19,6 +19,7 @@ packages=(
   libglew-dev libdouble-conversion-dev mpi-default-dev libx11-dev zlib1g-dev
   libglm-dev nlohmann-json3-dev libcli11-dev libopenexr-dev libembree-dev
   libgtest-dev libgmp-dev
+  openexr
   xvfb xauth
 )
 
