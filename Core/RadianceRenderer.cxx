@@ -4,6 +4,7 @@
 #include "HemisphereGrid.h"
 #include "RayCastFill.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -138,10 +139,14 @@ std::size_t RadianceRenderer::TriangleCount() const
   return this->Caster->TriangleCount();
 }
 
-glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) const
+glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolator,
+  const std::vector<glm::dvec3>& exitantRadiance,
+  int surface,
+  double u,
+  double v)
 {
   InterpolationStencil stencil;
-  if (!this->Interpolator.Stencil(surface, u, v, stencil))
+  if (!interpolator.Stencil(surface, u, v, stencil))
   {
     return glm::dvec3(0.0);
   }
@@ -149,10 +154,14 @@ glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) co
   for (int k = 0; k < stencil.Count; ++k)
   {
     radiance += stencil.Weights[static_cast<size_t>(k)] *
-      this->Exitant[stencil.Points[static_cast<size_t>(k)]];
+      exitantRadiance[stencil.Points[static_cast<size_t>(k)]];
   }
-  // Extrapolation (weights outside [0, 1]) can undershoot near an edge: radiance is >= 0.
   return glm::max(radiance, glm::dvec3(0.0));
+}
+
+glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) const
+{
+  return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v);
 }
 
 bool RadianceRenderer::Render(const Camera& camera,

@@ -89,6 +89,15 @@ struct RenderedImage
     3 * sizeof(float) + sizeof(float) + sizeof(int32_t) + 3;
 };
 
+/// The brightness of paper §5.3.2 at (u, v) of a surface: the interpolation of the
+/// characteristic points' exitant radiance, clamped at zero per band (extrapolation near an
+/// edge can undershoot); zero where the surface has no characteristic points.
+glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolator,
+  const std::vector<glm::dvec3>& exitantRadiance,
+  int surface,
+  double u,
+  double v);
+
 /// The camera and settings' problem in one sentence, or "" when they can be rendered: a view
 /// angle outside (0, 180) degrees, the eye at the focal point, a view up parallel to the view
 /// direction (or zero), a width or height below 1, SamplesPerPixel outside [1, 4096], a

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkRadianceImageFilter.h"
 
+#include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -131,53 +132,16 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
                      "0) to port 1.");
     return 0;
   }
-  vtkPointData* pd = illumination->GetPointData();
-  vtkDataArray* radiosity = pd->GetArray(names::Radiosity);
-  vtkDataArray* surfaceId = pd->GetArray(names::SurfaceId);
-  vtkDataArray* uvRange = pd->GetArray(names::UVRange);
-  vtkDataArray* twoSided = pd->GetArray(names::TwoSided);
-  if (!radiosity || radiosity->GetNumberOfComponents() != 3)
+  vtkIlluminationAdapter::Illumination lit;
+  std::string problem;
+  if (!vtkIlluminationAdapter::Read(illumination, lit, problem))
   {
-    vtkErrorMacro(<< "Cannot render: input 0 has no point array Radiosity (3 components); "
-                     "connect the illuminated cover points (vtkLightPropagationFilter's output "
-                     "0), not "
-                  << (illumination->GetNumberOfPoints() == 0 ? "an empty dataset"
-                                                             : "points without illumination"));
+    vtkErrorMacro(<< "Cannot render: " << problem << ".");
     return 0;
-  }
-  if (!surfaceId || !uvRange || uvRange->GetNumberOfComponents() != 4)
-  {
-    vtkErrorMacro(<< "Cannot render: input 0 lacks the point arrays SurfaceId and UVRange (4 "
-                     "components) that place each characteristic point on its surface.");
-    return 0;
-  }
-
-  // The characteristic points: their surface, patch rectangle and exitant radiance.
-  const vtkIdType count = illumination->GetNumberOfPoints();
-  std::vector<int> surfaceOfPoint(static_cast<size_t>(count));
-  std::vector<sphcover::UVRect> domainOfPoint(static_cast<size_t>(count));
-  std::vector<glm::dvec3> exitant(static_cast<size_t>(count));
-  std::vector<bool> twoSidedSurface;
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    const size_t k = static_cast<size_t>(i);
-    surfaceOfPoint[k] = static_cast<int>(surfaceId->GetComponent(i, 0));
-    double r[4];
-    uvRange->GetTuple(i, r);
-    domainOfPoint[k] = sphcover::UVRect{ r[0], r[1], r[2], r[3] };
-    radiosity->GetTuple(i, &exitant[k][0]);
-    if (surfaceOfPoint[k] >= 0)
-    {
-      twoSidedSurface.resize(
-        std::max(twoSidedSurface.size(), static_cast<size_t>(surfaceOfPoint[k]) + 1), false);
-      twoSidedSurface[static_cast<size_t>(surfaceOfPoint[k])] =
-        twoSided && twoSided->GetComponent(i, 0) != 0.0;
-    }
   }
 
   sphcover::Scene scene;
   std::vector<sphcover::Patch> patches;
-  std::string problem;
   if (!vtkSurfaceGridAdapter::ToPatches(patchesInput, scene, patches, problem))
   {
     vtkErrorMacro(<< "Cannot render: the patches on port 1 cannot be used: " << problem);
@@ -218,13 +182,12 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   sphcover::RenderedImage image;
   try
   {
-    sphcover::CharacteristicPointInterpolator interpolator(surfaceOfPoint, domainOfPoint);
     // Every patch's surface must hold characteristic points, or the two inputs do not belong
     // to one solution.
     std::set<int> missing;
     for (const sphcover::Patch& patch : patches)
     {
-      if (!interpolator.HasPoints(patch.SurfaceIndex))
+      if (!lit.Interpolator.HasPoints(patch.SurfaceIndex))
       {
         missing.insert(patch.SurfaceIndex);
       }
@@ -236,8 +199,10 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
                        "two inputs do not come from one solution.");
       return 0;
     }
-    const sphcover::RadianceRenderer renderer(
-      std::move(patches), std::move(interpolator), std::move(exitant), twoSidedSurface);
+    const sphcover::RadianceRenderer renderer(std::move(patches),
+      std::move(lit.Interpolator),
+      std::move(lit.ExitantRadiance),
+      std::move(lit.TwoSidedSurface));
     const bool completed = renderer.Render(camera,
       settings,
       image,

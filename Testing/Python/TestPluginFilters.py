@@ -12,8 +12,9 @@ from paraview.simple import LoadPlugin, OpenDataFile, OutputPort
 
 plugin, data = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
-from sphericalcover import (vtkIntervalSubdivisionFilter, vtkLightPropagationFilter,  # noqa: E402
-                            vtkRadianceImageFilter, vtkSphericalCoverFilter)
+from sphericalcover import (vtkIlluminationField, vtkIntervalSubdivisionFilter,  # noqa: E402
+                            vtkLightPropagationFilter, vtkRadianceImageFilter,
+                            vtkSphericalCoverFilter)
 
 failures = []
 scene = OpenDataFile(f"{data}/scenes/cornell_box.scene")
@@ -144,6 +145,18 @@ for name in ["Radiance", "Depth", "SurfaceId", "RGB"]:
 seen = image.GetPointData().GetArray("SurfaceId")
 if seen is not None and max(seen.GetValue(k) for k in range(seen.GetNumberOfTuples())) < 0:
     failures.append("the Cornell box's camera sees nothing")
+
+# The illumination field: every patch tessellated with the interpolated radiance.
+lit_field = globals()["IlluminationField"](Input=OutputPort(propagation, 0),
+                                           Patches=OutputPort(subdivision, 0))
+check_properties(lit_field, vtkIlluminationField(), ["Resolution"])
+lit_field.Resolution = 2
+lit_field.UpdatePipeline()
+field_info = lit_field.GetDataInformation(0)
+if field_info.GetNumberOfCells() != 4 * subdivision.GetDataInformation(0).GetNumberOfCells():
+    failures.append(f"the field has {field_info.GetNumberOfCells()} quads, not 4 per patch")
+if "Radiance" not in lit_field.PointData.keys():
+    failures.append("the field lacks Radiance")
 
 bad = globals()["IntervalSubdivision"](Input=scene)
 bad.SelfShadowingTolerance = -1
