@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -239,25 +238,29 @@ bool RadianceRenderer::Render(const Camera& camera,
       {
         continue;
       }
-      // The surface most samples hit (ties: the lowest index) and their mean distance.
-      std::map<int, std::pair<int, double>> bySurface;
-      for (const Sample& s : hits)
-      {
-        auto& entry = bySurface[s.Surface];
-        ++entry.first;
-        entry.second += s.Distance;
-      }
+      // The surface most samples hit (ties: the lowest index) and their mean distance: sort
+      // the few samples by surface and count the runs.
+      std::stable_sort(hits.begin(),
+        hits.end(),
+        [](const Sample& a, const Sample& b) { return a.Surface < b.Surface; });
       int best = -1;
-      int bestCount = 0;
+      size_t bestCount = 0;
       double bestDistance = 0.0;
-      for (const auto& [surface, entry] : bySurface)
+      for (size_t first = 0; first < hits.size();)
       {
-        if (entry.first > bestCount)
+        size_t last = first;
+        double distance = 0.0;
+        for (; last < hits.size() && hits[last].Surface == hits[first].Surface; ++last)
         {
-          best = surface;
-          bestCount = entry.first;
-          bestDistance = entry.second / entry.first;
+          distance += hits[last].Distance;
         }
+        if (last - first > bestCount)
+        {
+          best = hits[first].Surface;
+          bestCount = last - first;
+          bestDistance = distance / static_cast<double>(bestCount);
+        }
+        first = last;
       }
       image.SurfaceId[pixel] = best;
       image.Depth[pixel] = static_cast<float>(bestDistance);
