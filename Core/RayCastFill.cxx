@@ -168,7 +168,7 @@ struct RayCastFiller::Implementation
         std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
     }
     this->Scene = rtcNewScene(this->Device);
-    rtcSetSceneFlags(this->Scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneFlags(this->Scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(this->Scene, RTC_BUILD_QUALITY_HIGH);
     for (const Patch& patch : patches)
     {
@@ -318,6 +318,71 @@ RayCastFiller::RayCastFiller(const std::vector<Patch>& patches,
 }
 
 RayCastFiller::~RayCastFiller() = default;
+
+bool RayCastFiller::CastRay(const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  RayHit& hit) const
+{
+  const Implementation& impl = *this->Impl;
+  ReceiverContext context;
+  rtcInitIntersectContext(&context.Context);
+  context.Context.filter = FilterHit;
+  // No receiver patch: nothing is excluded, and back sides are hits (opaque surfaces).
+  context.Receiver = RTC_INVALID_GEOMETRY_ID;
+  context.SelfExclusion = 0.0f;
+  context.CountSelf = true;
+  context.BackFacesOcclude = true;
+  RTCRayHit rayHit;
+  rayHit.ray.org_x = static_cast<float>(origin.x);
+  rayHit.ray.org_y = static_cast<float>(origin.y);
+  rayHit.ray.org_z = static_cast<float>(origin.z);
+  rayHit.ray.dir_x = static_cast<float>(direction.x);
+  rayHit.ray.dir_y = static_cast<float>(direction.y);
+  rayHit.ray.dir_z = static_cast<float>(direction.z);
+  rayHit.ray.tnear = 0.0f;
+  rayHit.ray.tfar = std::numeric_limits<float>::infinity();
+  rayHit.ray.time = 0.0f;
+  rayHit.ray.mask = 0xFFFFFFFFu;
+  rayHit.ray.id = 0;
+  rayHit.ray.flags = 0;
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(impl.Scene, &context.Context, &rayHit);
+  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+  {
+    return false;
+  }
+  hit.Patch = rayHit.hit.geomID;
+  impl.HitParameters(hit.Patch, rayHit.hit.primID, rayHit.hit.u, rayHit.hit.v, hit.U, hit.V);
+  hit.T = rayHit.ray.tfar;
+  const BezierPatch& geometry = impl.Patches[hit.Patch].Geometry;
+  if (impl.Options.RefineHits)
+  {
+    double u = hit.U;
+    double v = hit.V;
+    double t = hit.T;
+    // Accept the refinement only where it stays on the patch near the triangle's point.
+    constexpr double margin = 1e-3;
+    if (IntersectRayPatch(geometry, origin, direction, u, v, t) && u >= -margin &&
+      u <= 1.0 + margin && v >= -margin && v <= 1.0 + margin)
+    {
+      hit.U = std::clamp(u, 0.0, 1.0);
+      hit.V = std::clamp(v, 0.0, 1.0);
+      hit.T = t;
+    }
+  }
+  glm::dvec3 q;
+  glm::dvec3 qu;
+  glm::dvec3 qv;
+  EvaluatePointAndPartials(geometry, hit.U, hit.V, q, qu, qv);
+  glm::dvec3 normal = glm::cross(qu, qv);
+  if (!(glm::length(normal) > 0.0))
+  {
+    normal = glm::dvec3(rayHit.hit.Ng_x, rayHit.hit.Ng_y, rayHit.hit.Ng_z);
+  }
+  hit.FrontSide = glm::dot(normal, direction) < 0.0;
+  return true;
+}
 
 std::size_t RayCastFiller::TriangleCount() const
 {

@@ -16,7 +16,9 @@
  * without T-junctions (cracks) along their shared edges. n <= 256.
  *
  * One Embree scene holds the whole environment, one triangle geometry per patch (geometry id =
- * patch index). Rays are single precision: origin P_i, the sample directions of
+ * patch index), built in Embree's robust mode so that a ray never slips through the shared edge
+ * of two triangles (a camera looking into a corner of a closed room would otherwise see through
+ * it now and then). Rays are single precision: origin P_i, the sample directions of
  * HemisphereGrid in world coordinates. A context filter implements the visibility semantics of
  * RBuffer.h: hits on a triangle's back side are skipped (traversal goes on behind them), and
  * hits on the receiver's own patch nearer than the self-exclusion distance (or all of them when
@@ -35,6 +37,8 @@
 #define SPHCOVER_RAYCASTFILL_H
 
 #include "RBuffer.h"
+
+#include <glm/vec3.hpp>
 
 #include <memory>
 #include <vector>
@@ -55,6 +59,29 @@ public:
   RBufferFill Kind() const override { return RBufferFill::RayCasting; }
   void Fill(std::size_t receiver, RBuffer& buffer, CullingStatistics* culling) const override;
   std::size_t EnvironmentBytes() const override;
+
+  /// The first surface a ray meets, mapped back to the exact patch.
+  struct RayHit
+  {
+    /// Index of the patch hit.
+    std::size_t Patch = 0;
+    /// Parameters of the hit in the patch's own [0,1]^2.
+    double U = 0.0;
+    double V = 0.0;
+    /// Distance along the (unit) direction.
+    double T = 0.0;
+    /// Whether the ray meets the front side (dQ/du x dQ/dv . direction < 0).
+    bool FrontSide = true;
+  };
+
+  /**
+   * The visible surface along one ray from a point outside every patch (a camera's eye, paper
+   * §5.3: "Any standard visible surface algorithm may be used"): the nearest hit on either side
+   * of any patch (surfaces are opaque), refined on the exact Bezier patch by Newton's method
+   * when RefineHits is on (within the tessellation's accuracy otherwise). `direction` must be a
+   * unit vector. False when the ray escapes. Safe to call from several threads at once.
+   */
+  bool CastRay(const glm::dvec3& origin, const glm::dvec3& direction, RayHit& hit) const;
 
   /// Number of triangles of the tessellation.
   std::size_t TriangleCount() const;

@@ -81,6 +81,11 @@ constexpr const char* Shooter = "Shooter";
 constexpr const char* MaxChange = "MaxChange";
 constexpr const char* UnshotEnergy = "UnshotEnergy";
 constexpr const char* Seconds = "Seconds";
+
+// Rendering (SPEC §4.5): point data of the image (with SurfaceId).
+constexpr const char* Radiance = "Radiance";
+constexpr const char* Depth = "Depth";
+constexpr const char* RGB = "RGB";
 }
 
 #endif

@@ -15,6 +15,7 @@ find_package(VTK REQUIRED
     FiltersSources
     IOCore
     IOGeometry
+    IOImage
     IOPLY
     IOXML
     IOLegacy

@@ -6,6 +6,8 @@
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
+ *   sphcover render SCENE [-o out.png] [--png out.png] [--camera NAME] [--size WxH] [--spp N]
+ *                   [--exposure E] [--solution solution.vtm] [--report report.json] [--set k=v]
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
  * half-written (files are written under a temporary name and renamed when complete).
@@ -17,6 +19,7 @@
 #include "vtkIntervalSubdivisionFilter.h"
 #include "vtkLightPropagationFilter.h"
 #include "vtkPatchSceneReader.h"
+#include "vtkRadianceImageFilter.h"
 #include "vtkSceneFileLoader.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
@@ -32,16 +35,21 @@
 #include <vtkDataArray.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
+#include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
 #include <vtkStringArray.h>
+#include <vtkTrivialProducer.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLMultiBlockDataReader.h>
 #include <vtkXMLMultiBlockDataWriter.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -63,6 +71,12 @@ struct Options
   std::string Report;
   std::string Fill = "projection";
   std::vector<std::string> Settings;
+  std::string Png;
+  std::string Camera;
+  std::string Size;
+  std::string SolutionFile;
+  int SamplesPerPixel = 4;
+  double Exposure = 1.0;
   int Threads = 0;
   bool Quiet = false;
 };
@@ -225,9 +239,17 @@ struct Solution
 /// The report of SPEC §5: per named surface its area and area-weighted mean irradiance and exitant
 /// radiance, form factors between named surfaces (area-weighted over the source surface), the
 /// energy balance, counts and timings.
-nlohmann::json Report(Solution& solution)
+/// What the report counts besides the illumination (-1: unknown, left out).
+struct ReportCounts
 {
-  vtkPolyData* points = solution.Propagation->GetOutput();
+  vtkIdType Surfaces = -1;
+  vtkIdType Patches = -1;
+  long long PairTests = -1;
+  int Shots = -1;
+};
+
+nlohmann::json Report(vtkPolyData* points, const ReportCounts& counts)
+{
   sphcover::SphericalCover cover;
   const std::string problem = vtkSphericalCoverArrays::Load(points, cover);
   if (!problem.empty())
@@ -309,12 +331,36 @@ nlohmann::json Report(Solution& solution)
   report["energy"] = { { "emitted_w", triple(emitted) },
     { "absorbed_w", triple(absorbed) },
     { "relative_imbalance", imbalance } };
-  report["counts"] = { { "surfaces", solution.Reader->GetOutput()->GetNumberOfCells() },
-    { "patches", solution.Subdivision->GetOutput()->GetNumberOfCells() },
-    { "characteristic_points", points->GetNumberOfPoints() },
-    { "strips", cover.StripCount() },
-    { "pair_tests", solution.Subdivision->GetPairTests() },
-    { "shots", solution.Propagation->GetShots() } };
+  report["counts"] = { { "characteristic_points", points->GetNumberOfPoints() },
+    { "strips", cover.StripCount() } };
+  if (counts.Surfaces >= 0)
+  {
+    report["counts"]["surfaces"] = counts.Surfaces;
+  }
+  if (counts.Patches >= 0)
+  {
+    report["counts"]["patches"] = counts.Patches;
+  }
+  if (counts.PairTests >= 0)
+  {
+    report["counts"]["pair_tests"] = counts.PairTests;
+  }
+  if (counts.Shots >= 0)
+  {
+    report["counts"]["shots"] = counts.Shots;
+  }
+  return report;
+}
+
+/// The report of a solution computed in this run.
+nlohmann::json Report(Solution& solution)
+{
+  ReportCounts counts;
+  counts.Surfaces = solution.Reader->GetOutput()->GetNumberOfCells();
+  counts.Patches = solution.Subdivision->GetOutput()->GetNumberOfCells();
+  counts.PairTests = static_cast<long long>(solution.Subdivision->GetPairTests());
+  counts.Shots = solution.Propagation->GetShots();
+  nlohmann::json report = Report(solution.Propagation->GetOutput(), counts);
   report["timings_s"] = { { "read", solution.ReadSeconds },
     { "subdivide", solution.SubdivideSeconds },
     { "cover", solution.CoverSeconds },
@@ -345,6 +391,253 @@ int RunSolve(const Options& options)
             << "seconds: read " << solution.ReadSeconds << ", subdivide "
             << solution.SubdivideSeconds << ", cover " << solution.CoverSeconds << ", propagate "
             << solution.PropagateSeconds << " (" << solution.Propagation->GetShots() << " shots)\n";
+  return 0;
+}
+
+/// Lower-case extension of a path, with its dot ("" if none).
+std::string ExtensionOf(const std::string& path)
+{
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return extension;
+}
+
+/// Writes the image's RGB as PNG through VTK, to a temporary file beside `path` renamed into
+/// place when complete.
+void WritePngAtomically(vtkImageData* image, const std::string& path)
+{
+  namespace fs = std::filesystem;
+  const fs::path target = fs::absolute(path);
+  if (!fs::is_directory(target.parent_path()))
+  {
+    throw std::runtime_error(
+      "cannot write '" + path + "': no folder " + target.parent_path().string());
+  }
+  const std::string temporary =
+    (target.parent_path() / ("." + target.filename().string() + ".partial.png")).string();
+  vtkNew<vtkImageData> rgb;
+  rgb->SetExtent(image->GetExtent());
+  rgb->GetPointData()->SetScalars(
+    image->GetPointData()->GetArray(vtkSphericalCoverArrayNames::RGB));
+  vtkNew<vtkPNGWriter> writer;
+  ErrorCollector errors;
+  errors.Watch(writer);
+  writer->SetInputData(rgb);
+  writer->SetFileName(temporary.c_str());
+  writer->Write();
+  std::error_code failure;
+  if (writer->GetErrorCode() != 0 || !fs::is_regular_file(temporary))
+  {
+    fs::remove(temporary, failure);
+    throw std::runtime_error("cannot write '" + path + "': " + errors.First());
+  }
+  fs::rename(temporary, target, failure);
+  if (failure)
+  {
+    fs::remove(temporary, failure);
+    throw std::runtime_error("cannot write '" + path + "': " + failure.message());
+  }
+}
+
+/// "WxH" as two positive integers.
+void ParseSize(const std::string& text, int& width, int& height)
+{
+  const size_t x = text.find('x');
+  size_t used1 = 0;
+  size_t used2 = 0;
+  try
+  {
+    if (x == std::string::npos)
+    {
+      throw std::invalid_argument(text);
+    }
+    width = std::stoi(text.substr(0, x), &used1);
+    height = std::stoi(text.substr(x + 1), &used2);
+  }
+  catch (const std::exception&)
+  {
+    used1 = 0;
+  }
+  if (used1 == 0 || used1 != x || used2 != text.size() - x - 1 || width < 1 || height < 1)
+  {
+    throw std::runtime_error("--size '" + text + "': expected WIDTHxHEIGHT, e.g. 640x480");
+  }
+}
+
+/// sphcover render: the whole pipeline (or a saved solution) and the image of paper §5.3.
+int RunRender(const Options& options)
+{
+  // The outputs, checked before any work.
+  std::vector<std::string> pngs;
+  if (!options.Output.empty())
+  {
+    const std::string extension = ExtensionOf(options.Output);
+    if (extension == ".exr")
+    {
+      throw std::runtime_error("-o '" + options.Output +
+        "': OpenEXR output is not available yet; write PNG (-o out.png or --png out.png)");
+    }
+    if (extension != ".png")
+    {
+      throw std::runtime_error("-o '" + options.Output + "': unknown image format (expected .png)");
+    }
+    pngs.push_back(options.Output);
+  }
+  if (!options.Png.empty())
+  {
+    if (ExtensionOf(options.Png) != ".png")
+    {
+      throw std::runtime_error("--png '" + options.Png + "': the file name must end in .png");
+    }
+    pngs.push_back(options.Png);
+  }
+  if (pngs.empty())
+  {
+    throw std::runtime_error("no output: give -o out.png or --png out.png");
+  }
+  for (const std::string& path : pngs)
+  {
+    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
+    if (!std::filesystem::is_directory(folder))
+    {
+      throw std::runtime_error("cannot write '" + path + "': no folder " + folder.string());
+    }
+  }
+
+  // The camera: --camera or the scene's first, --size or the camera's size.
+  const sphcover::Scene scene = vtkSceneFileLoader::Load(options.Scene);
+  const sphcover::Camera* camera = nullptr;
+  for (const sphcover::Camera& candidate : scene.Cameras)
+  {
+    if (options.Camera.empty() || candidate.Name == options.Camera)
+    {
+      camera = &candidate;
+      break;
+    }
+  }
+  if (!camera)
+  {
+    std::string names;
+    for (const sphcover::Camera& candidate : scene.Cameras)
+    {
+      names += (names.empty() ? "'" : ", '") + candidate.Name + "'";
+    }
+    throw std::runtime_error(options.Scene + ": " +
+      (options.Camera.empty() ? std::string("the scene has no camera")
+                              : "no camera named '" + options.Camera + "'") +
+      (names.empty() ? std::string() : " (cameras: " + names + ")"));
+  }
+  int width = camera->Width;
+  int height = camera->Height;
+  if (!options.Size.empty())
+  {
+    ParseSize(options.Size, width, height);
+  }
+
+  Solution solution;
+  vtkNew<vtkXMLMultiBlockDataReader> saved;
+  nlohmann::json timings;
+  vtkPolyData* illumination = nullptr;
+  vtkDataObject* patches = nullptr;
+  vtkAlgorithmOutput* illuminationPort = nullptr;
+  vtkAlgorithmOutput* patchesPort = nullptr;
+  vtkNew<vtkTrivialProducer> illuminationProducer;
+  vtkNew<vtkTrivialProducer> patchesProducer;
+  ErrorCollector errors;
+  if (options.SolutionFile.empty())
+  {
+    solution.Run(options);
+    illuminationPort = solution.Propagation->GetOutputPort(0);
+    patchesPort = solution.Subdivision->GetOutputPort(0);
+    illumination = solution.Propagation->GetOutput();
+    timings = { { "read", solution.ReadSeconds },
+      { "subdivide", solution.SubdivideSeconds },
+      { "cover", solution.CoverSeconds },
+      { "propagate", solution.PropagateSeconds } };
+  }
+  else
+  {
+    // A solution written by `sphcover solve -o`: block 0 the patches, block 1 the illumination.
+    if (!std::filesystem::is_regular_file(options.SolutionFile))
+    {
+      throw std::runtime_error("--solution '" + options.SolutionFile + "': no such file");
+    }
+    saved->SetFileName(options.SolutionFile.c_str());
+    {
+      ProgressBar bar(saved, "read", options.Quiet);
+      ::Run(saved, errors);
+      timings["read"] = bar.Seconds();
+    }
+    auto* blocks = vtkMultiBlockDataSet::SafeDownCast(saved->GetOutputDataObject(0));
+    patches = blocks && blocks->GetNumberOfBlocks() == 2 ? blocks->GetBlock(0) : nullptr;
+    illumination = blocks && blocks->GetNumberOfBlocks() == 2
+      ? vtkPolyData::SafeDownCast(blocks->GetBlock(1))
+      : nullptr;
+    if (!patches || !illumination)
+    {
+      throw std::runtime_error("--solution '" + options.SolutionFile +
+        "': not a solution of sphcover solve -o (two blocks, the patches and the illumination)");
+    }
+    patchesProducer->SetOutput(patches);
+    illuminationProducer->SetOutput(illumination);
+    illuminationPort = illuminationProducer->GetOutputPort();
+    patchesPort = patchesProducer->GetOutputPort();
+  }
+
+  vtkNew<vtkRadianceImageFilter> render;
+  render->SetInputConnection(0, illuminationPort);
+  render->SetPatchesConnection(patchesPort);
+  render->SetPosition(camera->Position.x, camera->Position.y, camera->Position.z);
+  render->SetFocalPoint(camera->FocalPoint.x, camera->FocalPoint.y, camera->FocalPoint.z);
+  render->SetViewUp(camera->ViewUp.x, camera->ViewUp.y, camera->ViewUp.z);
+  render->SetViewAngle(camera->ViewAngle);
+  render->SetWidth(width);
+  render->SetHeight(height);
+  render->SetSamplesPerPixel(options.SamplesPerPixel);
+  render->SetExposure(options.Exposure);
+  double renderSeconds = 0.0;
+  {
+    ProgressBar bar(render, "render", options.Quiet);
+    ::Run(render, errors);
+    renderSeconds = bar.Seconds();
+  }
+  timings["render"] = renderSeconds;
+  for (const std::string& png : pngs)
+  {
+    WritePngAtomically(render->GetOutput(), png);
+  }
+  if (!options.Report.empty())
+  {
+    nlohmann::json report;
+    if (options.SolutionFile.empty())
+    {
+      report = Report(solution);
+    }
+    else
+    {
+      ReportCounts counts;
+      counts.Patches = vtkDataSet::SafeDownCast(patches)
+        ? vtkDataSet::SafeDownCast(patches)->GetNumberOfCells()
+        : -1;
+      report = Report(illumination, counts);
+    }
+    report["timings_s"] = timings;
+    report["image"] = { { "camera", camera->Name },
+      { "width", width },
+      { "height", height },
+      { "samples_per_pixel", options.SamplesPerPixel } };
+    WriteTextAtomically(report.dump(2) + "\n", options.Report);
+  }
+  std::cout << "image: " << width << "x" << height << " from camera '" << camera->Name << "', "
+            << options.SamplesPerPixel << " samples per pixel\n"
+            << "seconds: render " << renderSeconds << "\n";
+  for (const std::string& png : pngs)
+  {
+    std::cout << "written: " << png << "\n";
+  }
   return 0;
 }
 
@@ -448,6 +741,30 @@ int main(int argc, char** argv)
   solve->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
 
+  CLI::App* render = app.add_subcommand("render",
+    "Run the whole method (or load a saved solution) and render the scene through a camera "
+    "(paper section 5.3): an HDR radiance image, written tone-mapped as PNG");
+  render
+    ->add_option("SCENE", options.Scene, "A .scene file (its cameras; solved unless --solution)")
+    ->required();
+  render->add_option("-o,--output", options.Output, "Image file (.png; .exr not yet)");
+  render->add_option("--png", options.Png, "PNG file (tone-mapped sRGB)");
+  render->add_option("--camera", options.Camera, "Camera of the scene (default: the first)");
+  render->add_option("--size", options.Size, "Image size WIDTHxHEIGHT (default: the camera's)");
+  render->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
+    ->check(CLI::Range(1, 4096));
+  render
+    ->add_option("--exposure", options.Exposure, "Radiance scale before tone mapping (default 1)")
+    ->check(CLI::NonNegativeNumber);
+  render->add_option("--solution",
+    options.SolutionFile,
+    "A solution written by `sphcover solve -o` (.vtm): only render, no solving");
+  render->add_option("--report", options.Report, "Report file (.json), with timings_s.render");
+  render->add_option("--fill", options.Fill, "R-buffer fill: projection (default) or raycasting")
+    ->check(CLI::IsMember({ "projection", "raycasting" }));
+  render->add_option(
+    "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
+
   try
   {
     app.parse(argc, argv);
@@ -474,6 +791,10 @@ int main(int argc, char** argv)
     if (solve->parsed())
     {
       return RunSolve(options);
+    }
+    if (render->parsed())
+    {
+      return RunRender(options);
     }
   }
   catch (const std::exception& e)

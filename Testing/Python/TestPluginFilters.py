@@ -12,7 +12,8 @@ from paraview.simple import LoadPlugin, OpenDataFile, OutputPort
 
 plugin, data = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
-from sphericalcover import (vtkIntervalSubdivisionFilter, vtkLightPropagationFilter,  # noqa: E402
+from sphericalcover import (vtkIlluminationField, vtkIntervalSubdivisionFilter,  # noqa: E402
+                            vtkLightPropagationFilter, vtkRadianceImageFilter,
                             vtkSphericalCoverFilter)
 
 failures = []
@@ -116,6 +117,46 @@ if lit.GetFieldData().GetArray("IncidentRadiance") is None:
     failures.append("illumination lacks the incident radiance of the hemisphere regions")
 if propagation.GetDataInformation(1).GetNumberOfRows() == 0:
     failures.append("the convergence history is empty")
+
+# Rendering: the illumination and the patches through the scene's camera.
+render = globals()["RadianceImage"](Input=OutputPort(propagation, 0),
+                                    Patches=OutputPort(subdivision, 0))
+native_render = vtkRadianceImageFilter()
+check_properties(render, native_render, ["ViewAngle", "Width", "Height", "SamplesPerPixel",
+                 "Exposure", "MemoryLimit"])
+for name in ["Position", "FocalPoint", "ViewUp"]:
+    prop = render.SMProxy.GetProperty(name)
+    xml_default = [prop.GetElement(k) for k in range(prop.GetNumberOfElements())]
+    if xml_default != list(getattr(native_render, "Get" + name)()):
+        failures.append(f"{name}: XML default {xml_default} != C++ default")
+if render.SMProxy.GetProperty("CameraName").GetElement(0) != native_render.GetCameraName():
+    failures.append("CameraName: XML default differs from the C++ default")
+render.CameraName = "main"
+render.Width = 32
+render.Height = 24
+render.SamplesPerPixel = 1
+render.UpdatePipeline()
+image = servermanager.Fetch(render)
+if image.GetDimensions() != (32, 24, 1):
+    failures.append(f"the image is {image.GetDimensions()}, not 32 x 24")
+for name in ["Radiance", "Depth", "SurfaceId", "RGB"]:
+    if image.GetPointData().GetArray(name) is None:
+        failures.append(f"the image lacks {name}")
+seen = image.GetPointData().GetArray("SurfaceId")
+if seen is not None and max(seen.GetValue(k) for k in range(seen.GetNumberOfTuples())) < 0:
+    failures.append("the Cornell box's camera sees nothing")
+
+# The illumination field: every patch tessellated with the interpolated radiance.
+lit_field = globals()["IlluminationField"](Input=OutputPort(propagation, 0),
+                                           Patches=OutputPort(subdivision, 0))
+check_properties(lit_field, vtkIlluminationField(), ["Resolution"])
+lit_field.Resolution = 2
+lit_field.UpdatePipeline()
+field_info = lit_field.GetDataInformation(0)
+if field_info.GetNumberOfCells() != 4 * subdivision.GetDataInformation(0).GetNumberOfCells():
+    failures.append(f"the field has {field_info.GetNumberOfCells()} quads, not 4 per patch")
+if "Radiance" not in lit_field.PointData.keys():
+    failures.append("the field lacks Radiance")
 
 bad = globals()["IntervalSubdivision"](Input=scene)
 bad.SelfShadowingTolerance = -1

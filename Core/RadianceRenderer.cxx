@@ -1,0 +1,291 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "RadianceRenderer.h"
+
+#include "HemisphereGrid.h"
+#include "RayCastFill.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace sphcover
+{
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+bool Finite(const glm::dvec3& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// The base-2 radical inverse of k (van der Corput): the second coordinate of Hammersley's set.
+double RadicalInverse(unsigned k)
+{
+  double result = 0.0;
+  double digit = 0.5;
+  for (; k != 0; k >>= 1, digit *= 0.5)
+  {
+    if (k & 1u)
+    {
+      result += digit;
+    }
+  }
+  return result;
+}
+
+/// The camera's frame: the unit view direction and the right and up vectors scaled to the half
+/// extents of the image plane at distance 1.
+struct ViewFrame
+{
+  glm::dvec3 Eye;
+  glm::dvec3 Forward;
+  glm::dvec3 Right;
+  glm::dvec3 Up;
+};
+
+ViewFrame FrameOf(const Camera& camera)
+{
+  ViewFrame frame;
+  frame.Eye = camera.Position;
+  frame.Forward = glm::normalize(camera.FocalPoint - camera.Position);
+  const glm::dvec3 right = glm::normalize(glm::cross(frame.Forward, camera.ViewUp));
+  const glm::dvec3 up = glm::cross(right, frame.Forward);
+  const double halfHeight = std::tan(0.5 * camera.ViewAngle * Pi / 180.0);
+  const double halfWidth = halfHeight * camera.Width / camera.Height;
+  frame.Right = halfWidth * right;
+  frame.Up = halfHeight * up;
+  return frame;
+}
+}
+
+std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
+{
+  std::ostringstream problem;
+  const std::string name = camera.Name.empty() ? "the camera" : "camera '" + camera.Name + "'";
+  if (!Finite(camera.Position) || !Finite(camera.FocalPoint) || !Finite(camera.ViewUp) ||
+    !std::isfinite(camera.ViewAngle))
+  {
+    problem << name << ": position, focal point, view up and view angle must be finite numbers";
+  }
+  else if (!(camera.ViewAngle > 0.0 && camera.ViewAngle < 180.0))
+  {
+    problem << name << ": the view angle " << camera.ViewAngle << " is not in (0, 180) degrees";
+  }
+  else if (!(glm::length(camera.FocalPoint - camera.Position) > 0.0))
+  {
+    problem << name << ": the position is the focal point (no view direction)";
+  }
+  else if (!(glm::length(camera.ViewUp) > 0.0) ||
+    !(glm::length(glm::cross(glm::normalize(camera.FocalPoint - camera.Position),
+        glm::normalize(camera.ViewUp))) > 1e-6))
+  {
+    problem << name << ": the view up is zero or parallel to the view direction";
+  }
+  else if (camera.Width < 1 || camera.Height < 1)
+  {
+    problem << name << ": the image size " << camera.Width << "x" << camera.Height
+            << " is not at least 1x1";
+  }
+  else if (settings.SamplesPerPixel < 1 || settings.SamplesPerPixel > 4096)
+  {
+    problem << "samples per pixel " << settings.SamplesPerPixel << " is not in [1, 4096]";
+  }
+  else
+  {
+    const double bytes = static_cast<double>(camera.Width) * camera.Height *
+      static_cast<double>(RenderedImage::BytesPerPixel);
+    if (bytes > static_cast<double>(settings.MemoryLimitBytes))
+    {
+      problem.precision(3);
+      problem << "an image of " << camera.Width << "x" << camera.Height << " pixels needs about "
+              << bytes / (1024.0 * 1024.0) << " MiB, more than the limit of "
+              << static_cast<double>(settings.MemoryLimitBytes) / (1024.0 * 1024.0) << " MiB";
+    }
+  }
+  return problem.str();
+}
+
+RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
+  CharacteristicPointInterpolator interpolator,
+  std::vector<glm::dvec3> exitantRadiance,
+  std::vector<bool> twoSidedSurface)
+  : Patches(std::move(patches))
+  , Interpolator(std::move(interpolator))
+  , Exitant(std::move(exitantRadiance))
+  , TwoSided(std::move(twoSidedSurface))
+  // The ray caster needs a hemisphere grid only for the R-buffer fills, never for CastRay.
+  , Grid(std::make_unique<HemisphereGrid>(1, 1, 1, 1))
+{
+  if (this->Exitant.size() != this->Interpolator.PointCount())
+  {
+    throw std::invalid_argument("RadianceRenderer: " + std::to_string(this->Exitant.size()) +
+      " radiance values for " + std::to_string(this->Interpolator.PointCount()) +
+      " characteristic points");
+  }
+  this->Caster = std::make_unique<RayCastFiller>(this->Patches, *this->Grid, RBufferFillOptions());
+}
+
+RadianceRenderer::~RadianceRenderer() = default;
+
+std::size_t RadianceRenderer::TriangleCount() const
+{
+  return this->Caster->TriangleCount();
+}
+
+glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolator,
+  const std::vector<glm::dvec3>& exitantRadiance,
+  int surface,
+  double u,
+  double v)
+{
+  InterpolationStencil stencil;
+  if (!interpolator.Stencil(surface, u, v, stencil))
+  {
+    return glm::dvec3(0.0);
+  }
+  glm::dvec3 radiance(0.0);
+  for (int k = 0; k < stencil.Count; ++k)
+  {
+    radiance += stencil.Weights[static_cast<size_t>(k)] *
+      exitantRadiance[stencil.Points[static_cast<size_t>(k)]];
+  }
+  return glm::max(radiance, glm::dvec3(0.0));
+}
+
+glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) const
+{
+  return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v);
+}
+
+bool RadianceRenderer::Render(const Camera& camera,
+  const RenderSettings& settings,
+  RenderedImage& image,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress) const
+{
+  const std::string problem = CheckCamera(camera, settings);
+  if (!problem.empty())
+  {
+    throw std::invalid_argument(problem);
+  }
+  const int width = camera.Width;
+  const int height = camera.Height;
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  image.Width = width;
+  image.Height = height;
+  image.Radiance.assign(3 * pixels, 0.0f);
+  image.Depth.assign(pixels, -1.0f);
+  image.SurfaceId.assign(pixels, -1);
+
+  const ViewFrame frame = FrameOf(camera);
+  const int samples = settings.SamplesPerPixel;
+  std::vector<double> offsetX(static_cast<size_t>(samples));
+  std::vector<double> offsetY(static_cast<size_t>(samples));
+  for (int k = 0; k < samples; ++k)
+  {
+    offsetX[static_cast<size_t>(k)] = (k + 0.5) / samples;
+    // Shifted by half a stratum so that one sample sits at the pixel's centre.
+    offsetY[static_cast<size_t>(k)] = RadicalInverse(static_cast<unsigned>(k)) + 0.5 / samples;
+  }
+
+  auto renderRow = [&](int j)
+  {
+    struct Sample
+    {
+      int Surface;
+      double Distance;
+    };
+    std::vector<Sample> hits;
+    for (int i = 0; i < width; ++i)
+    {
+      hits.clear();
+      glm::dvec3 sum(0.0);
+      for (int k = 0; k < samples; ++k)
+      {
+        const double x = 2.0 * (i + offsetX[static_cast<size_t>(k)]) / width - 1.0;
+        const double y = 2.0 * (j + offsetY[static_cast<size_t>(k)]) / height - 1.0;
+        const glm::dvec3 direction = glm::normalize(frame.Forward + x * frame.Right + y * frame.Up);
+        RayCastFiller::RayHit hit;
+        if (!this->Caster->CastRay(frame.Eye, direction, hit))
+        {
+          continue;
+        }
+        const Patch& patch = this->Patches[hit.Patch];
+        const int surface = patch.SurfaceIndex;
+        hits.push_back({ surface, hit.T });
+        const bool twoSided = static_cast<size_t>(surface) < this->TwoSided.size() &&
+          this->TwoSided[static_cast<size_t>(surface)];
+        if (!hit.FrontSide && !twoSided)
+        {
+          continue; // a back side sends no light
+        }
+        const double u = patch.Domain.U0 + hit.U * (patch.Domain.U1 - patch.Domain.U0);
+        const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
+        sum += this->SurfaceRadiance(surface, u, v);
+      }
+      const size_t pixel = static_cast<size_t>(j) * static_cast<size_t>(width) + i;
+      const glm::dvec3 mean = sum / static_cast<double>(samples);
+      image.Radiance[3 * pixel + 0] = static_cast<float>(mean.x);
+      image.Radiance[3 * pixel + 1] = static_cast<float>(mean.y);
+      image.Radiance[3 * pixel + 2] = static_cast<float>(mean.z);
+      if (hits.empty())
+      {
+        continue;
+      }
+      // The surface most samples hit (ties: the lowest index) and their mean distance: sort
+      // the few samples by surface and count the runs.
+      std::stable_sort(hits.begin(),
+        hits.end(),
+        [](const Sample& a, const Sample& b) { return a.Surface < b.Surface; });
+      int best = -1;
+      size_t bestCount = 0;
+      double bestDistance = 0.0;
+      for (size_t first = 0; first < hits.size();)
+      {
+        size_t last = first;
+        double distance = 0.0;
+        for (; last < hits.size() && hits[last].Surface == hits[first].Surface; ++last)
+        {
+          distance += hits[last].Distance;
+        }
+        if (last - first > bestCount)
+        {
+          best = hits[first].Surface;
+          bestCount = last - first;
+          bestDistance = distance / static_cast<double>(bestCount);
+        }
+        first = last;
+      }
+      image.SurfaceId[pixel] = best;
+      image.Depth[pixel] = static_cast<float>(bestDistance);
+    }
+  };
+
+  // Ten batches of rows, each run in parallel; progress and abort between batches.
+  const int batch = std::max(1, (height + 9) / 10);
+  for (int first = 0; first < height; first += batch)
+  {
+    const int last = std::min(height, first + batch);
+    parallelFor(static_cast<size_t>(last - first),
+      [&](size_t begin, size_t end)
+      {
+        for (size_t r = begin; r < end; ++r)
+        {
+          renderRow(first + static_cast<int>(r));
+        }
+      });
+    if (progress && !progress(static_cast<double>(last) / height))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+} // namespace sphcover

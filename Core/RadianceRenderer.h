@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file RadianceRenderer.h
+ * @brief The final rendering of paper §5.3: a view of the equilibrium illumination through a
+ * pinhole camera, as an HDR radiance image.
+ *
+ * "Any standard visible surface algorithm may be used to carry out the final rendering
+ * process. The brightness assigned to a visible point is dependent on the illumination
+ * function of the surface on which this point lies. For any intermediate visible point, the
+ * illumination function has to be obtained by interpolation/extrapolation of neighbouring
+ * characteristic points." (paper §5.3)
+ *
+ * Visible surface: primary rays from the camera cast with Embree against the tessellation of
+ * the exact patches that the R-buffer's ray fill uses (RayCastFiller::CastRay), the hit refined
+ * by Newton's method on the exact Bezier patch, so the visible point's (surface, u, v) is the
+ * exact one (up to the refinement's tolerance).
+ *
+ * Brightness: paper §5.3.2, "we can also directly obtain it by bilinearly interpolating the
+ * I's in that direction": for a diffuse surface the exitant radiance I of every characteristic
+ * point is the same in all directions (the Radiosity of the propagation, emission included),
+ * so the visible point's radiance is the bilinear interpolation of the I's of the
+ * characteristic points around (u, v), extrapolated near the edges
+ * (CharacteristicPointInterpolator, §3.4 Fig. 6), clamped at zero per band. Emitters show their
+ * emission (it is part of I).
+ *
+ * Remaining step (not implemented here): for non-diffuse surfaces paper §5.3.1 interpolates
+ * the illumination function E itself (the hemispheres of the four characteristic points, row
+ * by row as strips, §3.4 Fig. 7) and evaluates the BRDF toward the eye. This renderer renders
+ * their view-independent part only: the emission plus the diffuse exitant radiance the
+ * propagation stores (for phong the Lambertian part; a mirror shows its emission only, as its
+ * diffuse reflectance is zero). The per-entry incident radiance of the cover that §5.3.1 needs
+ * is what LightPropagation::IncidentRadiances() holds.
+ *
+ * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, the image's row 0
+ * at the bottom (vtkImageData's order). Each pixel is sampled at SamplesPerPixel stratified,
+ * deterministic positions (the Hammersley set: one sample in each of the N columns of width 1/N,
+ * the rows by the base-2 radical inverse), and Radiance is the mean over the samples (a ray that
+ * escapes counts 0). SurfaceId is the surface most samples hit (ties: the lowest index; -1 when
+ * none hit) and Depth the mean distance from the eye of the samples on that surface (-1 when
+ * none). A back side of a one-sided surface has radiance 0 (it sends no light, SPEC §3).
+ *
+ * Pixels are computed independently, in batches of rows run through a ParallelFor; progress is
+ * reported and abort honoured between batches. The image does not depend on the thread count.
+ */
+#ifndef SPHCOVER_RADIANCERENDERER_H
+#define SPHCOVER_RADIANCERENDERER_H
+
+#include "Camera.h"
+#include "CharacteristicPointInterpolator.h"
+#include "ParallelFor.h"
+#include "Patch.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sphcover
+{
+
+class HemisphereGrid;
+class RayCastFiller;
+
+struct RenderSettings
+{
+  /// Samples per pixel (stratified, see the file comment), 1 to 4096.
+  int SamplesPerPixel = 4;
+  /// Largest memory the image may take (RenderedImage::BytesPerPixel per pixel).
+  std::size_t MemoryLimitBytes = std::size_t(1024) * 1024 * 1024;
+};
+
+/// The rendered arrays, pixel (i, j) at index j * Width + i, row 0 at the bottom.
+struct RenderedImage
+{
+  int Width = 0;
+  int Height = 0;
+  /// RGB radiance, W m^-2 sr^-1, 3 per pixel.
+  std::vector<float> Radiance;
+  /// Distance from the eye to the visible point (-1: nothing visible).
+  std::vector<float> Depth;
+  /// Index of the visible surface (-1: nothing visible).
+  std::vector<int32_t> SurfaceId;
+
+  /// Bytes per pixel of the arrays above plus an 8-bit RGB copy for display.
+  static constexpr std::size_t BytesPerPixel =
+    3 * sizeof(float) + sizeof(float) + sizeof(int32_t) + 3;
+};
+
+/// The brightness of paper §5.3.2 at (u, v) of a surface: the interpolation of the
+/// characteristic points' exitant radiance, clamped at zero per band (extrapolation near an
+/// edge can undershoot); zero where the surface has no characteristic points.
+glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolator,
+  const std::vector<glm::dvec3>& exitantRadiance,
+  int surface,
+  double u,
+  double v);
+
+/// The camera and settings' problem in one sentence, or "" when they can be rendered: a view
+/// angle outside (0, 180) degrees, the eye at the focal point, a view up parallel to the view
+/// direction (or zero), a width or height below 1, SamplesPerPixel outside [1, 4096], a
+/// non-finite number, or an image larger than the memory limit.
+std::string CheckCamera(const Camera& camera, const RenderSettings& settings);
+
+class RadianceRenderer
+{
+public:
+  /**
+   * @param patches the patches whose tessellation is ray cast (any patches tiling the
+   * surfaces: the subdivision's); Patch::SurfaceIndex and Domain map a hit to its surface's
+   * (u, v).
+   * @param interpolator the layout of the characteristic points over the surfaces.
+   * @param exitantRadiance I of every characteristic point (RGB, W m^-2 sr^-1).
+   * @param twoSidedSurface per surface index, whether its back side shows its radiance too
+   * (missing entries: one-sided).
+   * Throws std::invalid_argument when the sizes differ, std::runtime_error if Embree fails.
+   */
+  RadianceRenderer(std::vector<Patch> patches,
+    CharacteristicPointInterpolator interpolator,
+    std::vector<glm::dvec3> exitantRadiance,
+    std::vector<bool> twoSidedSurface = {});
+  ~RadianceRenderer();
+  RadianceRenderer(const RadianceRenderer&) = delete;
+  RadianceRenderer& operator=(const RadianceRenderer&) = delete;
+
+  /**
+   * Renders the view. Throws std::invalid_argument with CheckCamera's message for a bad camera.
+   * Returns false (the image incomplete) when `progress` returned false.
+   */
+  bool Render(const Camera& camera,
+    const RenderSettings& settings,
+    RenderedImage& image,
+    const ParallelFor& parallelFor = SequentialFor,
+    const ProgressCallback& progress = nullptr) const;
+
+  /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
+  /// §5.3.2); zero where the surface has no characteristic points.
+  glm::dvec3 SurfaceRadiance(int surface, double u, double v) const;
+
+  std::size_t TriangleCount() const;
+
+private:
+  std::vector<Patch> Patches;
+  CharacteristicPointInterpolator Interpolator;
+  std::vector<glm::dvec3> Exitant;
+  std::vector<bool> TwoSided;
+  std::unique_ptr<HemisphereGrid> Grid;
+  std::unique_ptr<RayCastFiller> Caster;
+};
+
+} // namespace sphcover
+
+#endif

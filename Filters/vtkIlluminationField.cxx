@@ -1,0 +1,200 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkIlluminationField.h"
+
+#include "vtkIlluminationAdapter.h"
+#include "vtkSMPParallelFor.h"
+#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSurfaceGridAdapter.h"
+
+#include "Patch.h"
+#include "RadianceRenderer.h"
+#include "Scene.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkFloatArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <exception>
+
+namespace names = vtkSphericalCoverArrayNames;
+
+vtkStandardNewMacro(vtkIlluminationField);
+
+vtkIlluminationField::vtkIlluminationField()
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+vtkIlluminationField::~vtkIlluminationField() = default;
+
+int vtkIlluminationField::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkPolyData" : "vtkDataSet");
+  return 1;
+}
+
+int vtkIlluminationField::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
+  vtkDataSet* patchesInput = vtkDataSet::GetData(inputVector[1], 0);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  if (!illumination || !patchesInput)
+  {
+    vtkErrorMacro(<< "Cannot build the illumination field: connect the illumination "
+                     "(vtkLightPropagationFilter's output 0) to port 0 and the patches "
+                     "(vtkIntervalSubdivisionFilter's output 0) to port 1.");
+    return 0;
+  }
+  vtkIlluminationAdapter::Illumination lit;
+  std::string problem;
+  if (!vtkIlluminationAdapter::Read(illumination, lit, problem))
+  {
+    vtkErrorMacro(<< "Cannot build the illumination field: " << problem << ".");
+    return 0;
+  }
+  sphcover::Scene scene;
+  std::vector<sphcover::Patch> patches;
+  if (!vtkSurfaceGridAdapter::ToPatches(patchesInput, scene, patches, problem))
+  {
+    vtkErrorMacro(<< "Cannot build the illumination field: the patches on port 1 cannot be "
+                     "used: "
+                  << problem);
+    return 0;
+  }
+  for (const sphcover::Patch& patch : patches)
+  {
+    if (!lit.Interpolator.HasPoints(patch.SurfaceIndex))
+    {
+      vtkErrorMacro(<< "Cannot build the illumination field: surface " << patch.SurfaceIndex
+                    << " of the patches has no characteristic point in the illumination; the "
+                       "two inputs do not come from one solution.");
+      return 0;
+    }
+  }
+
+  const int n = this->Resolution;
+  const vtkIdType perPatch = static_cast<vtkIdType>(n + 1) * (n + 1);
+  const vtkIdType patchCount = static_cast<vtkIdType>(patches.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(patchCount * perPatch);
+  vtkNew<vtkFloatArray> radiance;
+  radiance->SetName(names::Radiance);
+  radiance->SetNumberOfComponents(3);
+  radiance->SetNumberOfTuples(patchCount * perPatch);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName(names::Normals);
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(patchCount * perPatch);
+  vtkNew<vtkIntArray> surfaceId;
+  surfaceId->SetName(names::SurfaceId);
+  surfaceId->SetNumberOfTuples(patchCount * perPatch);
+  try
+  {
+    // Each patch writes its own block of points: no shared state, any thread count.
+    const sphcover::ParallelFor parallelFor = vtkSMPParallelFor::Make();
+    const size_t batch = std::max<size_t>(1, patches.size() / 10);
+    for (size_t first = 0; first < patches.size(); first += batch)
+    {
+      const size_t last = std::min(patches.size(), first + batch);
+      parallelFor(last - first,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = first + begin; k < first + end; ++k)
+          {
+            const sphcover::Patch& patch = patches[k];
+            for (int j = 0; j <= n; ++j)
+            {
+              for (int i = 0; i <= n; ++i)
+              {
+                const double s = i == n ? 1.0 : static_cast<double>(i) / n;
+                const double t = j == n ? 1.0 : static_cast<double>(j) / n;
+                const vtkIdType id = static_cast<vtkIdType>(k) * perPatch + j * (n + 1) + i;
+                const glm::dvec3 q = patch.Geometry.Evaluate(s, t);
+                glm::dvec3 normal =
+                  glm::cross(patch.Geometry.PartialU(s, t), patch.Geometry.PartialV(s, t));
+                const double length = glm::length(normal);
+                normal = length > 0.0 ? normal / length : patch.Normal;
+                const double u = patch.Domain.U0 + s * (patch.Domain.U1 - patch.Domain.U0);
+                const double v = patch.Domain.V0 + t * (patch.Domain.V1 - patch.Domain.V0);
+                const glm::dvec3 l = sphcover::InterpolateRadiance(
+                  lit.Interpolator, lit.ExitantRadiance, patch.SurfaceIndex, u, v);
+                points->SetPoint(id, q.x, q.y, q.z);
+                radiance->SetTypedTuple(id,
+                  std::array<float, 3>{
+                    static_cast<float>(l.x), static_cast<float>(l.y), static_cast<float>(l.z) }
+                    .data());
+                normals->SetTypedTuple(id,
+                  std::array<float, 3>{ static_cast<float>(normal.x),
+                    static_cast<float>(normal.y),
+                    static_cast<float>(normal.z) }
+                    .data());
+                surfaceId->SetValue(id, patch.SurfaceIndex);
+              }
+            }
+          }
+        });
+      this->UpdateProgress(0.9 * static_cast<double>(last) / static_cast<double>(patches.size()));
+      if (this->GetAbortExecute())
+      {
+        vtkWarningMacro("Illumination field aborted.");
+        return 0;
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot build the illumination field: " << e.what());
+    return 0;
+  }
+
+  vtkNew<vtkCellArray> quads;
+  quads->AllocateExact(patchCount * n * n, patchCount * n * n * 4);
+  vtkNew<vtkIntArray> patchId;
+  patchId->SetName(names::PatchId);
+  patchId->SetNumberOfTuples(patchCount * n * n);
+  vtkIdType cell = 0;
+  for (vtkIdType k = 0; k < patchCount; ++k)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        const vtkIdType v00 = k * perPatch + j * (n + 1) + i;
+        // Counter-clockwise in (u, v): the quad's normal is the patch's front side.
+        const vtkIdType quad[4] = { v00, v00 + 1, v00 + n + 2, v00 + n + 1 };
+        quads->InsertNextCell(4, quad);
+        patchId->SetValue(cell++, static_cast<int>(k));
+      }
+    }
+  }
+  output->Initialize();
+  output->SetPoints(points);
+  output->SetPolys(quads);
+  output->GetPointData()->AddArray(radiance);
+  output->GetPointData()->SetNormals(normals);
+  output->GetPointData()->AddArray(surfaceId);
+  output->GetCellData()->AddArray(patchId);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkIlluminationField::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Resolution: " << this->Resolution << "\n";
+}

@@ -1,0 +1,278 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkRadianceImageFilter.h"
+
+#include "vtkIlluminationAdapter.h"
+#include "vtkSMPParallelFor.h"
+#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSurfaceGridAdapter.h"
+
+#include "CharacteristicPointInterpolator.h"
+#include "Patch.h"
+#include "RadianceRenderer.h"
+#include "Scene.h"
+
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkImageData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <set>
+#include <sstream>
+
+namespace names = vtkSphericalCoverArrayNames;
+
+vtkStandardNewMacro(vtkRadianceImageFilter);
+
+namespace
+{
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as a byte.
+unsigned char EncodeSRGB(double linear)
+{
+  const double c = std::clamp(linear, 0.0, 1.0);
+  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return static_cast<unsigned char>(std::lround(255.0 * encoded));
+}
+
+/// The camera named `name` among the field data's CameraNames / CameraParameters (position,
+/// focal point, view up, view angle, width, height); false when absent.
+bool FindCamera(vtkFieldData* fd, const std::string& name, sphcover::Camera& camera)
+{
+  auto* cameraNames =
+    fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(names::CameraNames)) : nullptr;
+  vtkDataArray* parameters = fd ? fd->GetArray(names::CameraParameters) : nullptr;
+  if (!cameraNames || !parameters || parameters->GetNumberOfComponents() != 12)
+  {
+    return false;
+  }
+  for (vtkIdType k = 0; k < cameraNames->GetNumberOfValues(); ++k)
+  {
+    if (cameraNames->GetValue(k) == name && k < parameters->GetNumberOfTuples())
+    {
+      double p[12];
+      parameters->GetTuple(k, p);
+      camera.Name = name;
+      camera.Position = glm::dvec3(p[0], p[1], p[2]);
+      camera.FocalPoint = glm::dvec3(p[3], p[4], p[5]);
+      camera.ViewUp = glm::dvec3(p[6], p[7], p[8]);
+      camera.ViewAngle = p[9];
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string CameraList(vtkFieldData* fd)
+{
+  auto* cameraNames =
+    fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(names::CameraNames)) : nullptr;
+  if (!cameraNames || cameraNames->GetNumberOfValues() == 0)
+  {
+    return "the scene has no cameras";
+  }
+  std::string list = "the scene's cameras are";
+  for (vtkIdType k = 0; k < cameraNames->GetNumberOfValues(); ++k)
+  {
+    list += (k == 0 ? " '" : ", '") + cameraNames->GetValue(k) + "'";
+  }
+  return list;
+}
+}
+
+vtkRadianceImageFilter::vtkRadianceImageFilter()
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+vtkRadianceImageFilter::~vtkRadianceImageFilter() = default;
+
+int vtkRadianceImageFilter::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkPolyData" : "vtkDataSet");
+  return 1;
+}
+
+int vtkRadianceImageFilter::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  const int extent[6] = { 0, std::max(this->Width, 1) - 1, 0, std::max(this->Height, 1) - 1, 0, 0 };
+  const double spacing[3] = { 1.0, 1.0, 1.0 };
+  const double origin[3] = { 0.0, 0.0, 0.0 };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
+  outInfo->Set(vtkDataObject::SPACING(), spacing, 3);
+  outInfo->Set(vtkDataObject::ORIGIN(), origin, 3);
+  return 1;
+}
+
+int vtkRadianceImageFilter::RequestData(vtkInformation*,
+  vtkInformationVector** inputVector,
+  vtkInformationVector* outputVector)
+{
+  vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
+  vtkDataSet* patchesInput = vtkDataSet::GetData(inputVector[1], 0);
+  vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  if (!illumination || !patchesInput)
+  {
+    vtkErrorMacro(<< "Cannot render: connect the illumination (vtkLightPropagationFilter's "
+                     "output 0) to port 0 and the patches (vtkIntervalSubdivisionFilter's output "
+                     "0) to port 1.");
+    return 0;
+  }
+  vtkIlluminationAdapter::Illumination lit;
+  std::string problem;
+  if (!vtkIlluminationAdapter::Read(illumination, lit, problem))
+  {
+    vtkErrorMacro(<< "Cannot render: " << problem << ".");
+    return 0;
+  }
+
+  sphcover::Scene scene;
+  std::vector<sphcover::Patch> patches;
+  if (!vtkSurfaceGridAdapter::ToPatches(patchesInput, scene, patches, problem))
+  {
+    vtkErrorMacro(<< "Cannot render: the patches on port 1 cannot be used: " << problem);
+    return 0;
+  }
+
+  sphcover::Camera camera;
+  if (!this->CameraName.empty())
+  {
+    if (!FindCamera(illumination->GetFieldData(), this->CameraName, camera) &&
+      !FindCamera(patchesInput->GetFieldData(), this->CameraName, camera))
+    {
+      vtkErrorMacro(<< "Cannot render: no camera named '" << this->CameraName << "'; "
+                    << CameraList(illumination->GetFieldData()) << ".");
+      return 0;
+    }
+  }
+  else
+  {
+    camera.Position = glm::dvec3(this->Position[0], this->Position[1], this->Position[2]);
+    camera.FocalPoint = glm::dvec3(this->FocalPoint[0], this->FocalPoint[1], this->FocalPoint[2]);
+    camera.ViewUp = glm::dvec3(this->ViewUp[0], this->ViewUp[1], this->ViewUp[2]);
+    camera.ViewAngle = this->ViewAngle;
+  }
+  camera.Width = this->Width;
+  camera.Height = this->Height;
+  sphcover::RenderSettings settings;
+  settings.SamplesPerPixel = this->SamplesPerPixel;
+  settings.MemoryLimitBytes = static_cast<size_t>(
+    std::min(this->MemoryLimit * 1024.0 * 1024.0, static_cast<double>(SIZE_MAX / 2)));
+  problem = sphcover::CheckCamera(camera, settings);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< "Cannot render: " << problem << ".");
+    return 0;
+  }
+
+  sphcover::RenderedImage image;
+  try
+  {
+    // Every patch's surface must hold characteristic points, or the two inputs do not belong
+    // to one solution.
+    std::set<int> missing;
+    for (const sphcover::Patch& patch : patches)
+    {
+      if (!lit.Interpolator.HasPoints(patch.SurfaceIndex))
+      {
+        missing.insert(patch.SurfaceIndex);
+      }
+    }
+    if (!missing.empty())
+    {
+      vtkErrorMacro(<< "Cannot render: surface " << *missing.begin()
+                    << " of the patches has no characteristic point in the illumination; the "
+                       "two inputs do not come from one solution.");
+      return 0;
+    }
+    const sphcover::RadianceRenderer renderer(std::move(patches),
+      std::move(lit.Interpolator),
+      std::move(lit.ExitantRadiance),
+      std::move(lit.TwoSidedSurface));
+    const bool completed = renderer.Render(camera,
+      settings,
+      image,
+      vtkSMPParallelFor::Make(),
+      [this](double fraction)
+      {
+        this->UpdateProgress(0.95 * fraction);
+        return !this->GetAbortExecute();
+      });
+    if (!completed)
+    {
+      vtkWarningMacro("Rendering aborted.");
+      return 0;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot render: " << e.what());
+    return 0;
+  }
+
+  const vtkIdType pixels = static_cast<vtkIdType>(image.Width) * image.Height;
+  output->Initialize();
+  output->SetExtent(0, image.Width - 1, 0, image.Height - 1, 0, 0);
+  output->SetSpacing(1.0, 1.0, 1.0);
+  output->SetOrigin(0.0, 0.0, 0.0);
+  vtkNew<vtkFloatArray> radiance;
+  radiance->SetName(names::Radiance);
+  radiance->SetNumberOfComponents(3);
+  radiance->SetNumberOfTuples(pixels);
+  std::copy(image.Radiance.begin(), image.Radiance.end(), radiance->GetPointer(0));
+  vtkNew<vtkFloatArray> depth;
+  depth->SetName(names::Depth);
+  depth->SetNumberOfTuples(pixels);
+  std::copy(image.Depth.begin(), image.Depth.end(), depth->GetPointer(0));
+  vtkNew<vtkIntArray> surface;
+  surface->SetName(names::SurfaceId);
+  surface->SetNumberOfTuples(pixels);
+  std::copy(image.SurfaceId.begin(), image.SurfaceId.end(), surface->GetPointer(0));
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName(names::RGB);
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(pixels);
+  unsigned char* bytes = rgb->GetPointer(0);
+  for (size_t k = 0; k < image.Radiance.size(); ++k)
+  {
+    bytes[k] = EncodeSRGB(this->Exposure * image.Radiance[k]);
+  }
+  output->GetPointData()->AddArray(radiance);
+  output->GetPointData()->AddArray(depth);
+  output->GetPointData()->AddArray(surface);
+  output->GetPointData()->SetScalars(rgb);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkRadianceImageFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "CameraName: " << this->CameraName << "\n";
+  os << indent << "Position: " << this->Position[0] << " " << this->Position[1] << " "
+     << this->Position[2] << "\n";
+  os << indent << "FocalPoint: " << this->FocalPoint[0] << " " << this->FocalPoint[1] << " "
+     << this->FocalPoint[2] << "\n";
+  os << indent << "ViewUp: " << this->ViewUp[0] << " " << this->ViewUp[1] << " " << this->ViewUp[2]
+     << "\n";
+  os << indent << "ViewAngle: " << this->ViewAngle << "\n";
+  os << indent << "Width: " << this->Width << "\n";
+  os << indent << "Height: " << this->Height << "\n";
+  os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
+  os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
+}

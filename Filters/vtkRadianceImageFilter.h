@@ -1,0 +1,142 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkRadianceImageFilter
+ * @brief The final rendering of paper §5.3: an HDR image of the equilibrium illumination seen
+ * through a pinhole camera (SPEC §4.5).
+ *
+ * Inputs:
+ *  - port 0, the illumination: vtkLightPropagationFilter's first output, the characteristic
+ *    points with point data `Radiosity` (exitant radiance, emission included), `SurfaceId` and
+ *    `UVRange` (each point's patch in its surface's parameters) and optionally `TwoSided`; its
+ *    field data carries the scene's cameras.
+ *  - port 1, the patches: vtkIntervalSubdivisionFilter's first output (exact Bezier
+ *    sub-patches with `SurfaceId` and `UVRange`), whose tessellation is ray cast.
+ * Two ports because the illumination holds the points, not the patches' geometry; the patches
+ * are what the cover was built from, so a saved solution (patches + illumination) renders new
+ * views without any other stage (the walk-through case).
+ *
+ * Visible surface: Embree against a tessellation of the patches, refined on the exact Bezier
+ * patch, so the visible point's (surface, u, v) is exact; brightness: the bilinear
+ * interpolation of the characteristic points' exitant radiance around (u, v), extrapolated near
+ * the edges (paper §3.4, §5.3.2; see RadianceRenderer.h, also for what is not yet done for
+ * non-diffuse surfaces, §5.3.1).
+ *
+ * Camera: CameraName selects one of the scene's cameras (position, focal point, view up, view
+ * angle); otherwise Position, FocalPoint, ViewUp and ViewAngle are used. The image size is
+ * always Width x Height (known before the inputs execute, as RequestInformation needs it; the
+ * command line sets them from the scene camera's size).
+ *
+ * Output (vtkImageData, Width x Height x 1, spacing 1, row 0 at the bottom), point data:
+ * `Radiance` (float RGB, W m^-2 sr^-1, the mean over SamplesPerPixel stratified samples),
+ * `Depth` (float, distance from the eye; -1 where nothing is seen), `SurfaceId` (int, -1 where
+ * nothing is seen) and `RGB` (unsigned char, for display: Exposure * Radiance clamped to [0,1]
+ * and encoded with the sRGB transfer function).
+ *
+ * @warning Pixels are rendered in parallel (vtkSMPTools); the image does not depend on the
+ * number of threads.
+ */
+#ifndef vtkRadianceImageFilter_h
+#define vtkRadianceImageFilter_h
+
+#include "SphericalCoverFiltersModule.h" // for export macro
+#include "vtkImageAlgorithm.h"
+
+#include <string> // for the camera name
+
+class SPHERICALCOVERFILTERS_EXPORT vtkRadianceImageFilter : public vtkImageAlgorithm
+{
+public:
+  static vtkRadianceImageFilter* New();
+  vtkTypeMacro(vtkRadianceImageFilter, vtkImageAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The patches (vtkIntervalSubdivisionFilter's first output) on port 1.
+  void SetPatchesConnection(vtkAlgorithmOutput* output) { this->SetInputConnection(1, output); }
+
+  ///@{
+  /**
+   * Name of a camera of the scene (the illumination's field data `CameraNames`); empty: the
+   * camera properties below. Default is "".
+   */
+  vtkSetStdStringFromCharMacro(CameraName);
+  vtkGetCharFromStdStringMacro(CameraName);
+  ///@}
+
+  ///@{
+  /** Eye position (used without CameraName). Default is (0, 0, 1). */
+  vtkSetVector3Macro(Position, double);
+  vtkGetVector3Macro(Position, double);
+  ///@}
+
+  ///@{
+  /** Point looked at (used without CameraName). Default is (0, 0, 0). */
+  vtkSetVector3Macro(FocalPoint, double);
+  vtkGetVector3Macro(FocalPoint, double);
+  ///@}
+
+  ///@{
+  /** Up direction of the view (used without CameraName). Default is (0, 1, 0). */
+  vtkSetVector3Macro(ViewUp, double);
+  vtkGetVector3Macro(ViewUp, double);
+  ///@}
+
+  ///@{
+  /** Vertical field of view in degrees (used without CameraName). Default is 30. */
+  vtkSetMacro(ViewAngle, double);
+  vtkGetMacro(ViewAngle, double);
+  ///@}
+
+  ///@{
+  /** Image size in pixels. Defaults are 512 and 512. */
+  vtkSetMacro(Width, int);
+  vtkGetMacro(Width, int);
+  vtkSetMacro(Height, int);
+  vtkGetMacro(Height, int);
+  ///@}
+
+  ///@{
+  /** Stratified samples per pixel, 1 to 4096. Default is 4. */
+  vtkSetMacro(SamplesPerPixel, int);
+  vtkGetMacro(SamplesPerPixel, int);
+  ///@}
+
+  ///@{
+  /**
+   * Scale applied to the radiance before the display mapping of `RGB`: radiance 1 / Exposure
+   * shows as white. Default is 1.
+   */
+  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
+  ///@{
+  /** Largest memory the image may take, in MiB; a larger image is refused. Default is 1024. */
+  vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+protected:
+  vtkRadianceImageFilter();
+  ~vtkRadianceImageFilter() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  std::string CameraName;
+  double Position[3] = { 0.0, 0.0, 1.0 };
+  double FocalPoint[3] = { 0.0, 0.0, 0.0 };
+  double ViewUp[3] = { 0.0, 1.0, 0.0 };
+  double ViewAngle = 30.0;
+  int Width = 512;
+  int Height = 512;
+  int SamplesPerPixel = 4;
+  double Exposure = 1.0;
+  double MemoryLimit = 1024.0;
+
+private:
+  vtkRadianceImageFilter(const vtkRadianceImageFilter&) = delete;
+  void operator=(const vtkRadianceImageFilter&) = delete;
+};
+
+#endif

@@ -1,0 +1,313 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file BenchmarkRender.cxx
+ * @brief Speed of the final rendering (paper §5.3) from a solved state, against the limit of
+ * casting the same primary rays with raw Embree (SPEC §7: speed is measured by a benchmark
+ * program, never by timed tests).
+ *
+ *   BenchmarkRender [--threads N] [--size 512] [--spp 1]
+ *
+ * Per scene (the Cornell box and the teapot room, their first camera at size x size):
+ *  - the solved state: subdivision, spherical cover and propagation at the scene's settings,
+ *    timed (the whole pipeline's seconds are these plus the render);
+ *  - RadianceRenderer::Render: milliseconds, and rays per second;
+ *  - raw Embree: the same count of rays, same directions, against the same tessellation (the
+ *    resolution RayCastFiller chooses per patch), rtcIntersect1 with no filter, no refinement
+ *    and no interpolation: milliseconds, and the render's cost as a ratio to it.
+ * The teapot room has a mirror, which this version's propagation refuses: its render is timed
+ * with the emission as exitant radiance (the render's cost does not depend on the values) and
+ * its pipeline time has no propagation.
+ */
+#include "CharacteristicPointInterpolator.h"
+#include "HemisphereGrid.h"
+#include "IntervalSubdivision.h"
+#include "LightPropagation.h"
+#include "ParallelFor.h"
+#include "RadianceRenderer.h"
+#include "RayCastFill.h"
+#include "SceneLoader.h"
+#include "SphericalCover.h"
+
+#include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace sphcover;
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The patches' tessellation as RayCastFiller makes it, in a plain Embree scene.
+struct RawScene
+{
+  RTCDevice Device = nullptr;
+  RTCScene Scene = nullptr;
+
+  explicit RawScene(const std::vector<Patch>& patches)
+  {
+    const HemisphereGrid grid(1, 1, 1, 1);
+    const RayCastFiller filler(patches, grid, RBufferFillOptions());
+    this->Device = rtcNewDevice("threads=1");
+    this->Scene = rtcNewScene(this->Device);
+    rtcSetSceneFlags(this->Scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(this->Scene, RTC_BUILD_QUALITY_HIGH);
+    for (size_t p = 0; p < patches.size(); ++p)
+    {
+      int nu = 0;
+      int nv = 0;
+      filler.Resolution(p, nu, nv);
+      RTCGeometry geometry = rtcNewGeometry(this->Device, RTC_GEOMETRY_TYPE_TRIANGLE);
+      float* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry,
+        RTC_BUFFER_TYPE_VERTEX,
+        0,
+        RTC_FORMAT_FLOAT3,
+        3 * sizeof(float),
+        static_cast<size_t>((nu + 1) * (nv + 1))));
+      for (int j = 0; j <= nv; ++j)
+      {
+        for (int i = 0; i <= nu; ++i)
+        {
+          const glm::dvec3 q = patches[p].Geometry.Evaluate(
+            i == nu ? 1.0 : double(i) / nu, j == nv ? 1.0 : double(j) / nv);
+          float* out = vertices + 3 * static_cast<size_t>(j * (nu + 1) + i);
+          out[0] = static_cast<float>(q.x);
+          out[1] = static_cast<float>(q.y);
+          out[2] = static_cast<float>(q.z);
+        }
+      }
+      unsigned* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry,
+        RTC_BUFFER_TYPE_INDEX,
+        0,
+        RTC_FORMAT_UINT3,
+        3 * sizeof(unsigned),
+        static_cast<size_t>(2 * nu * nv)));
+      for (int j = 0; j < nv; ++j)
+      {
+        for (int i = 0; i < nu; ++i)
+        {
+          const unsigned v00 = static_cast<unsigned>(j * (nu + 1) + i);
+          const unsigned v01 = v00 + static_cast<unsigned>(nu + 1);
+          unsigned* t = indices + 6 * static_cast<size_t>(j * nu + i);
+          t[0] = v00;
+          t[1] = v00 + 1;
+          t[2] = v01 + 1;
+          t[3] = v00;
+          t[4] = v01 + 1;
+          t[5] = v01;
+        }
+      }
+      rtcCommitGeometry(geometry);
+      rtcAttachGeometry(this->Scene, geometry);
+      rtcReleaseGeometry(geometry);
+    }
+    rtcCommitScene(this->Scene);
+  }
+  ~RawScene()
+  {
+    rtcReleaseScene(this->Scene);
+    rtcReleaseDevice(this->Device);
+  }
+
+  /// Casts the renderer's primary rays (same camera frame and sample positions); returns the
+  /// number of hits (so the work cannot be optimised away).
+  size_t Cast(const Camera& camera, int samples, const ParallelFor& parallelFor) const
+  {
+    const glm::dvec3 forward = glm::normalize(camera.FocalPoint - camera.Position);
+    const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.ViewUp));
+    const glm::dvec3 up = glm::cross(right, forward);
+    const double halfHeight = std::tan(0.5 * camera.ViewAngle * 3.14159265358979323846 / 180.0);
+    const double halfWidth = halfHeight * camera.Width / camera.Height;
+    std::vector<size_t> hitsPerRow(static_cast<size_t>(camera.Height), 0);
+    parallelFor(static_cast<size_t>(camera.Height),
+      [&](size_t begin, size_t end)
+      {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+        for (size_t j = begin; j < end; ++j)
+        {
+          for (int i = 0; i < camera.Width; ++i)
+          {
+            for (int k = 0; k < samples; ++k)
+            {
+              double radical = 0.0;
+              double digit = 0.5;
+              for (unsigned b = static_cast<unsigned>(k); b != 0; b >>= 1, digit *= 0.5)
+              {
+                radical += (b & 1u) ? digit : 0.0;
+              }
+              const double x = (2.0 * (i + (k + 0.5) / samples) / camera.Width - 1.0) * halfWidth;
+              const double y =
+                (2.0 * (j + radical + 0.5 / samples) / camera.Height - 1.0) * halfHeight;
+              const glm::dvec3 d = glm::normalize(forward + x * right + y * up);
+              RTCRayHit rayHit;
+              rayHit.ray.org_x = static_cast<float>(camera.Position.x);
+              rayHit.ray.org_y = static_cast<float>(camera.Position.y);
+              rayHit.ray.org_z = static_cast<float>(camera.Position.z);
+              rayHit.ray.dir_x = static_cast<float>(d.x);
+              rayHit.ray.dir_y = static_cast<float>(d.y);
+              rayHit.ray.dir_z = static_cast<float>(d.z);
+              rayHit.ray.tnear = 0.0f;
+              rayHit.ray.tfar = std::numeric_limits<float>::infinity();
+              rayHit.ray.time = 0.0f;
+              rayHit.ray.mask = 0xFFFFFFFFu;
+              rayHit.ray.id = 0;
+              rayHit.ray.flags = 0;
+              rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+              rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+              rtcIntersect1(this->Scene, &context, &rayHit);
+              hitsPerRow[j] += rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            }
+          }
+        }
+      });
+    size_t hits = 0;
+    for (size_t h : hitsPerRow)
+    {
+      hits += h;
+    }
+    return hits;
+  }
+};
+
+void Run(const char* name, int threads, int size, int samples)
+{
+  const ParallelFor parallelFor = threads <= 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
+  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
+
+  // The solved state at the scene's settings.
+  auto start = Clock::now();
+  SubdivisionSettings subdivisionSettings;
+  subdivisionSettings.MaxLevel = scene.Settings.MaxLevel;
+  subdivisionSettings.ThetaBins = scene.Settings.ThetaBins;
+  subdivisionSettings.PhiBins = scene.Settings.PhiBins;
+  for (double& tolerance : subdivisionSettings.Tolerance)
+  {
+    tolerance = scene.Settings.Tolerance;
+  }
+  IntervalSubdivision subdivision(scene, subdivisionSettings);
+  subdivision.Run(nullptr, parallelFor);
+  const std::vector<Patch> patches = subdivision.Patches();
+  const double subdivideSeconds = SecondsSince(start);
+  start = Clock::now();
+  SphericalCoverOptions coverOptions;
+  coverOptions.ThetaBins = scene.Settings.ThetaBins;
+  coverOptions.PhiBins = scene.Settings.PhiBins;
+  SphericalCover cover;
+  cover.Build(patches, coverOptions, parallelFor);
+  const double coverSeconds = SecondsSince(start);
+  start = Clock::now();
+  const std::vector<Material> materials = LightPropagation::MaterialsOfPatches(scene, patches);
+  std::vector<glm::dvec3> exitant;
+  bool propagated = true;
+  try
+  {
+    LightPropagation propagation(cover, materials);
+    propagation.Run();
+    for (size_t i = 0; i < patches.size(); ++i)
+    {
+      exitant.push_back(propagation.ExitantRadiance(i));
+    }
+  }
+  catch (const std::invalid_argument&)
+  {
+    propagated = false;
+    for (const Material& material : materials)
+    {
+      exitant.push_back(material.Emission);
+    }
+  }
+  const double propagateSeconds = SecondsSince(start);
+
+  std::vector<int> surfaces;
+  std::vector<UVRect> domains;
+  for (const Patch& patch : patches)
+  {
+    surfaces.push_back(patch.SurfaceIndex);
+    domains.push_back(patch.Domain);
+  }
+  start = Clock::now();
+  const RadianceRenderer renderer(
+    patches, CharacteristicPointInterpolator(surfaces, domains), exitant);
+  const double setupSeconds = SecondsSince(start);
+  Camera camera = scene.Cameras.at(0);
+  camera.Width = size;
+  camera.Height = size;
+  RenderSettings settings;
+  settings.SamplesPerPixel = samples;
+  RenderedImage image;
+  start = Clock::now();
+  renderer.Render(camera, settings, image, parallelFor);
+  const double renderSeconds = SecondsSince(start);
+
+  const RawScene raw(patches);
+  start = Clock::now();
+  const size_t hits = raw.Cast(camera, samples, parallelFor);
+  const double rawSeconds = SecondsSince(start);
+  const double rays = static_cast<double>(size) * size * samples;
+
+  std::printf("%-18s %7zu %9zu %7.1f %7.1f %9.1f %8.1f %9.2f %8.1f %7.1f %6.2f  %s\n",
+    name,
+    patches.size(),
+    renderer.TriangleCount(),
+    subdivideSeconds,
+    coverSeconds,
+    1e3 * propagateSeconds,
+    1e3 * setupSeconds,
+    1e3 * renderSeconds,
+    rays / renderSeconds / 1e6,
+    1e3 * rawSeconds,
+    renderSeconds / rawSeconds,
+    propagated ? "" : "(not propagated: mirror)");
+  std::printf("%-18s whole pipeline %.1f s (%zu of %.0f rays hit)\n",
+    "",
+    subdivideSeconds + coverSeconds + propagateSeconds + setupSeconds + renderSeconds,
+    hits,
+    rays);
+}
+}
+
+int main(int argc, char* argv[])
+{
+  int threads = 1;
+  int size = 512;
+  int samples = 1;
+  for (int k = 1; k + 1 < argc; k += 2)
+  {
+    if (std::strcmp(argv[k], "--threads") == 0)
+    {
+      threads = std::atoi(argv[k + 1]);
+    }
+    else if (std::strcmp(argv[k], "--size") == 0)
+    {
+      size = std::atoi(argv[k + 1]);
+    }
+    else if (std::strcmp(argv[k], "--spp") == 0)
+    {
+      samples = std::atoi(argv[k + 1]);
+    }
+  }
+  std::printf("%d thread(s), %dx%d pixels, %d sample(s) per pixel\n", threads, size, size, samples);
+  std::printf("scene              patches triangles subdiv_s cover_s prop_ms setup_ms render_ms "
+              "Mrays/s  raw_ms  ratio\n");
+  for (const char* scene : { "cornell_box.scene", "teapot_room.scene" })
+  {
+    Run(scene, threads, size, samples);
+  }
+  return 0;
+}

@@ -1,0 +1,113 @@
+"""`sphcover render` (SPEC §5, paper §5.3): the Cornell box rendered to PNG through the scene's
+camera at a small size (read back by VTK: the size asked for, the lamp the brightest pixel, the
+red wall red and the green wall green); the report's timings include the render; a solution
+saved by `sphcover solve -o` and rendered with --solution gives the identical image (the
+walk-through case: only the render runs); the image does not depend on the thread count; bad
+input gives one line, a non-zero exit and no output file."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+from vtkmodules.vtkIOImage import vtkPNGReader
+
+sphcover, data = sys.argv[1:3]
+failures = []
+folder = tempfile.mkdtemp()
+scene = f"{data}/scenes/cornell_box.scene"
+# Coarse settings keep the test in seconds; the image checks below hold at any setting.
+coarse = ["--set", "max_level=1", "--set", "theta_bins=16", "--set", "phi_bins=64"]
+
+
+def run(*arguments):
+    return subprocess.run([sphcover, *arguments], capture_output=True, text=True, timeout=600)
+
+
+def pixels(path):
+    reader = vtkPNGReader()
+    reader.SetFileName(path)
+    reader.Update()
+    image = reader.GetOutput()
+    scalars = image.GetPointData().GetScalars()
+    values = [scalars.GetTuple3(k) for k in range(scalars.GetNumberOfTuples())]
+    return image.GetDimensions(), values
+
+
+first = os.path.join(folder, "first.png")
+report_file = os.path.join(folder, "report.json")
+result = run("render", scene, "-o", first, "--size", "64x48", "--report", report_file, "--quiet",
+             *coarse)
+if result.returncode != 0:
+    failures.append(f"render failed: {result.stderr.strip()}")
+else:
+    dimensions, values = pixels(first)
+    if dimensions != (64, 48, 1):
+        failures.append(f"the PNG is {dimensions}, not 64 x 48")
+    # The lamp (emission 18, 11, 2.8) saturates; the walls are darker.
+    brightest = max(range(len(values)), key=lambda k: sum(values[k]))
+    if values[brightest] != (255.0, 255.0, 255.0) or brightest < len(values) * 3 // 4:
+        failures.append(f"the brightest pixel {values[brightest]} at {brightest} is not the lamp "
+                        "near the top")
+    # Row 24 (the middle): the red wall at the left, the green wall at the right (the square
+    # camera's view in a 4:3 frame leaves dark margins at the sides).
+    left = values[24 * 64 + 14]
+    right = values[24 * 64 + 50]
+    if not (left[0] > 3 * left[1] and right[1] > 1.2 * right[0] and right[1] > 3 * right[2]):
+        failures.append(f"the left wall {left} is not red or the right wall {right} not green")
+    report = json.load(open(report_file))
+    timings = report.get("timings_s", {})
+    for key in ["read", "subdivide", "cover", "propagate", "render"]:
+        if not timings.get(key, -1) >= 0:
+            failures.append(f"report timings_s lacks {key}")
+    if len(report.get("surfaces", [])) != 16:
+        failures.append("the report lacks the 16 surfaces")
+
+# Reuse a saved solution: only the render runs, and the image is identical.
+solution = os.path.join(folder, "solution.vtm")
+result = run("solve", scene, "-o", solution, "--quiet", *coarse)
+if result.returncode != 0:
+    failures.append(f"solve failed: {result.stderr.strip()}")
+else:
+    reused = os.path.join(folder, "reused.png")
+    reused_report = os.path.join(folder, "reused.json")
+    result = run("render", scene, "--solution", solution, "--png", reused, "--size", "64x48",
+                 "--report", reused_report, "--quiet")
+    if result.returncode != 0:
+        failures.append(f"render --solution failed: {result.stderr.strip()}")
+    elif open(reused, "rb").read() != open(first, "rb").read():
+        failures.append("render --solution gives a different image")
+    else:
+        timings = json.load(open(reused_report))["timings_s"]
+        if "cover" in timings or "render" not in timings:
+            failures.append(f"render --solution timings {timings}: expected read and render only")
+
+# The thread count does not change the image.
+single = os.path.join(folder, "single.png")
+result = run("render", scene, "-o", single, "--size", "64x48", "--threads", "1", "--quiet", *coarse)
+if result.returncode != 0 or open(single, "rb").read() != open(first, "rb").read():
+    failures.append("the image depends on the thread count")
+
+# Bad input: one line on stderr, non-zero exit, no output file.
+bad_output = os.path.join(folder, "bad.png")
+for arguments, words in [
+        (["render", scene, "-o", os.path.join(folder, "bad.exr")], "OpenEXR"),
+        (["render", scene, "-o", bad_output, "--camera", "nowhere"], "nowhere"),
+        (["render", scene, "-o", bad_output, "--size", "0x10"], "--size"),
+        (["render", scene, "-o", bad_output, "--solution", os.path.join(folder, "none.vtm")],
+         "none.vtm"),
+        (["render", scene], "no output"),
+        (["render", f"{data}/scenes/missing.scene", "-o", bad_output], "missing.scene")]:
+    result = run(*arguments, "--quiet")
+    lines = result.stderr.strip().splitlines()
+    if result.returncode == 0 or len(lines) != 1 or words not in lines[0]:
+        failures.append(f"{arguments[2:]}: exit {result.returncode}, stderr {result.stderr!r}")
+    else:
+        print(lines[0])
+leftovers = [name for name in os.listdir(folder) if name.startswith("bad") or "partial" in name]
+if leftovers:
+    failures.append(f"files left behind by failures: {leftovers}")
+
+for failure in failures:
+    print("FAILED:", failure)
+sys.exit(1 if failures else 0)
