@@ -6,7 +6,7 @@
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
- *   sphcover render SCENE [-o out.png] [--png out.png] [--camera NAME] [--size WxH] [--spp N]
+ *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH] [--spp N]
  *                   [--exposure E] [--solution solution.vtm] [--report report.json] [--set k=v]
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
@@ -39,6 +39,7 @@
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
+#include <vtkOpenEXRWriter.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -442,6 +443,23 @@ void WritePngAtomically(vtkImageData* image, const std::string& path)
   }
 }
 
+/// Writes the HDR `Radiance` (float RGB) and `Depth` as OpenEXR; vtkOpenEXRWriter writes to a
+/// temporary file renamed into place, so a failure leaves no partial file.
+void WriteExr(vtkImageData* image, const std::string& path)
+{
+  vtkNew<vtkOpenEXRWriter> writer;
+  ErrorCollector errors;
+  errors.Watch(writer);
+  writer->SetInputData(image);
+  writer->SetFileName(path.c_str());
+  writer->SetColorArrayName(vtkSphericalCoverArrayNames::Radiance);
+  writer->AddChannelArray(vtkSphericalCoverArrayNames::Depth);
+  if (!writer->Write())
+  {
+    throw std::runtime_error("cannot write '" + path + "': " + errors.First());
+  }
+}
+
 /// "WxH" as two positive integers.
 void ParseSize(const std::string& text, int& width, int& height)
 {
@@ -470,21 +488,26 @@ void ParseSize(const std::string& text, int& width, int& height)
 /// sphcover render: the whole pipeline (or a saved solution) and the image of paper §5.3.
 int RunRender(const Options& options)
 {
-  // The outputs, checked before any work.
+  // The outputs, checked before any work: -o is the HDR image (.exr, Radiance and Depth) or a
+  // tone-mapped PNG; --png adds a tone-mapped PNG.
+  std::string exr;
   std::vector<std::string> pngs;
   if (!options.Output.empty())
   {
     const std::string extension = ExtensionOf(options.Output);
     if (extension == ".exr")
     {
-      throw std::runtime_error("-o '" + options.Output +
-        "': OpenEXR output is not available yet; write PNG (-o out.png or --png out.png)");
+      exr = options.Output;
     }
-    if (extension != ".png")
+    else if (extension == ".png")
     {
-      throw std::runtime_error("-o '" + options.Output + "': unknown image format (expected .png)");
+      pngs.push_back(options.Output);
     }
-    pngs.push_back(options.Output);
+    else
+    {
+      throw std::runtime_error(
+        "-o '" + options.Output + "': unknown image format (expected .exr or .png)");
+    }
   }
   if (!options.Png.empty())
   {
@@ -494,11 +517,16 @@ int RunRender(const Options& options)
     }
     pngs.push_back(options.Png);
   }
-  if (pngs.empty())
+  if (exr.empty() && pngs.empty())
   {
-    throw std::runtime_error("no output: give -o out.png or --png out.png");
+    throw std::runtime_error("no output: give -o out.exr, -o out.png or --png out.png");
   }
-  for (const std::string& path : pngs)
+  std::vector<std::string> outputs = pngs;
+  if (!exr.empty())
+  {
+    outputs.push_back(exr);
+  }
+  for (const std::string& path : outputs)
   {
     const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
     if (!std::filesystem::is_directory(folder))
@@ -605,6 +633,10 @@ int RunRender(const Options& options)
     renderSeconds = bar.Seconds();
   }
   timings["render"] = renderSeconds;
+  if (!exr.empty())
+  {
+    WriteExr(render->GetOutput(), exr);
+  }
   for (const std::string& png : pngs)
   {
     WritePngAtomically(render->GetOutput(), png);
@@ -634,9 +666,9 @@ int RunRender(const Options& options)
   std::cout << "image: " << width << "x" << height << " from camera '" << camera->Name << "', "
             << options.SamplesPerPixel << " samples per pixel\n"
             << "seconds: render " << renderSeconds << "\n";
-  for (const std::string& png : pngs)
+  for (const std::string& path : outputs)
   {
-    std::cout << "written: " << png << "\n";
+    std::cout << "written: " << path << "\n";
   }
   return 0;
 }
@@ -747,7 +779,7 @@ int main(int argc, char** argv)
   render
     ->add_option("SCENE", options.Scene, "A .scene file (its cameras; solved unless --solution)")
     ->required();
-  render->add_option("-o,--output", options.Output, "Image file (.png; .exr not yet)");
+  render->add_option("-o,--output", options.Output, "Image file: .exr (HDR Radiance and Depth, float) or .png (tone-mapped sRGB)");
   render->add_option("--png", options.Png, "PNG file (tone-mapped sRGB)");
   render->add_option("--camera", options.Camera, "Camera of the scene (default: the first)");
   render->add_option("--size", options.Size, "Image size WIDTHxHEIGHT (default: the camera's)");

@@ -82,6 +82,44 @@ else:
         if "cover" in timings or "render" not in timings:
             failures.append(f"render --solution timings {timings}: expected read and render only")
 
+# -o out.exr writes the HDR Radiance (and Depth) that vtkOpenEXRReader reads back: finite,
+# non-negative, and brighter where the PNG is brighter (the PNG is its tone mapping).
+hdr = os.path.join(folder, "hdr.exr")
+hdr_png = os.path.join(folder, "hdr.png")
+result = run("render", scene, "-o", hdr, "--png", hdr_png, "--size", "64x48", "--quiet", *coarse)
+if result.returncode != 0:
+    failures.append(f"render -o .exr failed: {result.stderr.strip()}")
+else:
+    import numpy
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from sphericalcover import vtkOpenEXRReader
+    reader = vtkOpenEXRReader()
+    reader.SetFileName(hdr)
+    reader.Update()
+    image = reader.GetOutput()
+    radiance = image.GetPointData().GetArray("Radiance")
+    depth = image.GetPointData().GetArray("Depth")
+    if image.GetDimensions()[:2] != (64, 48) or radiance is None or depth is None:
+        failures.append(f"EXR: dimensions {image.GetDimensions()}, arrays Radiance/Depth missing")
+    else:
+        values = vtk_to_numpy(radiance)
+        png = vtkPNGReader()
+        png.SetFileName(hdr_png)
+        png.Update()
+        rgb = vtk_to_numpy(png.GetOutput().GetPointData().GetScalars())[:, :3].astype(float)
+        # The PNG is the sRGB encoding (IEC 61966-2-1) of the radiance at exposure 1.
+        linear = numpy.clip(values.astype(float), 0.0, 1.0)
+        encoded = numpy.where(linear <= 0.0031308, 12.92 * linear,
+                              1.055 * numpy.power(linear, 1.0 / 2.4) - 0.055)
+        difference = numpy.abs(numpy.round(255.0 * encoded) - rgb).max()
+        if not numpy.isfinite(values).all() or values.min() < 0 or values.max() <= 0:
+            failures.append("EXR radiance not finite and non-negative")
+        elif difference > 1:
+            failures.append(f"EXR radiance is not what the PNG shows (largest difference "
+                            f"{difference} levels)")
+        else:
+            print(f"EXR: radiance max {values.max():.3f}, sRGB of it = PNG within {difference:.0f} level")
+
 # The thread count does not change the image.
 single = os.path.join(folder, "single.png")
 result = run("render", scene, "-o", single, "--size", "64x48", "--threads", "1", "--quiet", *coarse)
@@ -91,7 +129,8 @@ if result.returncode != 0 or open(single, "rb").read() != open(first, "rb").read
 # Bad input: one line on stderr, non-zero exit, no output file.
 bad_output = os.path.join(folder, "bad.png")
 for arguments, words in [
-        (["render", scene, "-o", os.path.join(folder, "bad.exr")], "OpenEXR"),
+        (["render", scene, "-o", os.path.join(folder, "bad.tiff")], "unknown image format"),
+        (["render", scene, "-o", os.path.join(folder, "nofolder", "bad.exr")], "no folder"),
         (["render", scene, "-o", bad_output, "--camera", "nowhere"], "nowhere"),
         (["render", scene, "-o", bad_output, "--size", "0x10"], "--size"),
         (["render", scene, "-o", bad_output, "--solution", os.path.join(folder, "none.vtm")],
