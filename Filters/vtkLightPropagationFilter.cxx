@@ -2,6 +2,7 @@
 #include "vtkLightPropagationFilter.h"
 
 #include "vtkNamedArrays.h"
+#include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
@@ -51,6 +52,21 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* history = vtkTable::GetData(outputVector, 1);
   this->Shots = 0;
+
+  // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, input);
+  if (role != vtkScenePieces::Role::WholeScene)
+  {
+    output->Initialize();
+    history->Initialize();
+    if (role == vtkScenePieces::Role::PartialScene)
+    {
+      vtkErrorMacro(<< "Cannot propagate light: " << vtkScenePieces::PartialSceneError(outputVector)
+                    << ".");
+      return 0;
+    }
+    return 1;
+  }
 
   sphcover::SphericalCover cover;
   const std::string problem = vtkSphericalCoverArrays::Load(input, cover);

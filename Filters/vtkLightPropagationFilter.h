@@ -23,6 +23,12 @@
  * shot relative to the emitted power), `UnshotEnergy` (W), `Seconds`.
  *
  * MaximumShots stops early, so a ParaView user can watch the light spread.
+ *
+ * Pieces (vtkScenePieces.h): the whole scene is piece 0. Asked for a piece > 0 with an empty
+ * input (the readers' other pieces, as under `mpiexec -n N pvbatch --symmetric`), the filter
+ * produces empty outputs without a message; with a non-empty input there, it refuses with an
+ * error (a piece of the scene would give a wrong illumination). An empty input on piece 0 is an
+ * error, as in serial.
  */
 #ifndef vtkLightPropagationFilter_h
 #define vtkLightPropagationFilter_h
