@@ -6,7 +6,8 @@
  * hemisphere contains it (the cover's column, §5.2), updating their incident radiance.
  *
  * Input: the cover points of vtkSphericalCoverFilter (with the material arrays `Diffuse`,
- * `Emission`, `MaterialType` and the cover in field data).
+ * `Emission`, `MaterialType` and the cover in field data). Any other input (another dataset
+ * type, points without a cover) is refused with one error.
  *
  * Incident radiance E is stored per region h_ij of the hemispheres (paper §3.1 decision 4),
  * three bands. This version propagates diffuse reflection (paper §3.5, closed form);
