@@ -6,7 +6,8 @@ Loads the teapot room, subdivides it (paper §4) and shows, from the scene's cam
   4 characterisability);
 - the characteristic points as arrows along their Normals;
 - the hemisphere of one characteristic point on a wall (the Hemisphere Extractor's 3-D mesh,
-  placed at the point), coloured by the surface seen through each cell;
+  placed at the point), coloured by the scene entry (SurfaceNameId) seen through each
+  cell;
 and saves a screenshot.
 
 usage: pvbatch visual_debugging_of_subdivision.py PLUGIN DATA_DIR OUTPUT.png
@@ -18,7 +19,8 @@ them to see the subdivision of the real solver settings."""
 import sys
 
 from paraview import servermanager
-from paraview.simple import (ColorBy, Delete, GetColorTransferFunction, Glyph, LoadPlugin,
+from paraview.simple import (ColorBy, Delete, GetColorTransferFunction, GetScalarBar, Glyph,
+                             LoadPlugin,
                              OpenDataFile, OutputPort, Render, SaveScreenshot, Show,
                              CreateRenderView)
 
@@ -29,19 +31,19 @@ scene = OpenDataFile(f"{data}/scenes/teapot_room.scene")
 subdivision = globals()["IntervalSubdivision"](Input=scene, MaxLevel=2, ThetaBins=8, PhiBins=32)
 cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0), ThetaBins=8, PhiBins=32)
 
-# One characteristic point on the left wall (x = -6), seen behind the teapot's handle: the one
-# nearest to (-6, 2.5, -1).
+# One characteristic point on the left wall (x = -6), above the teapot's handle: the one nearest
+# to (-6, 4, 0).
 points = servermanager.Fetch(subdivision, idx=1)
 
 
 def distance_to_spot(k):
     p = points.GetPoint(k)
-    return (p[0] + 6) ** 2 + (p[1] - 2.5) ** 2 + (p[2] + 1) ** 2
+    return (p[0] + 6) ** 2 + (p[1] - 4) ** 2 + p[2] ** 2
 
 
 chosen = min(range(points.GetNumberOfPoints()), key=distance_to_spot)
 hemisphere = globals()["HemisphereExtractor"](Input=OutputPort(cover, 0), PointId=chosen,
-                                               Radius=0.8)
+                                               Radius=1.2)
 
 view = CreateRenderView()
 view.ViewSize = [400, 300]
@@ -56,11 +58,21 @@ patches = Show(OutputPort(subdivision, 0), view)
 patches.SetRepresentationType("Surface With Edges")
 patches.EdgeColor = [0.1, 0.1, 0.1]
 ColorBy(patches, ("CELLS", "SplitReason"))
+# SplitReason is a category: one colour and one legend entry per criterion.
 split_colours = GetColorTransferFunction("SplitReason")
-split_colours.ApplyPreset("Rainbow Uniform", True)
-split_colours.RescaleTransferFunction(0.0, 4.0)
-split_colours.AutomaticRescaleRangeMode = "Never"
-patches.SetScalarBarVisibility(view, False)
+split_colours.InterpretValuesAsCategories = 1
+split_colours.Annotations = ["0", "none", "1", "self-shadowing", "2", "hemispherical containment",
+                             "3", "spherical shape", "4", "characterisability"]
+split_colours.IndexedColors = [0.85, 0.85, 0.85, 0.30, 0.75, 0.75, 0.95, 0.85, 0.30,
+                               0.85, 0.35, 0.30, 0.45, 0.40, 0.80]
+patches.SetScalarBarVisibility(view, True)
+legend = GetScalarBar(split_colours, view)
+legend.Title = "SplitReason"
+legend.ComponentTitle = ""
+legend.TitleFontSize = 10
+legend.LabelFontSize = 9
+legend.TitleColor = legend.LabelColor = [0, 0, 0]
+legend.WindowLocation = "Upper Right Corner"
 
 arrows = Glyph(Input=OutputPort(subdivision, 1), GlyphType="Arrow")
 arrows.OrientationArray = ["POINTS", "Normals"]
@@ -72,8 +84,9 @@ arrows_display.ColorArrayName = ["POINTS", ""]
 arrows_display.AmbientColor = arrows_display.DiffuseColor = [0.2, 0.2, 0.2]
 
 mesh = Show(OutputPort(hemisphere, 1), view)
-ColorBy(mesh, ("CELLS", "SurfaceId"))
-mesh.LookupTable = GetColorTransferFunction("SurfaceId")
+# SurfaceNameId: the scene entry seen through each cell (the teapot's 32 patches are one entry).
+ColorBy(mesh, ("CELLS", "SurfaceNameId"))
+mesh.LookupTable = GetColorTransferFunction("SurfaceNameId")
 mesh.LookupTable.ApplyPreset("Jet", True)
 mesh.SetScalarBarVisibility(view, False)
 
