@@ -1,8 +1,10 @@
 """pvbatch: every proxy of the plug-in, enumerated from its server-manager XML files, so that a
 proxy added later without a check here makes this test fail.
-- every property (enumerated from the XML too) has an XML default equal to the C++
-  constructor's value, can be set to a non-default value that reaches the VTK object (its
-  getter returns it), and set back to the default;
+- every proxy is documented; filters are in the "Spherical Cover" menu category, readers and
+  writers have a factory (files open and save by extension);
+- every property (enumerated from the XML too) is documented, has a domain if it is a number,
+  has an XML default equal to the C++ constructor's value, can be set to a non-default value
+  that reaches the VTK object (its getter returns it), and set back to the default;
 - multi-output proxies label their ports (ParaView shows the names);
 - on the Cornell box at small settings, every output port has the data type and the named
   arrays (with their component counts) of SPEC §4, and the stages' counts agree (one
@@ -109,7 +111,25 @@ def check_properties(group, name, element):
                                 f"{getter_value(vtk_object, prop)!r}")
         if not prop.findall("Documentation"):
             failures.append(f"{label}: no <Documentation>")
+        if prop.tag in ("IntVectorProperty", "DoubleVectorProperty") and not any(
+                child.tag.endswith("Domain") for child in prop):
+            failures.append(f"{label}: no domain (enumeration, boolean or range)")
     Delete(proxy)
+
+
+def check_declaration(group, name, element):
+    """Documented; filters in the "Spherical Cover" menu, readers and writers by extension."""
+    if element.find("Documentation") is None:
+        failures.append(f"{name}: no <Documentation>")
+    hints = element.find("Hints")
+    if group == "filters":
+        menu = hints.find("ShowInMenu") if hints is not None else None
+        if menu is None or menu.get("category") != "Spherical Cover":
+            failures.append(f"{name}: not in the Spherical Cover menu category")
+    reader = group == "sources" and any(p.get("name") == "FileName" for p in element)
+    factory = "ReaderFactory" if reader else "WriterFactory" if group == "writers" else None
+    if factory and (hints is None or hints.find(factory) is None):
+        failures.append(f"{name}: no {factory} (files do not open or save by extension)")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -285,6 +305,7 @@ if len(declared) < len(CHECKS):
 for group, name, element in declared:
     if name not in CHECKS:
         failures.append(f"proxy {group}/{name} has no output check in this test: add one")
+    check_declaration(group, name, element)
     check_properties(group, name, element)
 for name, check in CHECKS.items():
     if name not in {n for _, n, _ in declared}:
