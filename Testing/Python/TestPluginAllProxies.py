@@ -102,7 +102,8 @@ def check_properties(group, name, element):
             continue
         default = sm.GetElement(0) if sm.GetNumberOfElements() else ""
         if not same(default, getter_value(native, prop)):
-            failures.append(f"{label}: XML default {default!r} != C++ {getter_value(native, prop)!r}")
+            failures.append(f"{label}: XML default {default!r} != C++ "
+                            f"{getter_value(native, prop)!r}")
         for value in (other_value(prop, default), default):
             sm.SetElement(0, value)
             proxy.UpdateVTKObjects()
@@ -208,7 +209,8 @@ def check_bpt_reader():
     teapot = check_output("BPTReader", output(reader), "vtkUnstructuredGrid",
                           cell=dict(MATERIAL_CELLS, HigherOrderDegrees=3))
     if teapot and teapot.GetNumberOfCells() != 32:
-        failures.append(f"BPTReader: {teapot.GetNumberOfCells()} patches of the teapot, expected 32")
+        failures.append(f"BPTReader: {teapot.GetNumberOfCells()} patches of the teapot, "
+                        "expected 32")
     Delete(reader)
 
 

@@ -96,7 +96,8 @@ for k, (name, proxy, native, port) in enumerate(STAGES):
 
 if rank == 0:
     # Piece 0 is the whole solution: its radiosity equals the serial one, value for value.
-    lit = propagation.GetClientSideObject().GetOutputDataObject(0).GetPointData().GetArray("Radiosity")
+    lit = propagation.GetClientSideObject().GetOutputDataObject(0).GetPointData().GetArray(
+        "Radiosity")
     reference = serial_propagation.GetOutputDataObject(0).GetPointData().GetArray("Radiosity")
     if lit is None or reference is None:
         failures.append("the illumination lacks Radiosity")
