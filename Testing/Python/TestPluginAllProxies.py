@@ -9,7 +9,8 @@ proxy added later without a check here makes this test fail.
 - on the Cornell box at small settings, every output port has the data type and the named
   arrays (with their component counts) of SPEC §4, and the stages' counts agree (one
   characteristic point and one cover point per patch, ThetaBins x PhiBins hemisphere cells);
-- the OpenEXR writer writes a hemisphere image that the OpenEXR reader reads back.
+- the OpenEXR writer writes a hemisphere image that the OpenEXR reader reads back;
+- the long stages (reader, subdivision, cover, propagation) report progress to ParaView.
 
 usage: pvbatch TestPluginAllProxies.py PLUGIN DATA_DIR PLUGIN_XML_DIR"""
 import glob
@@ -190,12 +191,25 @@ def check_port_names(proxy, names):
                             f"expected {name!r}")
 
 
+# Progress as ParaView's progress bar receives it: the ProgressEvents of each stage's VTK object
+# (observed before anything updates: the Hemisphere Extractor updates its input on creation).
+progress = {}
+
+
+def observed(proxy):
+    values = progress.setdefault(proxy.GetXMLName(), [])
+    proxy.GetClientSideObject().AddObserver(
+        "ProgressEvent", lambda algorithm, event: values.append(algorithm.GetProgress()))
+    return proxy
+
+
 folder = tempfile.mkdtemp()
 cornell = os.path.join(data, "scenes", "cornell_box.scene")
-scene = globals()["PatchSceneReader"](FileName=cornell)
-subdivision = globals()["IntervalSubdivision"](Input=scene, MaxLevel=1)
-cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0), ThetaBins=8, PhiBins=32)
-propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
+scene = observed(globals()["PatchSceneReader"](FileName=cornell))
+subdivision = observed(globals()["IntervalSubdivision"](Input=scene, MaxLevel=1))
+cover = observed(globals()["SphericalCover"](Input=OutputPort(subdivision, 0), ThetaBins=8,
+                                             PhiBins=32))
+propagation = observed(globals()["LightPropagation"](Input=OutputPort(cover, 0)))
 hemisphere = globals()["HemisphereExtractor"](Input=OutputPort(cover, 0), PointId=3)
 
 
@@ -313,6 +327,12 @@ for name, check in CHECKS.items():
     if name not in {n for _, n, _ in declared}:
         failures.append(f"{name} is checked here but not declared in the XML")
     check()
+
+# The long stages report progress between 0 and 1 and end at 1.
+for name, values in progress.items():
+    if not any(0 < v < 1 for v in values) or not values or values[-1] != 1.0:
+        failures.append(f"{name}: progress {values[:10]}, expected steps between 0 and 1 "
+                        "ending at 1")
 
 for failure in failures:
     print("FAILED:", failure)
