@@ -2,6 +2,7 @@
 #include "vtkHemisphereExtractor.h"
 
 #include "vtkNamedArrays.h"
+#include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
@@ -152,6 +153,19 @@ int vtkHemisphereExtractor::RequestData(vtkInformation*,
   vtkPolyData* mesh = vtkPolyData::GetData(outputVector, 1);
   image->Initialize();
   mesh->Initialize();
+
+  // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, input);
+  if (role != vtkScenePieces::Role::WholeScene)
+  {
+    if (role == vtkScenePieces::Role::PartialScene)
+    {
+      vtkErrorMacro(<< "Cannot extract a hemisphere: "
+                    << vtkScenePieces::PartialSceneError(outputVector) << ".");
+      return 0;
+    }
+    return 1;
+  }
 
   if (this->Radius < 0.0 || !std::isfinite(this->Radius))
   {

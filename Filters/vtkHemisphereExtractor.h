@@ -45,6 +45,12 @@
  * @note The image's WHOLE_EXTENT depends on the bins of the cover, which are data: to publish it
  * in RequestInformation, as image consumers expect, the input is brought up to date there (with
  * the request of the previous pass, so it is not executed twice).
+ *
+ * Pieces (vtkScenePieces.h): the whole scene is piece 0. Asked for a piece > 0 with an empty
+ * input (the readers' other pieces, as under `mpiexec -n N pvbatch --symmetric`), the filter
+ * produces empty outputs without a message; with a non-empty input there, it refuses with an
+ * error (a piece of the scene would give a wrong illumination). An empty input on piece 0 is an
+ * error, as in serial.
  */
 #ifndef vtkHemisphereExtractor_h
 #define vtkHemisphereExtractor_h

@@ -3,6 +3,7 @@
 
 #include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
+#include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
@@ -66,6 +67,21 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
   vtkUnstructuredGrid* patchesOut = vtkUnstructuredGrid::GetData(outputVector, 0);
   vtkPolyData* pointsOut = vtkPolyData::GetData(outputVector, 1);
   this->PairTests = 0;
+
+  // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, input);
+  if (role != vtkScenePieces::Role::WholeScene)
+  {
+    patchesOut->Initialize();
+    pointsOut->Initialize();
+    if (role == vtkScenePieces::Role::PartialScene)
+    {
+      vtkErrorMacro(<< "Cannot subdivide this input: "
+                    << vtkScenePieces::PartialSceneError(outputVector) << ".");
+      return 0;
+    }
+    return 1;
+  }
 
   sphcover::SubdivisionSettings settings;
   settings.Method = this->RangeMethod == NATURAL_INTERVAL ? sphcover::RangeMethod::NaturalInterval

@@ -28,6 +28,12 @@
  *
  * @warning The work is parallel over receivers (vtkSMPTools); the result does not depend on the
  * number of threads.
+ *
+ * Pieces (vtkScenePieces.h): the whole scene is piece 0. Asked for a piece > 0 with an empty
+ * input (the readers' other pieces, as under `mpiexec -n N pvbatch --symmetric`), the filter
+ * produces empty outputs without a message; with a non-empty input there, it refuses with an
+ * error (a piece of the scene would give a wrong illumination). An empty input on piece 0 is an
+ * error, as in serial.
  */
 #ifndef vtkIntervalSubdivisionFilter_h
 #define vtkIntervalSubdivisionFilter_h

@@ -2,6 +2,7 @@
 #include "vtkLightPropagationFilter.h"
 
 #include "vtkNamedArrays.h"
+#include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
@@ -33,7 +34,9 @@ vtkLightPropagationFilter::~vtkLightPropagationFilter() = default;
 
 int vtkLightPropagationFilter::FillInputPortInformation(int, vtkInformation* info)
 {
-  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  // Any dataset is accepted so that a wrong one (the reader's surfaces) gets one clear error
+  // from RequestData instead of the executive's type error at every pipeline pass.
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
   return 1;
 }
 
@@ -47,10 +50,33 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  vtkPolyData* input = vtkPolyData::GetData(inputVector[0], 0);
+  vtkDataSet* inputData = vtkDataSet::GetData(inputVector[0], 0);
+  vtkPolyData* input = vtkPolyData::SafeDownCast(inputData);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* history = vtkTable::GetData(outputVector, 1);
   this->Shots = 0;
+
+  // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, inputData);
+  if (role != vtkScenePieces::Role::WholeScene)
+  {
+    output->Initialize();
+    history->Initialize();
+    if (role == vtkScenePieces::Role::PartialScene)
+    {
+      vtkErrorMacro(<< "Cannot propagate light: " << vtkScenePieces::PartialSceneError(outputVector)
+                    << ".");
+      return 0;
+    }
+    return 1;
+  }
+  if (!input)
+  {
+    vtkErrorMacro(<< "Cannot propagate light: the input is a "
+                  << (inputData ? inputData->GetClassName() : "null data object")
+                  << ", not the cover points (vtkPolyData) of vtkSphericalCoverFilter.");
+    return 0;
+  }
 
   sphcover::SphericalCover cover;
   const std::string problem = vtkSphericalCoverArrays::Load(input, cover);

@@ -6,7 +6,8 @@
  * hemisphere contains it (the cover's column, §5.2), updating their incident radiance.
  *
  * Input: the cover points of vtkSphericalCoverFilter (with the material arrays `Diffuse`,
- * `Emission`, `MaterialType` and the cover in field data).
+ * `Emission`, `MaterialType` and the cover in field data). Any other input (another dataset
+ * type, points without a cover) is refused with one error.
  *
  * Incident radiance E is stored per region h_ij of the hemispheres (paper §3.1 decision 4),
  * three bands. This version propagates diffuse reflection (paper §3.5, closed form);
@@ -23,6 +24,12 @@
  * shot relative to the emitted power), `UnshotEnergy` (W), `Seconds`.
  *
  * MaximumShots stops early, so a ParaView user can watch the light spread.
+ *
+ * Pieces (vtkScenePieces.h): the whole scene is piece 0. Asked for a piece > 0 with an empty
+ * input (the readers' other pieces, as under `mpiexec -n N pvbatch --symmetric`), the filter
+ * produces empty outputs without a message; with a non-empty input there, it refuses with an
+ * error (a piece of the scene would give a wrong illumination). An empty input on piece 0 is an
+ * error, as in serial.
  */
 #ifndef vtkLightPropagationFilter_h
 #define vtkLightPropagationFilter_h

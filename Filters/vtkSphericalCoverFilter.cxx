@@ -3,6 +3,7 @@
 
 #include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
+#include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -60,6 +61,21 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
   vtkPolyData* pointsOut = vtkPolyData::GetData(outputVector, 0);
   vtkTable* stripsOut = vtkTable::GetData(outputVector, 1);
+
+  // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, input);
+  if (role != vtkScenePieces::Role::WholeScene)
+  {
+    pointsOut->Initialize();
+    stripsOut->Initialize();
+    if (role == vtkScenePieces::Role::PartialScene)
+    {
+      vtkErrorMacro(<< "Cannot build a spherical cover of this input: "
+                    << vtkScenePieces::PartialSceneError(outputVector) << ".");
+      return 0;
+    }
+    return 1;
+  }
 
   sphcover::Scene scene;
   std::vector<sphcover::Patch> patches;

@@ -2,6 +2,7 @@
 #include "vtkPatchSceneReader.h"
 
 #include "vtkSceneFileLoader.h"
+#include "vtkScenePieces.h"
 #include "vtkSurfaceGridBuilder.h"
 
 #include "Scene.h"
@@ -27,12 +28,27 @@ sphcover::Scene vtkPatchSceneReader::LoadFile(const std::string& fileName)
   return vtkSceneFileLoader::Load(fileName);
 }
 
+int vtkPatchSceneReader::RequestInformation(vtkInformation*,
+  vtkInformationVector**,
+  vtkInformationVector* outputVector)
+{
+  // The reader answers every piece request itself (the whole scene to piece 0, nothing to the
+  // others) instead of leaving pieces > 0 to the executive's default.
+  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  return 1;
+}
+
 int vtkPatchSceneReader::RequestData(vtkInformation*,
   vtkInformationVector**,
   vtkInformationVector* outputVector)
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   output->Initialize();
+  if (vtkScenePieces::RequestedPiece(outputVector) > 0)
+  {
+    // Global illumination needs the whole scene in one piece: piece 0 has it (vtkScenePieces.h).
+    return 1;
+  }
   if (this->FileName.empty())
   {
     vtkErrorMacro("No FileName was set.");

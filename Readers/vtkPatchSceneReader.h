@@ -15,6 +15,10 @@
  * A file with a `.bpt` extension is read as a .bpt file on its own (see vtkBPTReader).
  * Bad input gives one error naming the file, the location (line or JSON pointer) and the
  * problem, and an empty output with a failed request.
+ *
+ * Pieces (vtkScenePieces.h): global illumination needs the whole scene in one place, so the
+ * reader gives the whole scene to piece 0 and an empty grid, without reading the file, to every
+ * other piece (under `mpiexec -n N pvbatch --symmetric` only rank 0 reads).
  */
 #ifndef vtkPatchSceneReader_h
 #define vtkPatchSceneReader_h
@@ -49,6 +53,7 @@ protected:
   vtkPatchSceneReader();
   ~vtkPatchSceneReader() override;
 
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /// Reads the file into a Core scene; throws sphcover::InputError.
