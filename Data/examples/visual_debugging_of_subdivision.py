@@ -16,6 +16,7 @@ usage: pvbatch visual_debugging_of_subdivision.py PLUGIN DATA_DIR OUTPUT.png
 
 Settings are small (MaxLevel 2, an 8 x 32 hemisphere grid) so that it runs in seconds; raise
 them to see the subdivision of the real solver settings."""
+import os
 import sys
 
 from paraview import servermanager
@@ -99,8 +100,12 @@ view.CameraFocalPoint = camera[3:6]
 view.CameraViewUp = camera[6:9]
 view.CameraViewAngle = camera[9]
 Render(view)
-SaveScreenshot(screenshot, view, ImageResolution=[400, 300])
+os.makedirs(os.path.dirname(os.path.abspath(screenshot)), exist_ok=True)
+saved = SaveScreenshot(screenshot, view, ImageResolution=[400, 300])
 print(f"characteristic point {chosen}; screenshot: {screenshot}")
 
 Delete(view)
 del view
+if not saved or not os.path.isfile(screenshot):
+    print(f"cannot write the screenshot {screenshot}", file=sys.stderr)
+    sys.exit(1)

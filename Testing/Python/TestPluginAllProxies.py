@@ -73,6 +73,9 @@ def getter_value(vtk_object, element):
 
 
 def same(a, b):
+    if isinstance(a, (list, tuple)) or isinstance(b, (list, tuple)):
+        return (isinstance(a, (list, tuple)) and isinstance(b, (list, tuple))
+                and len(a) == len(b) and all(same(x, y) for x, y in zip(a, b)))
     return a == b if isinstance(a, str) or isinstance(b, str) else float(a) == float(b)
 
 
@@ -101,19 +104,26 @@ def check_properties(group, name, element):
                     failures.append(f"{label}: set to {values}, the VTK object holds "
                                     f"{getter_value(vtk_object, prop)}")
             continue
-        default = sm.GetElement(0) if sm.GetNumberOfElements() else ""
-        if not same(default, getter_value(native, prop)):
-            failures.append(f"{label}: XML default {default!r} != C++ "
-                            f"{getter_value(native, prop)!r}")
+        # Vector properties (a camera's Position, ...) compare whole; the first element varies.
+        count = sm.GetNumberOfElements()
+        defaults = [sm.GetElement(k) for k in range(count)] if count else [""]
+        default = defaults[0]
+        if not same(defaults if count > 1 else default, getter_value(native, prop)):
+            failures.append(f"{label}: XML default {defaults if count > 1 else default!r} != "
+                            f"C++ {getter_value(native, prop)!r}")
         for value in (other_value(prop, default), default):
             sm.SetElement(0, value)
             proxy.UpdateVTKObjects()
-            if not same(getter_value(vtk_object, prop), value):
-                failures.append(f"{label}: set to {value!r}, the VTK object holds "
+            expected = [value] + defaults[1:] if count > 1 else value
+            if not same(getter_value(vtk_object, prop), expected):
+                failures.append(f"{label}: set to {expected!r}, the VTK object holds "
                                 f"{getter_value(vtk_object, prop)!r}")
         if not prop.findall("Documentation"):
             failures.append(f"{label}: no <Documentation>")
-        if prop.tag in ("IntVectorProperty", "DoubleVectorProperty") and not any(
+        # Numbers need a domain; 3-D points and directions (a camera's Position, FocalPoint,
+        # ViewUp) are free vectors without one.
+        is_vector3 = prop.tag == "DoubleVectorProperty" and count == 3
+        if prop.tag in ("IntVectorProperty", "DoubleVectorProperty") and not is_vector3 and not any(
                 child.tag.endswith("Domain") for child in prop):
             failures.append(f"{label}: no domain (enumeration, boolean or range)")
     Delete(proxy)
@@ -276,6 +286,27 @@ def check_hemisphere():
                             f"expected ThetaBins x PhiBins = 256")
 
 
+def check_radiance_image():
+    render = globals()["RadianceImage"](Input=OutputPort(propagation, 0),
+                                        Patches=OutputPort(subdivision, 0), CameraName="main",
+                                        Width=32, Height=24)
+    image = check_output("RadianceImage", output(render), "vtkImageData",
+                         point={"Radiance": 3, "Depth": 1, "SurfaceId": 1, "RGB": 3})
+    if image and image.GetDimensions()[:2] != (32, 24):
+        failures.append(f"RadianceImage: dimensions {image.GetDimensions()}, expected 32 x 24")
+    Delete(render)
+
+
+def check_illumination_field():
+    field = globals()["IlluminationField"](Input=OutputPort(propagation, 0),
+                                           Patches=OutputPort(subdivision, 0))
+    lit = check_output("IlluminationField", output(field), "vtkPolyData",
+                       point={"Radiance": 3, "Normals": 3, "SurfaceId": 1}, cell={"PatchId": 1})
+    if lit and lit.GetNumberOfCells() < output(subdivision, 0).GetNumberOfCells():
+        failures.append("IlluminationField: fewer quads than patches")
+    Delete(field)
+
+
 exr_path = os.path.join(folder, "hemisphere.exr")
 
 
@@ -311,6 +342,8 @@ CHECKS = {
     "SphericalCover": check_cover,
     "LightPropagation": check_propagation,
     "HemisphereExtractor": check_hemisphere,
+    "RadianceImage": check_radiance_image,
+    "IlluminationField": check_illumination_field,
     "OpenEXRWriter": check_exr_writer,
     "OpenEXRReader": check_exr_reader,
 }
