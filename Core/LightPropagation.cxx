@@ -209,15 +209,15 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
   const std::size_t rowBegin = cover.EntryBegin(shooter);
   const std::size_t rowEnd = cover.EntryEnd(shooter);
 
-  // The in-strips that hold unshot incident radiance, taken out of the shooter's row.
+  // The in-strips that hold unshot incident radiance, taken out of the shooter's row, by row.
   struct InStrip
   {
-    int Row;
     int Begin;
     int End;
     glm::dvec3 Radiance;
   };
-  std::vector<InStrip> in;
+  const int rows = grid.ThetaBins();
+  std::vector<std::vector<InStrip>> in(static_cast<std::size_t>(rows));
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
     const glm::dvec3 radiance = this->UnshotIncident[e];
@@ -229,20 +229,35 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
     for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
     {
       const SphericalCover::Strip& strip = cover.StripAt(k);
-      in.push_back({ strip.Row, strip.PhiBegin, strip.PhiEnd, radiance });
+      in[strip.Row].push_back({ strip.PhiBegin, strip.PhiEnd, radiance });
     }
   }
   this->DirectionalUnshot[shooter] = 0.0;
+  // For every out row, the in rows the table couples it with that hold unshot light.
+  std::vector<std::vector<int>> coupled(static_cast<std::size_t>(rows));
+  for (int rowOut = 0; rowOut < rows; ++rowOut)
+  {
+    for (int rowIn = 0; rowIn < rows; ++rowIn)
+    {
+      if (!in[static_cast<std::size_t>(rowIn)].empty() && table.RowsCoupled(rowOut, rowIn))
+      {
+        coupled[static_cast<std::size_t>(rowOut)].push_back(rowIn);
+      }
+    }
+  }
 
   // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
   glm::dvec3 meanFlux(0.0);
-  for (int rowOut = 0; rowOut < grid.ThetaBins(); ++rowOut)
+  for (int rowOut = 0; rowOut < rows; ++rowOut)
   {
     glm::dvec3 rowFlux(0.0);
-    for (const InStrip& strip : in)
+    for (int rowIn : coupled[static_cast<std::size_t>(rowOut)])
     {
-      rowFlux += static_cast<double>(strip.End - strip.Begin) * table.RowWeight(rowOut, strip.Row) *
-        strip.Radiance;
+      const glm::dvec3 weight = table.RowWeight(rowOut, rowIn);
+      for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
+      {
+        rowFlux += static_cast<double>(strip.End - strip.Begin) * weight * strip.Radiance;
+      }
     }
     meanFlux += grid.CellMeasure(rowOut) * rowFlux;
   }
@@ -257,15 +272,15 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
     {
       const SphericalCover::Strip& out = cover.StripAt(k);
       glm::dvec3 stripFlux(0.0);
-      for (const InStrip& strip : in)
+      for (int rowIn : coupled[out.Row])
       {
-        if (table.RowsCoupled(out.Row, strip.Row))
+        for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
         {
           stripFlux += table.StripPairWeight(
-                         out.Row, out.PhiBegin, out.PhiEnd, strip.Row, strip.Begin, strip.End) *
+                         out.Row, out.PhiBegin, out.PhiEnd, rowIn, strip.Begin, strip.End) *
             strip.Radiance;
-          ++pairs;
         }
+        pairs += in[static_cast<std::size_t>(rowIn)].size();
       }
       flux += grid.CellMeasure(out.Row) * stripFlux;
     }
@@ -312,12 +327,10 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
       }
     }
     this->Incident[item.EntryIndex] += value;
-    if (this->ModelOfPatch[item.Receiver] < 0)
-    {
-      this->Unshot[item.Receiver] +=
-        this->Rho[item.Receiver] * (this->EntryOmega[item.EntryIndex] / Pi) * value;
-    }
-    else
+    // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form.
+    this->Unshot[item.Receiver] +=
+      this->Rho[item.Receiver] * (this->EntryOmega[item.EntryIndex] / Pi) * value;
+    if (this->ModelOfPatch[item.Receiver] >= 0)
     {
       this->UnshotIncident[item.EntryIndex] += value;
       this->DirectionalUnshot[item.Receiver] += this->Cover.PatchArea(item.Receiver) *
@@ -462,7 +475,7 @@ glm::dvec3 LightPropagation::Reflected(std::size_t patch) const
   {
     return this->Rho[patch] * this->Irradiance(patch);
   }
-  glm::dvec3 sum(0.0);
+  glm::dvec3 sum = this->Rho[patch] * this->Irradiance(patch);
   for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
   {
     sum += this->Incident[e] * this->EntryAlbedoMeasure[e];
@@ -505,7 +518,7 @@ glm::dvec3 LightPropagation::ExitantRadianceToward(std::size_t patch,
       }
     }
   }
-  return this->Le[patch] + sum;
+  return this->ExitantRadiance(patch) + sum;
 }
 
 EnergyBalance LightPropagation::Energy() const

@@ -2,8 +2,9 @@
 /**
  * @file LightPropagation.h
  * @brief Progressive propagation of light over the spherical cover (paper §5, §5.1), for
- * diffuse surfaces, with incident radiance stored per region h_ij of every hemisphere H_i
- * (paper §3.1 decision 4) rather than exitant radiance per patch.
+ * the four reflectance kinds of §3.5 (diffuse, ideal mirror, phong, tabulated), with incident
+ * radiance stored per region h_ij of every hemisphere H_i (paper §3.1 decision 4) rather than
+ * exitant radiance per patch. The diffuse case first; non-diffuse patches below.
  *
  * State, per band (RGB):
  *  - E_e, the incident radiance of every entry e = (i, j) of the cover: the radiance P_i
@@ -21,7 +22,7 @@
  * shot and a shot costs O(column size) updates (§5.2: "I can be computed only once and then
  * used for all updates. eta in this case, now becomes O(N)").
  *
- * Derived quantities of patch i (row i of the cover):
+ * Derived quantities of a diffuse patch i (row i of the cover):
  *  - irradiance        E_i = sum_{e in row i} E_e Omega_e                       (W m^-2);
  *  - exitant radiance  L_i = Le_i + rho_i / pi * E_i                            (W m^-2 sr^-1);
  *  - brightness (§5)   B_i = rho_i * E_i + pi * Le_i = pi * L_i                 (W m^-2):
@@ -53,26 +54,37 @@
  * the ideal mirror is the table with k_s on the mirror cell) averaged over the region h_ji
  * through which P_j sees Q_i: the cells in which the direction P_i - P_j of §5.1 lies. The
  * average over the region rather than the value at one direction is what keeps the energy:
- * summed over the receivers it sends exactly what the weight table reflects. Each strip pair
+ * summed over the regions of a closed scene, A_j sum_i Omega(h_ji) I_ji is exactly what the
+ * weight table reflects. Receiver i gets A_i Omega(h_ij) I_ji, the same where the cover is
+ * reciprocal (A_i Omega(h_ij) = A_j Omega(h_ji): the test's one-patch-per-wall box balances to
+ * 1e-7). Point-sampled hemispheres of unequal neighbours are not reciprocal (up to 20-27% per
+ * pair in the split furnace box), and a directional shot, unlike a diffuse one, does not
+ * average that out: the split mixed box balances to ~0.6% only. Scaling each shot's delivered
+ * power to the sent power was tried and rejected: it balances the energy but breaks the white
+ * furnace (21% with mirrors) and the order independence; reciprocity belongs to the cover
+ * (CoverRefinement). Each strip pair
  * (out strip of row j, in strip with unshot radiance) costs O(1) (cumulative sums of the
  * table), so a shot costs O(strips of row j x strips with unshot light + column j), the O(D)
  * per receiver of §5.2 reduced by the strips' run-length structure. Where the cover has h_ij
  * but not h_ji (the two hemispheres are discretised independently), the hemisphere's mean
  * exitant radiance (sum over all cells of Omega_o I(o), over pi) is used; ShotRecord counts
- * those updates. A receiver i updates its entry h_ij as before and then, when non-diffuse,
- * adds the increment to dE_e (else rho_i Omega_e / pi of it to dL_i).
+ * those updates. A receiver i updates its entry h_ij as before, adds rho_i Omega_e / pi of the
+ * increment to dL_i (rho_i = k_d, the Lambertian part, 0 for mirror and tabulated) and, when
+ * non-diffuse, the increment to dE_e. The Lambertian part of a phong surface thus travels in
+ * closed form with dL, and the weight tables hold the rest of the BRDF (ReflectanceWeights).
  * A Lambertian shooter keeps the closed-form O(column) shot above (§5.2), even among
  * non-diffuse patches.
  *
  * For a non-diffuse patch:
  *  - the unshot power is U_j = pi A_j sum_b dL_j + A_j sum_e sum_b dE_e,b a_e,b Omega_e, with
- *    a_e Omega_e = sum_{c in h_je} Omega_c a(c) the albedo-weighted measure of the entry: the
+ *    a_e Omega_e = sum_{c in h_je} Omega_c (a(c) - k_d) the albedo-weighted measure of the
+ *    entry (the table's part of the albedo): the
  *    power its next shot sends out (shooting order and convergence as above, on this U_j);
  *  - ExitantRadiance (the Radiosity output) is its Lambertian part Le + k_d / pi E (k_d = 0 for
  *    mirror and tabulated);
- *  - Brightness is pi Le + sum_e E_e a_e Omega_e, the flux density it reflects and emits into
- *    its whole hemisphere (for a diffuse patch rho E + pi Le as before): the paper's
- *    B = (k_d + k_s) int E cos dw + int eps cos dw with the albedo per direction;
+ *  - Brightness is pi Le + k_d E + sum_e E_e a_e Omega_e, the flux density it reflects and emits
+ * into its whole hemisphere (for a diffuse patch rho E + pi Le as before): the paper's B = (k_d +
+ * k_s) int E cos dw + int eps cos dw with the albedo per direction;
  *  - absorbed power A (E - (Brightness - pi Le));
  *  - ExitantRadianceToward(i, direction) evaluates the BRDF toward any direction through the
  *    weight table at the direction's cell (paper §5.3.1: "E interpolated then the BRDF
@@ -216,7 +228,8 @@ public:
   glm::dvec3 Brightness(std::size_t patch) const;
   /// Exitant radiance of patch i toward a unit direction in its hemisphere's local frame
   /// (HemisphereFrame::ToLocal; z along the normal): Le + sum_e sum_{c in h_ie} w(o, c) E_e,
-  /// o the direction's cell (Le + rho / pi E for a diffuse patch); 0 below the tangent plane.
+  /// o the direction's cell, plus k_d / pi E (Le + rho / pi E for a diffuse patch); 0 below the
+  /// tangent plane.
   glm::dvec3 ExitantRadianceToward(std::size_t patch, const glm::dvec3& localDirection) const;
   /// Whether patch i is Lambertian (shoots in closed form).
   bool IsLambertian(std::size_t patch) const { return this->ModelOfPatch[patch] < 0; }

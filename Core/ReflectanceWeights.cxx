@@ -4,12 +4,18 @@
 #include "HemisphereGrid.h"
 #include "Reflectance.h"
 
+#include <glm/common.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
 namespace sphcover
 {
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+}
 
 ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
   const HemisphereGrid& grid,
@@ -48,8 +54,10 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
   {
     for (int k = 0; k < samples; ++k)
     {
+      // The Lambertian part k_d is not in the table (the propagation shoots it in closed form).
       this->Albedos[r] +=
-        reflectance.Albedo(std::atan2(sinTheta[r * samples + k], cosTheta[r * samples + k])) /
+        (reflectance.Albedo(std::atan2(sinTheta[r * samples + k], cosTheta[r * samples + k])) -
+          reflectance.LambertianReflectance()) /
         static_cast<double>(samples);
     }
   }
@@ -73,6 +81,7 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
   }
   else
   {
+    const glm::dvec3 lambertian = reflectance.LambertianReflectance() / Pi;
     const double dphi = grid.PhiStep();
     const double perSample = 1.0 / std::pow(static_cast<double>(samples), 4);
     std::vector<glm::dvec3> outDirections(static_cast<std::size_t>(samples * samples));
@@ -105,6 +114,7 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
               for (const glm::dvec3& out : outDirections)
               {
                 sum += reflectance.Evaluate(in, out);
+                sum -= lambertian;
               }
             }
           }
@@ -124,6 +134,25 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
           const glm::dvec3 mean = 0.5 * (at(ro, ri, d) + at(ri, ro, back));
           at(ro, ri, d) = mean;
           at(ri, ro, back) = mean;
+        }
+      }
+    }
+    // Weights below Cutoff of the largest are dropped (paper §5.2 (ii): "there may be large
+    // number of grid cells with 0 weights in the reflectance map table"): whole row pairs then
+    // drop out of the shots. They carry a negligible share; the scaling below restores the
+    // albedo exactly.
+    glm::dvec3 largest(0.0);
+    for (const glm::dvec3& v : w)
+    {
+      largest = glm::max(largest, v);
+    }
+    for (glm::dvec3& v : w)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        if (v[b] < Cutoff * largest[b])
+        {
+          v[b] = 0.0;
         }
       }
     }

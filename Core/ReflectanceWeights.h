@@ -6,27 +6,34 @@
  * in tables depending on surface properties") over the cells of a HemisphereGrid.
  *
  * The exitant radiance toward out cell o from incident radiance e_c per in-cell c is
- *     I(o) = sum_c w(o, c) e_c,   w(o, c) ~ f(c, o) Omega_c,
- * Omega_c the cell's projected solid angle. Isotropy makes w depend on the two cells' rows and
- * on the column difference (col_c - col_o) mod PhiBins only, so the table holds
- * ThetaBins^2 x PhiBins values per band instead of cells^2 (32 x 32 x 128 for the default grid:
- * 131072, not 16.8 million).
+ *     I(o) = k_d / pi sum_c Omega_c e_c + sum_c w(o, c) e_c,   w(o, c) ~ (f(c, o) - k_d / pi)
+ * Omega_c, Omega_c the cell's projected solid angle: the table holds the BRDF without its
+ * Lambertian part k_d (Reflectance::LambertianReflectance, the diffuse part of phong), which the
+ * propagation shoots in closed form like a diffuse surface's (paper §5.2). Isotropy makes w depend
+ * on the two cells' rows and on the column difference (col_c - col_o) mod PhiBins only, so the
+ * table holds ThetaBins^2 x PhiBins values per band instead of cells^2 (32 x 32 x 128 for the
+ * default grid: 131072, not 16.8 million).
  *
  * Construction:
  *  - ideal mirror: w(o, c) = k_s for c the mirror cell of o (same row, column + PhiBins/2;
  *    with an odd PhiBins the mirror direction of a cell centre lies on a column boundary and
  *    k_s is split evenly between the two cells);
- *  - otherwise f is averaged over Samples x Samples in-directions of c times Samples x Samples
- *    out-directions of o (strata of equal projected solid angle, as HemisphereGrid's samples),
- *    made symmetric (w(o, c) / Omega_c = w(c, o) / Omega_o, the discrete reciprocity) and then
- *    scaled per row and band, w(o, c) = s_row(o) s_row(c) w0(o, c), so that
- *        sum_c w(o, c) = a(o),  the BRDF's directional albedo (Reflectance::Albedo),
+ *  - otherwise f - k_d / pi is averaged over Samples x Samples in-directions of c times
+ *    Samples x Samples out-directions of o (strata of equal projected solid angle, as
+ *    HemisphereGrid's samples), made symmetric (w(o, c) / Omega_c = w(c, o) / Omega_o, the
+ *    discrete reciprocity), cleared below Cutoff times its largest value (paper §5.2 (ii):
+ *    "there may be large number of grid cells with 0 weights in the reflectance map table";
+ *    row pairs left without weight drop out of the shots: a phong lobe of exponent 40 couples
+ *    a row with the rows within about 37 degrees of it) and then scaled per row and band,
+ *    w(o, c) = s_row(o) s_row(c) w0(o, c), so that
+ *        sum_c w(o, c) = a(o) - k_d,  the BRDF's directional albedo (Reflectance::Albedo)
+ *    without its Lambertian part,
  *    for every out cell (symmetric Sinkhorn scaling). Because the scaled table stays
- *    symmetric, sum_o Omega_o w(o, c) = Omega_c a(c) as well: the light an in-cell receives is
- *    reflected exactly by its albedo over the whole hemisphere. The first identity makes the
- *    white furnace exact (a uniform incident radiance L gives I = a L in every direction), the
- *    second makes the propagation conserve energy. LargestScaling() reports how far the
- *    factors are from 1, i.e. how much the sampled BRDF missed its albedo.
+ *    symmetric, sum_o Omega_o w(o, c) = Omega_c (a(c) - k_d) as well: the light an in-cell receives
+ * is reflected exactly by its albedo over the whole hemisphere. The first identity makes the white
+ * furnace exact (a uniform incident radiance L gives I = a L in every direction), the second makes
+ * the propagation conserve energy. LargestScaling() reports how far the factors are from 1, i.e.
+ * how much the sampled BRDF missed its albedo.
  *
  * Access (the "suitable access data structure" of paper §5.2): for every pair of rows the
  * table keeps the second cumulative sum of w over the column difference, so the sum of w over
@@ -50,6 +57,9 @@ class Reflectance;
 class ReflectanceWeights
 {
 public:
+  /// Weights below this fraction of the table's largest are dropped (see the file comment).
+  static constexpr double Cutoff = 1e-4;
+
   /// samples in [1, 8]: sub-directions per cell and axis (throws std::invalid_argument).
   ReflectanceWeights(const Reflectance& reflectance, const HemisphereGrid& grid, int samples = 2);
 
@@ -71,7 +81,7 @@ public:
   {
     return this->Coupled[static_cast<std::size_t>(rowOut * this->Rows + rowIn)] != 0;
   }
-  /// The albedo every out cell of a row reproduces: sum_c w(o, c).
+  /// The albedo (without k_d) every out cell of a row reproduces: sum_c w(o, c).
   const glm::dvec3& RowAlbedo(int row) const
   {
     return this->Albedos[static_cast<std::size_t>(row)];
