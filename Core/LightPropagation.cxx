@@ -193,7 +193,8 @@ void LightPropagation::Reset()
   this->Incident.assign(this->Cover.EntryCount(), glm::dvec3(0.0));
   // Before any shot every patch holds its own emission, unshot.
   this->Unshot = this->Le;
-  this->UnshotIncident.assign(this->Cover.EntryCount(), glm::dvec3(0.0));
+  // Per-entry unshot incident radiance only when some patch is non-diffuse (24 bytes/entry).
+  this->UnshotIncident.assign(this->Models.empty() ? 0 : this->Cover.EntryCount(), glm::dvec3(0.0));
   this->DirectionalUnshot.assign(this->PatchCount(), 0.0);
   this->Shots.clear();
   this->ElapsedSeconds = 0.0;
@@ -210,14 +211,9 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
   const std::size_t rowEnd = cover.EntryEnd(shooter);
 
   // The in-strips that hold unshot incident radiance, taken out of the shooter's row, by row.
-  struct InStrip
-  {
-    int Begin;
-    int End;
-    glm::dvec3 Radiance;
-  };
   const int rows = grid.ThetaBins();
-  std::vector<std::vector<InStrip>> in(static_cast<std::size_t>(rows));
+  std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
+  in.assign(static_cast<std::size_t>(rows), {});
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
     const glm::dvec3 radiance = this->UnshotIncident[e];
@@ -234,7 +230,8 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
   }
   this->DirectionalUnshot[shooter] = 0.0;
   // For every out row, the in rows the table couples it with that hold unshot light.
-  std::vector<std::vector<int>> coupled(static_cast<std::size_t>(rows));
+  std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
+  coupled.assign(static_cast<std::size_t>(rows), {});
   for (int rowOut = 0; rowOut < rows; ++rowOut)
   {
     for (int rowIn = 0; rowIn < rows; ++rowIn)
@@ -292,6 +289,51 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
   return meanFlux / grid.TotalMeasure();
 }
 
+void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
+{
+  if (!frames.empty() && frames.size() != this->PatchCount())
+  {
+    throw std::invalid_argument("LightPropagation: " + std::to_string(frames.size()) +
+      " frames for " + std::to_string(this->PatchCount()) + " patches");
+  }
+  this->Frames = std::move(frames);
+}
+
+glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
+  std::size_t receiver,
+  const glm::dvec3& mean)
+{
+  if (this->Frames.empty())
+  {
+    ++this->LastMeanFallbacks;
+    return mean;
+  }
+  // The exitant radiance toward the cell of the direction P_i - P_j (paper §5.1) in the
+  // shooter's hemisphere, from the in-strips DirectionalShot kept.
+  const HemisphereFrame& from = this->Frames[shooter];
+  const HemisphereGrid& grid = this->Cover.Grid();
+  const int cell =
+    grid.CellOfLocalDirection(from.ToLocal(this->Frames[receiver].Origin - from.Origin));
+  if (cell < 0)
+  {
+    ++this->LastMeanFallbacks;
+    return mean;
+  }
+  const ReflectanceWeights& table =
+    this->Tables[static_cast<std::size_t>(this->ModelOfPatch[shooter])];
+  const int rowOut = grid.RowOfCell(cell);
+  const int columnOut = grid.ColumnOfCell(cell);
+  glm::dvec3 sum(0.0);
+  for (int rowIn : this->DirectionalCoupled[static_cast<std::size_t>(rowOut)])
+  {
+    for (const InStrip& strip : this->DirectionalIn[static_cast<std::size_t>(rowIn)])
+    {
+      sum += table.StripWeight(rowOut, columnOut, rowIn, strip.Begin, strip.End) * strip.Radiance;
+    }
+  }
+  return sum;
+}
+
 std::size_t LightPropagation::Shoot(std::size_t shooter)
 {
   // The uniform part (a diffuse patch's reflected light, any patch's emission) is the same
@@ -304,6 +346,7 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   const bool directional =
     this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
   std::size_t pairs = 0;
+  this->LastMeanFallbacks = 0;
   const glm::dvec3 mean = directional ? this->DirectionalShot(shooter, pairs) : glm::dvec3(0.0);
   const std::size_t rowBegin = this->Cover.EntryBegin(shooter);
   const std::size_t begin = this->Cover.ColumnBegin(shooter);
@@ -322,7 +365,7 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
       }
       else
       {
-        value += mean;
+        value += this->TowardReceiver(shooter, item.Receiver, mean);
         ++fallbacks;
       }
     }
@@ -338,7 +381,7 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
     }
   }
   this->LastWeightEvaluations = pairs;
-  this->LastMeanFallbacks = fallbacks;
+  this->LastFallbacks = fallbacks;
   return end - begin;
 }
 
@@ -425,6 +468,7 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     record.RelativeChange = record.ShotPower / this->TotalEmitted;
     record.ReceiverUpdates = this->Shoot(shooter);
     record.WeightEvaluations = this->LastWeightEvaluations;
+    record.Fallbacks = this->LastFallbacks;
     record.MeanFallbacks = this->LastMeanFallbacks;
     brightest = this->Brightest(largest);
     record.MaxUnshotRelative = largest / this->TotalEmitted;

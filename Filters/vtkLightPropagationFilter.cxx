@@ -5,6 +5,7 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
+#include "HemisphereGrid.h"
 #include "LightPropagation.h"
 #include "Material.h"
 #include "SphericalCover.h"
@@ -18,6 +19,8 @@
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
 #include <vtkTable.h>
+
+#include <glm/geometric.hpp>
 
 #include <exception>
 
@@ -134,6 +137,24 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   try
   {
     sphcover::LightPropagation propagation(cover, materials);
+    // The points' hemisphere frames (vtkSphericalCoverFilter's Normals and Tangents), for the
+    // receivers a non-diffuse point's hemisphere does not hold (LightPropagation::SetFrames).
+    vtkDataArray* normals = inputPoints->GetArray(names::Normals);
+    vtkDataArray* tangents = inputPoints->GetArray(names::Tangents);
+    if (normals && tangents && normals->GetNumberOfComponents() == 3 &&
+      tangents->GetNumberOfComponents() == 3)
+    {
+      std::vector<sphcover::HemisphereFrame> frames(static_cast<size_t>(count));
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        sphcover::HemisphereFrame& frame = frames[static_cast<size_t>(i)];
+        input->GetPoint(i, &frame.Origin[0]);
+        normals->GetTuple(i, &frame.Normal[0]);
+        tangents->GetTuple(i, &frame.Tangent[0]);
+        frame.Bitangent = glm::cross(frame.Normal, frame.Tangent);
+      }
+      propagation.SetFrames(std::move(frames));
+    }
     bool aborted = false;
     propagation.Run(settings,
       [this, &aborted](double fraction)

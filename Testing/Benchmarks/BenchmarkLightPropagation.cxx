@@ -79,29 +79,18 @@ void Converge(const std::string& name, double tolerance, const ParallelFor& para
 
   start = Clock::now();
   LightPropagation propagation(cover, LightPropagation::MaterialsOfPatches(scene, patches));
-  const double setUpSeconds = Seconds(start);
-  PropagationSettings settings;
-  settings.ConvergenceTolerance = tolerance;
-  const bool converged = propagation.Run(settings);
-  const std::vector<ShotRecord>& history = propagation.History();
-  const double seconds = history.empty() ? 0.0 : history.back().Seconds;
-  std::size_t updates = 0;
-  std::size_t pairs = 0;
-  std::size_t directionalShots = 0;
-  std::size_t fallbacks = 0;
-  std::size_t nonDiffuse = 0;
-  for (const ShotRecord& record : history)
+  std::vector<HemisphereFrame> frames;
+  for (const Patch& patch : patches)
   {
-    updates += record.ReceiverUpdates;
-    pairs += record.WeightEvaluations;
-    directionalShots += record.WeightEvaluations > 0 ? 1 : 0;
-    fallbacks += record.MeanFallbacks;
+    frames.push_back(HemisphereFrame::OfPatch(patch));
   }
+  propagation.SetFrames(frames);
+  const double setUpSeconds = Seconds(start);
+  std::size_t nonDiffuse = 0;
   for (std::size_t i = 0; i < patches.size(); ++i)
   {
     nonDiffuse += propagation.IsLambertian(i) ? 0 : 1;
   }
-  const EnergyBalance energy = propagation.Energy();
   std::printf("%s: %zu patches (%zu non-diffuse), %zu entries, grid %d x %d; cover %.2f s; "
               "weight tables %.3f s\n",
     name.c_str(),
@@ -112,9 +101,44 @@ void Converge(const std::string& name, double tolerance, const ParallelFor& para
     options.PhiBins,
     coverSeconds,
     setUpSeconds);
-  std::printf("  %s after %zu shots (tolerance %g): %.3f s, %.3g entry updates/s, %.1f us/shot; "
-              "%zu directional shots, %zu strip pairs (%.3g pairs/s), %zu mean fallbacks; energy "
-              "imbalance %.2e\n",
+  PropagationSettings settings;
+  settings.ConvergenceTolerance = tolerance;
+  int reported = 0;
+  const bool converged = propagation.Run(settings,
+    [&](double fraction)
+    {
+      // Progress on long runs: every tenth of the unshot energy gone.
+      if (fraction * 10 >= reported + 1)
+      {
+        reported = static_cast<int>(fraction * 10);
+        std::printf("  ... %d%% of the unshot energy shot, %zu shots, %.1f s\n",
+          10 * reported,
+          propagation.History().size(),
+          propagation.History().back().Seconds);
+      }
+      return true;
+    });
+  const std::vector<ShotRecord>& history = propagation.History();
+  const double seconds = history.empty() ? 0.0 : history.back().Seconds;
+  std::size_t updates = 0;
+  std::size_t pairs = 0;
+  std::size_t directionalShots = 0;
+  std::size_t fallbacks = 0;
+  std::size_t meanFallbacks = 0;
+  for (const ShotRecord& record : history)
+  {
+    updates += record.ReceiverUpdates;
+    pairs += record.WeightEvaluations;
+    directionalShots += record.WeightEvaluations > 0 ? 1 : 0;
+    fallbacks += record.Fallbacks;
+    meanFallbacks += record.MeanFallbacks;
+  }
+  const EnergyBalance energy = propagation.Energy();
+  std::printf(
+    "  %s after %zu shots (tolerance %g): %.3f s, %.3g entry updates/s, %.1f us/shot; "
+    "%zu directional shots, %zu strip pairs (%.3g pairs/s), %zu updates without h_ji (%zu "
+    "by the mean); energy "
+    "imbalance %.2e\n",
     converged ? "converged" : "NOT converged",
     history.size(),
     tolerance,
@@ -125,6 +149,7 @@ void Converge(const std::string& name, double tolerance, const ParallelFor& para
     pairs,
     seconds > 0 ? static_cast<double>(pairs) / seconds : 0.0,
     fallbacks,
+    meanFallbacks,
     energy.RelativeImbalance);
 }
 
