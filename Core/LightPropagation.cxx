@@ -24,21 +24,25 @@ double BandSum(const glm::dvec3& v)
   return v.x + v.y + v.z;
 }
 
+/// The Lambertian reflectance k_d of every material (0 for mirror and tabulated).
 std::vector<glm::dvec3> ReflectanceOf(const std::vector<Material>& materials)
 {
   std::vector<glm::dvec3> rho;
   rho.reserve(materials.size());
   for (const Material& material : materials)
   {
-    if (material.Type == MaterialType::Mirror || material.Type == MaterialType::Tabulated)
-    {
-      throw std::invalid_argument("LightPropagation: material '" + material.Name + "' is " +
-        MaterialTypeName(material.Type) + "; only diffuse (and phong, as diffuse) is propagated");
-    }
-    // Phong: its diffuse part only (see the header's limitations).
-    rho.push_back(material.Diffuse);
+    const bool lambertianPart =
+      material.Type == MaterialType::Diffuse || material.Type == MaterialType::Phong;
+    rho.push_back(lambertianPart ? material.Diffuse : glm::dvec3(0.0));
   }
   return rho;
+}
+
+/// Materials that give the same BRDF share a model and a weight table.
+bool SameReflectance(const Material& a, const Material& b)
+{
+  return a.Type == b.Type && a.Diffuse == b.Diffuse && a.Specular == b.Specular &&
+    a.PhongExponent == b.PhongExponent && a.TableFile == b.TableFile && a.Table == b.Table;
 }
 
 std::vector<glm::dvec3> EmissionOf(const std::vector<Material>& materials)
@@ -95,6 +99,7 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
   {
     this->TotalEmitted += Pi * cover.PatchArea(i) * BandSum(this->Le[i]);
   }
+  this->ModelOfPatch.assign(n, -1);
   this->Reset();
 }
 
@@ -102,6 +107,72 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
   const std::vector<Material>& materialOfPatch)
   : LightPropagation(cover, ReflectanceOf(materialOfPatch), EmissionOf(materialOfPatch))
 {
+  this->SetUpModels(materialOfPatch);
+}
+
+void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
+{
+  std::vector<const Material*> distinct;
+  for (std::size_t i = 0; i < materialOfPatch.size(); ++i)
+  {
+    const Material& material = materialOfPatch[i];
+    if (material.Type == MaterialType::Diffuse)
+    {
+      continue;
+    }
+    std::size_t k = 0;
+    while (k < distinct.size() && !SameReflectance(*distinct[k], material))
+    {
+      ++k;
+    }
+    if (k == distinct.size())
+    {
+      distinct.push_back(&material);
+      this->Models.emplace_back(material);
+      this->Tables.emplace_back(this->Models.back(), this->Cover.Grid());
+    }
+    this->ModelOfPatch[i] = static_cast<int>(k);
+  }
+  if (this->Models.empty())
+  {
+    return;
+  }
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  this->Transposed.assign(cover.EntryCount(), -1);
+  this->EntryAlbedoMeasure.assign(cover.EntryCount(), glm::dvec3(0.0));
+  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  {
+    for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+    {
+      this->Transposed[e] = cover.FindEntry(cover.EntryAt(e).Source, i);
+      if (this->ModelOfPatch[i] < 0)
+      {
+        continue;
+      }
+      const ReflectanceWeights& table =
+        this->Tables[static_cast<std::size_t>(this->ModelOfPatch[i])];
+      for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
+      {
+        const SphericalCover::Strip& strip = cover.StripAt(k);
+        this->EntryAlbedoMeasure[e] += static_cast<double>(strip.PhiEnd - strip.PhiBegin) *
+          grid.CellMeasure(strip.Row) * table.RowAlbedo(strip.Row);
+      }
+    }
+  }
+  this->Reset();
+}
+
+const Reflectance* LightPropagation::ReflectanceModel(std::size_t patch) const
+{
+  const int k = this->ModelOfPatch[patch];
+  return k < 0 ? nullptr : &this->Models[static_cast<std::size_t>(k)];
+}
+
+const ReflectanceWeights* LightPropagation::Weights(std::size_t patch) const
+{
+  const int k = this->ModelOfPatch[patch];
+  return k < 0 ? nullptr : &this->Tables[static_cast<std::size_t>(k)];
 }
 
 std::vector<Material> LightPropagation::MaterialsOfPatches(const Scene& scene,
@@ -122,33 +193,202 @@ void LightPropagation::Reset()
   this->Incident.assign(this->Cover.EntryCount(), glm::dvec3(0.0));
   // Before any shot every patch holds its own emission, unshot.
   this->Unshot = this->Le;
+  // Per-entry unshot incident radiance only when some patch is non-diffuse (24 bytes/entry).
+  this->UnshotIncident.assign(this->Models.empty() ? 0 : this->Cover.EntryCount(), glm::dvec3(0.0));
+  this->DirectionalUnshot.assign(this->PatchCount(), 0.0);
   this->Shots.clear();
   this->ElapsedSeconds = 0.0;
   this->NextInOrder = 0;
 }
 
+glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& pairs)
+{
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  const ReflectanceWeights& table =
+    this->Tables[static_cast<std::size_t>(this->ModelOfPatch[shooter])];
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
+
+  // The in-strips that hold unshot incident radiance, taken out of the shooter's row, by row.
+  const int rows = grid.ThetaBins();
+  std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
+  in.assign(static_cast<std::size_t>(rows), {});
+  for (std::size_t e = rowBegin; e < rowEnd; ++e)
+  {
+    const glm::dvec3 radiance = this->UnshotIncident[e];
+    if (radiance == glm::dvec3(0.0))
+    {
+      continue;
+    }
+    this->UnshotIncident[e] = glm::dvec3(0.0);
+    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
+    {
+      const SphericalCover::Strip& strip = cover.StripAt(k);
+      in[strip.Row].push_back({ strip.PhiBegin, strip.PhiEnd, radiance });
+    }
+  }
+  this->DirectionalUnshot[shooter] = 0.0;
+  // For every out row, the in rows the table couples it with that hold unshot light.
+  std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
+  coupled.assign(static_cast<std::size_t>(rows), {});
+  for (int rowOut = 0; rowOut < rows; ++rowOut)
+  {
+    for (int rowIn = 0; rowIn < rows; ++rowIn)
+    {
+      if (!in[static_cast<std::size_t>(rowIn)].empty() && table.RowsCoupled(rowOut, rowIn))
+      {
+        coupled[static_cast<std::size_t>(rowOut)].push_back(rowIn);
+      }
+    }
+  }
+
+  // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
+  glm::dvec3 meanFlux(0.0);
+  for (int rowOut = 0; rowOut < rows; ++rowOut)
+  {
+    glm::dvec3 rowFlux(0.0);
+    for (int rowIn : coupled[static_cast<std::size_t>(rowOut)])
+    {
+      const glm::dvec3 weight = table.RowWeight(rowOut, rowIn);
+      for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
+      {
+        rowFlux += static_cast<double>(strip.End - strip.Begin) * weight * strip.Radiance;
+      }
+    }
+    meanFlux += grid.CellMeasure(rowOut) * rowFlux;
+  }
+
+  // The exitant radiance averaged over every region h_ji of the shooter's row.
+  this->DirectionalOut.assign(rowEnd - rowBegin, glm::dvec3(0.0));
+  pairs = 0;
+  for (std::size_t e = rowBegin; e < rowEnd; ++e)
+  {
+    glm::dvec3 flux(0.0);
+    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
+    {
+      const SphericalCover::Strip& out = cover.StripAt(k);
+      glm::dvec3 stripFlux(0.0);
+      for (int rowIn : coupled[out.Row])
+      {
+        for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
+        {
+          stripFlux += table.StripPairWeight(
+                         out.Row, out.PhiBegin, out.PhiEnd, rowIn, strip.Begin, strip.End) *
+            strip.Radiance;
+        }
+        pairs += in[static_cast<std::size_t>(rowIn)].size();
+      }
+      flux += grid.CellMeasure(out.Row) * stripFlux;
+    }
+    if (this->EntryOmega[e] > 0.0)
+    {
+      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
+    }
+  }
+  return meanFlux / grid.TotalMeasure();
+}
+
+void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
+{
+  if (!frames.empty() && frames.size() != this->PatchCount())
+  {
+    throw std::invalid_argument("LightPropagation: " + std::to_string(frames.size()) +
+      " frames for " + std::to_string(this->PatchCount()) + " patches");
+  }
+  this->Frames = std::move(frames);
+}
+
+glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
+  std::size_t receiver,
+  const glm::dvec3& mean)
+{
+  if (this->Frames.empty())
+  {
+    ++this->LastMeanFallbacks;
+    return mean;
+  }
+  // The exitant radiance toward the cell of the direction P_i - P_j (paper §5.1) in the
+  // shooter's hemisphere, from the in-strips DirectionalShot kept.
+  const HemisphereFrame& from = this->Frames[shooter];
+  const HemisphereGrid& grid = this->Cover.Grid();
+  const int cell =
+    grid.CellOfLocalDirection(from.ToLocal(this->Frames[receiver].Origin - from.Origin));
+  if (cell < 0)
+  {
+    ++this->LastMeanFallbacks;
+    return mean;
+  }
+  const ReflectanceWeights& table =
+    this->Tables[static_cast<std::size_t>(this->ModelOfPatch[shooter])];
+  const int rowOut = grid.RowOfCell(cell);
+  const int columnOut = grid.ColumnOfCell(cell);
+  glm::dvec3 sum(0.0);
+  for (int rowIn : this->DirectionalCoupled[static_cast<std::size_t>(rowOut)])
+  {
+    for (const InStrip& strip : this->DirectionalIn[static_cast<std::size_t>(rowIn)])
+    {
+      sum += table.StripWeight(rowOut, columnOut, rowIn, strip.Begin, strip.End) * strip.Radiance;
+    }
+  }
+  return sum;
+}
+
 std::size_t LightPropagation::Shoot(std::size_t shooter)
 {
-  // Diffuse: the radiance leaving P_shooter is the same toward every receiver (§5.2), so it is
-  // evaluated once. It is taken out before the column is walked, because the shooter may be in
-  // its own column (a concave patch sees itself, h_ii) and then receives part of it back.
+  // The uniform part (a diffuse patch's reflected light, any patch's emission) is the same
+  // toward every receiver (§5.2), so it is evaluated once. It is taken out before the column is
+  // walked, because the shooter may be in its own column (a concave patch sees itself, h_ii)
+  // and then receives part of it back.
   const glm::dvec3 increment = this->Unshot[shooter];
   this->Unshot[shooter] = glm::dvec3(0.0);
+  // The directional part of a non-diffuse shooter (see the file comment).
+  const bool directional =
+    this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
+  std::size_t pairs = 0;
+  this->LastMeanFallbacks = 0;
+  const glm::dvec3 mean = directional ? this->DirectionalShot(shooter, pairs) : glm::dvec3(0.0);
+  const std::size_t rowBegin = this->Cover.EntryBegin(shooter);
   const std::size_t begin = this->Cover.ColumnBegin(shooter);
   const std::size_t end = this->Cover.ColumnEnd(shooter);
+  std::size_t fallbacks = 0;
   for (std::size_t k = begin; k < end; ++k)
   {
     const SphericalCover::ColumnEntry& item = this->Cover.ColumnAt(k);
-    this->Incident[item.EntryIndex] += increment;
+    glm::dvec3 value = increment;
+    if (directional)
+    {
+      const int64_t back = this->Transposed[item.EntryIndex];
+      if (back >= 0)
+      {
+        value += this->DirectionalOut[static_cast<std::size_t>(back) - rowBegin];
+      }
+      else
+      {
+        value += this->TowardReceiver(shooter, item.Receiver, mean);
+        ++fallbacks;
+      }
+    }
+    this->Incident[item.EntryIndex] += value;
+    // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form.
     this->Unshot[item.Receiver] +=
-      this->Rho[item.Receiver] * (this->EntryOmega[item.EntryIndex] / Pi) * increment;
+      this->Rho[item.Receiver] * (this->EntryOmega[item.EntryIndex] / Pi) * value;
+    if (this->ModelOfPatch[item.Receiver] >= 0)
+    {
+      this->UnshotIncident[item.EntryIndex] += value;
+      this->DirectionalUnshot[item.Receiver] += this->Cover.PatchArea(item.Receiver) *
+        BandSum(value * this->EntryAlbedoMeasure[item.EntryIndex]);
+    }
   }
+  this->LastWeightEvaluations = pairs;
+  this->LastFallbacks = fallbacks;
   return end - begin;
 }
 
 double LightPropagation::UnshotPower(std::size_t patch) const
 {
-  return Pi * this->Cover.PatchArea(patch) * BandSum(this->Unshot[patch]);
+  return Pi * this->Cover.PatchArea(patch) * BandSum(this->Unshot[patch]) +
+    this->DirectionalUnshot[patch];
 }
 
 double LightPropagation::UnshotEnergy() const
@@ -227,6 +467,9 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     record.ShotPower = this->UnshotPower(shooter);
     record.RelativeChange = record.ShotPower / this->TotalEmitted;
     record.ReceiverUpdates = this->Shoot(shooter);
+    record.WeightEvaluations = this->LastWeightEvaluations;
+    record.Fallbacks = this->LastFallbacks;
+    record.MeanFallbacks = this->LastMeanFallbacks;
     brightest = this->Brightest(largest);
     record.MaxUnshotRelative = largest / this->TotalEmitted;
     record.UnshotEnergy = this->UnshotEnergy();
@@ -270,9 +513,56 @@ glm::dvec3 LightPropagation::ExitantRadiance(std::size_t patch) const
   return this->Le[patch] + this->Rho[patch] / Pi * this->Irradiance(patch);
 }
 
+glm::dvec3 LightPropagation::Reflected(std::size_t patch) const
+{
+  if (this->ModelOfPatch[patch] < 0)
+  {
+    return this->Rho[patch] * this->Irradiance(patch);
+  }
+  glm::dvec3 sum = this->Rho[patch] * this->Irradiance(patch);
+  for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
+  {
+    sum += this->Incident[e] * this->EntryAlbedoMeasure[e];
+  }
+  return sum;
+}
+
 glm::dvec3 LightPropagation::Brightness(std::size_t patch) const
 {
-  return this->Rho[patch] * this->Irradiance(patch) + Pi * this->Le[patch];
+  return this->Reflected(patch) + Pi * this->Le[patch];
+}
+
+glm::dvec3 LightPropagation::ExitantRadianceToward(std::size_t patch,
+  const glm::dvec3& localDirection) const
+{
+  const HemisphereGrid& grid = this->Cover.Grid();
+  const int cell = grid.CellOfLocalDirection(localDirection);
+  if (cell < 0 || !(localDirection.z > 0.0))
+  {
+    return glm::dvec3(0.0);
+  }
+  if (this->ModelOfPatch[patch] < 0)
+  {
+    return this->ExitantRadiance(patch);
+  }
+  const ReflectanceWeights& table =
+    this->Tables[static_cast<std::size_t>(this->ModelOfPatch[patch])];
+  const int rowOut = grid.RowOfCell(cell);
+  const int columnOut = grid.ColumnOfCell(cell);
+  glm::dvec3 sum(0.0);
+  for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
+  {
+    for (std::size_t k = this->Cover.StripBegin(e); k < this->Cover.StripEnd(e); ++k)
+    {
+      const SphericalCover::Strip& strip = this->Cover.StripAt(k);
+      if (table.RowsCoupled(rowOut, strip.Row))
+      {
+        sum += table.StripWeight(rowOut, columnOut, strip.Row, strip.PhiBegin, strip.PhiEnd) *
+          this->Incident[e];
+      }
+    }
+  }
+  return this->ExitantRadiance(patch) + sum;
 }
 
 EnergyBalance LightPropagation::Energy() const
@@ -282,8 +572,15 @@ EnergyBalance LightPropagation::Energy() const
   {
     const double area = this->Cover.PatchArea(i);
     balance.Emitted += Pi * area * this->Le[i];
-    balance.Absorbed += area * (glm::dvec3(1.0) - this->Rho[i]) * this->Irradiance(i);
+    balance.Absorbed += area * (this->Irradiance(i) - this->Reflected(i));
     balance.Unshot += Pi * area * this->Unshot[i];
+    if (this->ModelOfPatch[i] >= 0)
+    {
+      for (std::size_t e = this->Cover.EntryBegin(i); e < this->Cover.EntryEnd(i); ++e)
+      {
+        balance.Unshot += area * this->UnshotIncident[e] * this->EntryAlbedoMeasure[e];
+      }
+    }
   }
   for (int b = 0; b < 3; ++b)
   {

@@ -2,8 +2,9 @@
 /**
  * @file LightPropagation.h
  * @brief Progressive propagation of light over the spherical cover (paper §5, §5.1), for
- * diffuse surfaces, with incident radiance stored per region h_ij of every hemisphere H_i
- * (paper §3.1 decision 4) rather than exitant radiance per patch.
+ * the four reflectance kinds of §3.5 (diffuse, ideal mirror, phong, tabulated), with incident
+ * radiance stored per region h_ij of every hemisphere H_i (paper §3.1 decision 4) rather than
+ * exitant radiance per patch. The diffuse case first; non-diffuse patches below.
  *
  * State, per band (RGB):
  *  - E_e, the incident radiance of every entry e = (i, j) of the cover: the radiance P_i
@@ -21,7 +22,7 @@
  * shot and a shot costs O(column size) updates (§5.2: "I can be computed only once and then
  * used for all updates. eta in this case, now becomes O(N)").
  *
- * Derived quantities of patch i (row i of the cover):
+ * Derived quantities of a diffuse patch i (row i of the cover):
  *  - irradiance        E_i = sum_{e in row i} E_e Omega_e                       (W m^-2);
  *  - exitant radiance  L_i = Le_i + rho_i / pi * E_i                            (W m^-2 sr^-1);
  *  - brightness (§5)   B_i = rho_i * E_i + pi * Le_i = pi * L_i                 (W m^-2):
@@ -42,25 +43,72 @@
  * MaximumShots shots. Everything runs in the calling thread in a fixed order: the results are
  * deterministic.
  *
- * Limitations of this increment:
- *  - Diffuse reflection only. A Phong material is propagated as diffuse with its Diffuse
- *    reflectance (its specular lobe is dropped: that light is lost, not redistributed); mirror
- *    and tabulated materials are rejected (std::invalid_argument). The per-entry storage of E
- *    is already what the directional reflectances of §3.5 need; their shots evaluate I toward
- *    each receiver instead of once.
- *  - The shooter is found by a scan of the N patches per shot (O(N), the same order as a
- *    worst-case column), not by a priority queue.
- *  - Two-sided surfaces are handled as the cover handles them (one hemisphere per point).
+ * Non-diffuse reflection (paper §3.5, §5.1, §5.2). A patch whose material is not Lambertian
+ * (mirror, phong, tabulated; see Reflectance) cannot turn what it receives into one exitant
+ * radiance: its exitant radiance depends on the direction. Such a patch keeps, instead of a
+ * reflected dL, the unshot incident radiance dE_e of every entry e of its row (what arrived
+ * through h_ie since it last shot); its emission stays in dL (emission is uniform). When it
+ * shoots, its exitant radiance toward receiver i is
+ *     I_ji = dL_j + (1 / Omega(h_ji)) sum_{o in h_ji} Omega_o sum_c w(o, c) dE_c,
+ * the weight table w(out, in-cell) of ReflectanceWeights (paper §3.5 "general reflectance";
+ * the ideal mirror is the table with k_s on the mirror cell) averaged over the region h_ji
+ * through which P_j sees Q_i: the cells in which the direction P_i - P_j of §5.1 lies. The
+ * average over the region rather than the value at one direction is what keeps the energy:
+ * summed over the regions of a closed scene, A_j sum_i Omega(h_ji) I_ji is exactly what the
+ * weight table reflects. Receiver i gets A_i Omega(h_ij) I_ji, the same where the cover is
+ * reciprocal (A_i Omega(h_ij) = A_j Omega(h_ji): the test's one-patch-per-wall box balances to
+ * 1e-7). Point-sampled hemispheres of unequal neighbours are not reciprocal (up to 20-27% per
+ * pair in the split furnace box), and a directional shot, unlike a diffuse one, does not
+ * average that out: the split mixed box balances to ~0.6% only. Scaling each shot's delivered
+ * power to the sent power was tried and rejected: it balances the energy but breaks the white
+ * furnace (21% with mirrors) and the order independence; reciprocity belongs to the cover
+ * (CoverRefinement). Each strip pair
+ * (out strip of row j, in strip with unshot radiance) costs O(1) (cumulative sums of the
+ * table), so a shot costs O(strips of row j x strips with unshot light + column j), the O(D)
+ * per receiver of §5.2 reduced by the strips' run-length structure. Where the cover has h_ij
+ * but not h_ji (the two hemispheres are discretised independently: a small patch wins no cell
+ * of a far shooter's hemisphere; 16% of the updates in the teapot room), the exitant radiance
+ * toward the cell of the direction P_i - P_j is used when the frames of the characteristic
+ * points are known (SetFrames), else the hemisphere's mean exitant radiance (sum over all
+ * cells of Omega_o I(o), over pi); ShotRecord counts those updates. A receiver i updates its entry
+ * h_ij as before, adds rho_i Omega_e / pi of the increment to dL_i (rho_i = k_d, the Lambertian
+ * part, 0 for mirror and tabulated) and, when non-diffuse, the increment to dE_e. The Lambertian
+ * part of a phong surface thus travels in closed form with dL, and the weight tables hold the rest
+ * of the BRDF (ReflectanceWeights). A Lambertian shooter keeps the closed-form O(column) shot above
+ * (§5.2), even among non-diffuse patches.
+ *
+ * For a non-diffuse patch:
+ *  - the unshot power is U_j = pi A_j sum_b dL_j + A_j sum_e sum_b dE_e,b a_e,b Omega_e, with
+ *    a_e Omega_e = sum_{c in h_je} Omega_c (a(c) - k_d) the albedo-weighted measure of the
+ *    entry (the table's part of the albedo): the
+ *    power its next shot sends out (shooting order and convergence as above, on this U_j);
+ *  - ExitantRadiance (the Radiosity output) is its Lambertian part Le + k_d / pi E (k_d = 0 for
+ *    mirror and tabulated);
+ *  - Brightness is pi Le + k_d E + sum_e E_e a_e Omega_e, the flux density it reflects and emits
+ * into its whole hemisphere (for a diffuse patch rho E + pi Le as before): the paper's B = (k_d +
+ * k_s) int E cos dw + int eps cos dw with the albedo per direction;
+ *  - absorbed power A (E - (Brightness - pi Le));
+ *  - ExitantRadianceToward(i, direction) evaluates the BRDF toward any direction through the
+ *    weight table at the direction's cell (paper §5.3.1: "E interpolated then the BRDF
+ *    evaluated toward the eye").
+ *
+ * Limitations: the shooter is found by a scan of the N patches per shot (O(N), the same order
+ * as a worst-case column), not by a priority queue. Two-sided surfaces are handled as the
+ * cover handles them (one hemisphere per point).
  */
 #ifndef SPHCOVER_LIGHTPROPAGATION_H
 #define SPHCOVER_LIGHTPROPAGATION_H
 
+#include "HemisphereGrid.h"
 #include "Material.h"
 #include "ParallelFor.h"
+#include "Reflectance.h"
+#include "ReflectanceWeights.h"
 
 #include <glm/vec3.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace sphcover
@@ -104,12 +152,21 @@ struct ShotRecord
   double UnshotEnergy = 0.0;
   /// Entries updated by the shot (the size of the shooter's column, §5.2).
   std::size_t ReceiverUpdates = 0;
+  /// Strip pairs (out strip, in strip) the weight table was summed over (0 for a Lambertian
+  /// shooter): the O(D)-like part of a non-diffuse shot.
+  std::size_t WeightEvaluations = 0;
+  /// Receivers i served without the region h_ji, which is null (see the file comment).
+  std::size_t Fallbacks = 0;
+  /// Of those, the ones served by the mean exitant radiance (no frames, or the direction
+  /// below the shooter's tangent plane).
+  std::size_t MeanFallbacks = 0;
   /// Wall-clock seconds of propagation since construction (or Reset), at the end of the shot.
   double Seconds = 0.0;
 };
 
-/// Power per band, W: emitted sum_i pi A_i Le_i, absorbed sum_i A_i (1 - rho_i) E_i, and what
-/// is still unshot sum_i pi A_i dL_i.
+/// Power per band, W: emitted sum_i pi A_i Le_i, absorbed sum_i A_i (E_i - reflected_i)
+/// (reflected_i = rho_i E_i for a diffuse patch, see the file comment otherwise), and what is
+/// still unshot (U_j per band).
 struct EnergyBalance
 {
   glm::dvec3 Emitted{ 0.0 };
@@ -134,13 +191,22 @@ public:
   LightPropagation(const SphericalCover& cover,
     std::vector<glm::dvec3> reflectance,
     std::vector<glm::dvec3> emission);
-  /// As above from one material per patch (see MaterialsOfPatches); throws
-  /// std::invalid_argument for mirror and tabulated materials (see the file comment).
+  /// As above from one material per patch (see MaterialsOfPatches), of any kind: patches with
+  /// equal materials share one Reflectance and one weight table. Throws std::invalid_argument
+  /// for values out of range and InputError when a tabulated material's table cannot be read.
   LightPropagation(const SphericalCover& cover, const std::vector<Material>& materialOfPatch);
 
   /// The material of every patch: Scene::Materials of its surface.
   static std::vector<Material> MaterialsOfPatches(const Scene& scene,
     const std::vector<Patch>& patches);
+
+  /**
+   * The hemisphere frame of every characteristic point (HemisphereFrame::OfPatch; the cover's
+   * grid is laid out in these frames), or none. With them a non-diffuse shooter serves a
+   * receiver whose region h_ji is null by the direction P_i - P_j (see the file comment).
+   * Throws std::invalid_argument for a size other than 0 or PatchCount().
+   */
+  void SetFrames(std::vector<HemisphereFrame> frames);
 
   /// Back to the start: E = 0, unshot radiance = emission, no history.
   void Reset();
@@ -168,10 +234,29 @@ public:
   const std::vector<glm::dvec3>& IncidentRadiances() const { return this->Incident; }
   /// sum over row i of E_e Omega_e (W m^-2 per band).
   glm::dvec3 Irradiance(std::size_t patch) const;
-  /// Le_i + rho_i / pi * Irradiance(i).
+  /// Le_i + k_d / pi * Irradiance(i): the Lambertian exitant radiance (all of it for a diffuse
+  /// patch; the diffuse part of phong; Le for mirror and tabulated).
   glm::dvec3 ExitantRadiance(std::size_t patch) const;
-  /// rho_i * Irradiance(i) + pi * Le_i (paper §5; see the file comment).
+  /// Exitant flux density: rho_i * Irradiance(i) + pi * Le_i for a diffuse patch, reflected
+  /// into the whole hemisphere + pi Le otherwise (paper §5; see the file comment).
   glm::dvec3 Brightness(std::size_t patch) const;
+  /// Exitant radiance of patch i toward a unit direction in its hemisphere's local frame
+  /// (HemisphereFrame::ToLocal; z along the normal): Le + sum_e sum_{c in h_ie} w(o, c) E_e,
+  /// o the direction's cell, plus k_d / pi E (Le + rho / pi E for a diffuse patch); 0 below the
+  /// tangent plane.
+  glm::dvec3 ExitantRadianceToward(std::size_t patch, const glm::dvec3& localDirection) const;
+  /// Whether patch i is Lambertian (shoots in closed form).
+  bool IsLambertian(std::size_t patch) const { return this->ModelOfPatch[patch] < 0; }
+  /// The BRDF of a non-diffuse patch (nullptr for a Lambertian one, whose BRDF is
+  /// Reflectance(patch) / pi).
+  const sphcover::Reflectance* ReflectanceModel(std::size_t patch) const;
+  /// The weight table of a non-diffuse patch (nullptr for a Lambertian one).
+  const ReflectanceWeights* Weights(std::size_t patch) const;
+  /// Unshot incident radiance dE_e of entry e (non-diffuse receivers only; 0 otherwise).
+  glm::dvec3 UnshotIncidentRadiance(std::size_t entry) const
+  {
+    return this->UnshotIncident.empty() ? glm::dvec3(0.0) : this->UnshotIncident[entry];
+  }
   const glm::dvec3& UnshotRadiance(std::size_t patch) const { return this->Unshot[patch]; }
   /// U_j of the file comment.
   double UnshotPower(std::size_t patch) const;
@@ -181,12 +266,23 @@ public:
   double EmittedPower() const { return this->TotalEmitted; }
   EnergyBalance Energy() const;
   const std::vector<ShotRecord>& History() const { return this->Shots; }
+  /// The Lambertian reflectance k_d of patch i (rho for diffuse, the diffuse part of phong, 0
+  /// for mirror and tabulated).
   const glm::dvec3& Reflectance(std::size_t patch) const { return this->Rho[patch]; }
   const glm::dvec3& Emission(std::size_t patch) const { return this->Le[patch]; }
 
 private:
   /// The patch of largest unshot power (lowest index on ties), and that power.
   std::size_t Brightest(double& power) const;
+  /// Sets up the non-diffuse machinery (models, weight tables, transposed entries).
+  void SetUpModels(const std::vector<Material>& materialOfPatch);
+  /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
+  /// row j, into DirectionalOut; returns the mean over the hemisphere and counts strip pairs.
+  glm::dvec3 DirectionalShot(std::size_t shooter, std::size_t& pairs);
+  /// The exitant radiance of the current directional shot toward a receiver without h_ji.
+  glm::dvec3 TowardReceiver(std::size_t shooter, std::size_t receiver, const glm::dvec3& mean);
+  /// sum_e E_e a_e Omega_e over row i (non-diffuse) or rho_i E_i (diffuse).
+  glm::dvec3 Reflected(std::size_t patch) const;
 
   const SphericalCover& Cover;
   std::vector<glm::dvec3> Rho;
@@ -200,6 +296,36 @@ private:
   double ElapsedSeconds = 0.0;
   /// Next patch FixedOrder considers.
   std::size_t NextInOrder = 0;
+
+  // Non-diffuse patches (see the file comment).
+  /// Index into Models / Tables, -1 for a Lambertian patch.
+  std::vector<int> ModelOfPatch;
+  std::vector<sphcover::Reflectance> Models;
+  std::vector<ReflectanceWeights> Tables;
+  /// For entry e = (i, j): the entry (j, i), or -1 when h_ji is null (only when some patch
+  /// is non-diffuse).
+  std::vector<int64_t> Transposed;
+  /// a_e Omega_e per band for entries of non-diffuse rows (0 otherwise).
+  std::vector<glm::dvec3> EntryAlbedoMeasure;
+  std::vector<glm::dvec3> UnshotIncident;
+  /// The directional part of U_j (W, summed over the bands), kept up to date by the shots.
+  std::vector<double> DirectionalUnshot;
+  /// Scratch of DirectionalShot: radiance toward each entry of the shooter's row, the in-strips
+  /// with unshot radiance by row, and per out row the coupled in rows that hold some.
+  std::vector<glm::dvec3> DirectionalOut;
+  struct InStrip
+  {
+    int Begin;
+    int End;
+    glm::dvec3 Radiance;
+  };
+  std::vector<std::vector<InStrip>> DirectionalIn;
+  std::vector<std::vector<int>> DirectionalCoupled;
+  std::vector<HemisphereFrame> Frames;
+  /// Statistics of the last Shoot, for its ShotRecord.
+  std::size_t LastWeightEvaluations = 0;
+  std::size_t LastFallbacks = 0;
+  std::size_t LastMeanFallbacks = 0;
 };
 
 } // namespace sphcover

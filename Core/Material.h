@@ -8,10 +8,13 @@
 
 #include <glm/vec3.hpp>
 
+#include <memory>
 #include <string>
 
 namespace sphcover
 {
+
+class BrdfTable;
 
 /// The four reflectance kinds of paper §3.5: Lambertian, ideal mirror, shiny (a cos^n lobe
 /// around the mirror direction, here the normalized Phong lobe plus a diffuse part) and a
@@ -38,8 +41,11 @@ struct Material
   double PhongExponent = 0.0;
   /// Emitted radiance per band, W m^-2 sr^-1, uniform over the front hemisphere.
   glm::dvec3 Emission{ 0.0 };
-  /// Absolute path of the BRDF weight table (tabulated only).
+  /// Absolute path of the BRDF table (tabulated only; format: Data/scenes/FORMAT.md).
   std::string TableFile;
+  /// The table read from TableFile when the scene was loaded (tabulated only; may be null when
+  /// the material was rebuilt from VTK arrays, and then Reflectance reads TableFile).
+  std::shared_ptr<const BrdfTable> Table;
 
   bool IsEmitter() const
   {

@@ -2,6 +2,7 @@
 #include "SceneLoader.h"
 
 #include "BptReader.h"
+#include "BrdfTable.h"
 #include "InputError.h"
 
 #include <glm/geometric.hpp>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
+#include <memory>
 #include <set>
 #include <sstream>
 
@@ -341,6 +343,10 @@ Material SceneParser::ParseMaterial(const std::string& name,
     material.Type = MaterialType::Tabulated;
     material.TableFile =
       this->ExistingFile(this->Require(j, pointer, "file"), Child(pointer, "file"));
+    // Read now, so that a bad table is reported with the scene (file, line, problem).
+    const std::string file = material.TableFile;
+    material.Table = this->Included(Child(pointer, "file"),
+      [&] { return std::make_shared<const BrdfTable>(BrdfTable::Load(file)); });
   }
   else
   {

@@ -6,17 +6,23 @@
  * hemisphere contains it (the cover's column, §5.2), updating their incident radiance.
  *
  * Input: the cover points of vtkSphericalCoverFilter (with the material arrays `Diffuse`,
- * `Emission`, `MaterialType` and the cover in field data). Any other input (another dataset
- * type, points without a cover) is refused with one error.
+ * `Emission`, `MaterialType`, `Specular`, `PhongExponent`, `MaterialId`, the field array
+ * `MaterialFiles` for tabulated BRDFs, and the cover in field data). Any other input (another
+ * dataset type, points without a cover) is refused with one error.
  *
  * Incident radiance E is stored per region h_ij of the hemispheres (paper §3.1 decision 4),
- * three bands. This version propagates diffuse reflection (paper §3.5, closed form);
- * phong surfaces reflect with their diffuse part only, and mirror and tabulated surfaces are
- * refused with an error (they come with the general-reflectance stage).
+ * three bands. All four reflectance kinds of paper §3.5 are propagated (Core's
+ * LightPropagation and Reflectance): diffuse in closed form, ideal mirror, phong (diffuse part
+ * plus energy-conserving lobe) and tabulated BRDFs (Data/scenes/FORMAT.md, "BRDF tables") by
+ * precomputed weight tables w(out, in-cell). A table that cannot be read fails the request.
  *
  * Output 0 (vtkPolyData): the cover points with point data `Irradiance` (3, W m^-2),
- * `Radiosity` (3, exitant radiance, diffuse part plus emission, W m^-2 sr^-1), `Brightness`
- * (3, the measure of paper §5: pi times the exitant radiance) and, in field data,
+ * `Radiosity` (3, the Lambertian exitant radiance Le + k_d / pi E, W m^-2 sr^-1: all of it for
+ * a diffuse point, the diffuse part of a phong point, Le for mirror and tabulated points),
+ * `Brightness` (3, the measure of paper §5: the flux density the point emits and reflects into
+ * its whole hemisphere, W m^-2; pi times the exitant radiance for a diffuse point; for the
+ * others pi Le + sum over its regions of E times the region's albedo-weighted projected solid
+ * angle, i.e. (k_d + k_s) int E cos dw for phong) and, in field data,
  * `IncidentRadiance` (3 per entry of the cover: the incident radiance of every region h_ij,
  * in the cover's entry order) and `EnergyBalance` (emitted, absorbed W per band).
  *

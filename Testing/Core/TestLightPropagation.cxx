@@ -407,15 +407,23 @@ TEST(LightPropagation, RejectsWhatItCannotPropagate)
 {
   CoveredScene setup("furnace_box.scene", 1);
   std::vector<Material> materials = setup.Materials;
+  // Every kind is propagated (TestNonDiffusePropagation.cxx); values out of range are not.
   materials[2].Type = MaterialType::Mirror;
+  materials[2].Specular = glm::dvec3(1.2);
+  EXPECT_THROW(LightPropagation(setup.Cover, materials), std::invalid_argument);
+  materials[2].Type = MaterialType::Phong;
+  materials[2].Specular = glm::dvec3(0.5);
   EXPECT_THROW(LightPropagation(setup.Cover, materials), std::invalid_argument);
   materials[2].Type = MaterialType::Tabulated;
-  EXPECT_THROW(LightPropagation(setup.Cover, materials), std::invalid_argument);
-  // Phong is propagated with its diffuse part.
+  materials[2].TableFile = std::string(SPHCOVER_DATA_DIR) + "/brdf/does_not_exist.brdf.csv";
+  EXPECT_THROW(LightPropagation(setup.Cover, materials), std::runtime_error);
+  // Phong keeps its diffuse part as the Lambertian reflectance (the Radiosity output).
   materials[2].Type = MaterialType::Phong;
   materials[2].Specular = glm::dvec3(0.1);
   LightPropagation phong(setup.Cover, materials);
   EXPECT_EQ(phong.Reflectance(2), materials[2].Diffuse);
+  EXPECT_FALSE(phong.IsLambertian(2));
+  EXPECT_TRUE(phong.IsLambertian(1));
 
   std::vector<glm::dvec3> rho(setup.Patches.size(), glm::dvec3(0.5));
   std::vector<glm::dvec3> le(setup.Patches.size(), glm::dvec3(1.0));

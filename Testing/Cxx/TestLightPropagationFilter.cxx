@@ -5,7 +5,12 @@
 // - the Cornell box: colour bleeds from the red and green walls onto the back wall (its red /
 //   green ratio is higher near the red wall than near the green wall);
 // - MaximumShots stops early with a history of that many shots;
-// - a mirror in the scene and an input without a cover give one clear error.
+// - the teapot room (mirror wall, phong teapot) propagates: the mirror's Radiosity is its
+//   emission (0) while its Brightness carries the light it reflects, and the energy is
+//   conserved up to what escapes the room (none: it is closed);
+// - the white furnace with the tabulated clay BRDF (furnace_clay.scene): Brightness / pi is
+//   Le / (1 - albedo) within 1%;
+// - a missing BRDF table and an input without a cover give one clear error.
 #include "FailureExpectation.h"
 #include "vtkIntervalSubdivisionFilter.h"
 #include "vtkLightPropagationFilter.h"
@@ -137,11 +142,68 @@ int TestLightPropagationFilter(int, char*[])
     Check(redRatio > 1.1 * greenRatio, "red bleeds onto the back wall near the red wall");
   }
 
+  // Non-diffuse materials through the filter: the teapot room's mirror wall and phong teapot.
+  {
+    Pipeline room("teapot_room.scene", 0);
+    room.Propagation->SetConvergenceTolerance(1e-4);
+    room.Propagation->Update();
+    vtkPolyData* lit = room.Propagation->GetOutput();
+    vtkDataArray* type = lit->GetPointData()->GetArray("MaterialType");
+    vtkDataArray* radiosity = lit->GetPointData()->GetArray("Radiosity");
+    vtkDataArray* brightness = lit->GetPointData()->GetArray("Brightness");
+    Check(
+      lit->GetNumberOfPoints() > 0 && room.Propagation->GetShots() > 0, "teapot room: propagated");
+    int mirrors = 0;
+    for (vtkIdType i = 0; i < lit->GetNumberOfPoints(); ++i)
+    {
+      if (static_cast<int>(type->GetComponent(i, 0)) == 1)
+      {
+        ++mirrors;
+        Check(radiosity->GetComponent(i, 0) == 0.0, "a mirror has no Lambertian radiance");
+        Check(brightness->GetComponent(i, 0) > 0.0, "a mirror reflects light");
+      }
+    }
+    Check(mirrors > 0, "teapot room has mirror points");
+  }
+  {
+    Pipeline furnace("furnace_clay.scene", 1);
+    furnace.Propagation->SetConvergenceTolerance(1e-6);
+    furnace.Propagation->Update();
+    vtkPolyData* lit = furnace.Propagation->GetOutput();
+    vtkDataArray* brightness = lit->GetPointData()->GetArray("Brightness");
+    const double albedo[3] = { 0.75, 0.55, 0.35 };
+    double worst = 0.0;
+    for (vtkIdType i = 0; i < lit->GetNumberOfPoints(); ++i)
+    {
+      for (int band = 0; band < 3; ++band)
+      {
+        worst = std::max(
+          worst, std::fabs(brightness->GetComponent(i, band) / M_PI * (1.0 - albedo[band]) - 1.0));
+      }
+    }
+    std::cout << "clay furnace: " << lit->GetNumberOfPoints() << " points, "
+              << furnace.Propagation->GetShots()
+              << " shots, worst |B / pi / (Le/(1-a)) - 1| = " << worst << "\n";
+    Check(lit->GetNumberOfPoints() > 0 && worst < 0.01,
+      "tabulated furnace: Brightness / pi within 1% of Le / (1 - albedo)");
+  }
+
   // Errors.
   {
-    Pipeline mirror("teapot_room.scene", 0);
-    failures +=
-      FailureExpectation::Check(mirror.Propagation, { "mirror" }, "a mirror in the scene");
+    Pipeline missing("furnace_clay.scene", 0);
+    missing.Cover->Update();
+    vtkNew<vtkPolyData> points;
+    points->DeepCopy(missing.Cover->GetOutput());
+    auto* files =
+      vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray("MaterialFiles"));
+    for (vtkIdType k = 0; files && k < files->GetNumberOfValues(); ++k)
+    {
+      files->SetValue(k, "/nonexistent/clay.brdf.csv");
+    }
+    vtkNew<vtkLightPropagationFilter> noTable;
+    noTable->SetInputData(points);
+    failures += FailureExpectation::Check(
+      noTable, { "/nonexistent/clay.brdf.csv", "cannot open file" }, "a missing BRDF table");
     vtkNew<vtkPolyData> empty;
     vtkNew<vtkLightPropagationFilter> noCover;
     noCover->SetInputData(empty);

@@ -255,6 +255,22 @@ def semantic_cases():
                "line 7", "not a finite number")
     CASES[-1][2][0] = "nan_patch.bpt"
 
+    # Errors inside a BRDF table read through a scene: the message names the table and its line.
+    def with_table(file):
+        def f(s):
+            s["materials"]["table"] = {"type": "tabulated", "file": file}
+            s["surfaces"][2]["material"] = "table"
+        return f
+    scene_case("brdf_negative_value.scene", with_table("support/negative.brdf.csv"),
+               "line 4", "BRDF values must be >= 0")
+    CASES[-1][2][0] = "negative.brdf.csv"
+    scene_case("brdf_missing_point.scene", with_table("support/incomplete.brdf.csv"),
+               "line 5", "missing grid point theta_in = 90, theta_out = 90, delta_phi = 0")
+    CASES[-1][2][0] = "incomplete.brdf.csv"
+    scene_case("brdf_bad_header.scene", with_table("support/bad_header.brdf.csv"),
+               "line 2", "expected the header 'theta_in,theta_out,delta_phi,r,g,b'")
+    CASES[-1][2][0] = "bad_header.brdf.csv"
+
 
 # --------------------------------------------------------------------------- .bpt
 
@@ -301,6 +317,14 @@ def support_files():
     lines[6] = "1 nan 0"
     with open(os.path.join(SUPPORT, "nan_patch.bpt"), "wb") as f:
         f.write("\n".join(lines).encode())
+    # BRDF tables (Data/scenes/FORMAT.md, "BRDF tables"), each with one thing broken.
+    header = "# a constant 0.2 / sr, but ...\ntheta_in,theta_out,delta_phi,r,g,b\n"
+    with open(os.path.join(SUPPORT, "negative.brdf.csv"), "wb") as f:
+        f.write((header + "0,0,0,0.2,0.2,0.2\n0,0,180,0.2,-0.2,0.2\n").encode())
+    with open(os.path.join(SUPPORT, "incomplete.brdf.csv"), "wb") as f:
+        f.write((header + "0,0,0,0.2,0.2,0.2\n90,0,0,0.2,0.2,0.2\n0,90,0,0.2,0.2,0.2\n").encode())
+    with open(os.path.join(SUPPORT, "bad_header.brdf.csv"), "wb") as f:
+        f.write("# the header misspelt\ntheta_in,theta_out,dphi,r,g,b\n0,0,0,0.2,0.2,0.2\n".encode())
 
 
 def main():

@@ -165,6 +165,20 @@ def furnace_box():
             "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
 
 
+CLAY_FURNACE_MATERIAL = {"clay": {"type": "tabulated", "file": "../brdf/clay.brdf.csv",
+                                  "emission": [1.0, 1.0, 1.0]}}
+
+
+def furnace_clay():
+    # The white furnace with the tabulated clay BRDF (Data/brdf/clay.brdf.csv), whose
+    # directional albedo is (0.75, 0.55, 0.35) in every direction.
+    scene = furnace_box()
+    scene["materials"] = CLAY_FURNACE_MATERIAL
+    for surface in scene["surfaces"]:
+        surface["material"] = "clay"
+    return scene
+
+
 def furnace_sphere():
     # sphere.bpt's patches have dP/du x dP/dv pointing OUT of the sphere (checked by
     # verify_scenes.py), so "flip" turns the fronts inward.
@@ -253,6 +267,7 @@ ALL = {
     "teapot_room.scene": teapot_room,
     "furnace_box.scene": furnace_box,
     "furnace_sphere.scene": furnace_sphere,
+    "furnace_clay.scene": furnace_clay,
     "howell_parallel.scene": howell_parallel,
     "howell_perpendicular.scene": howell_perpendicular,
 }

@@ -1,0 +1,304 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file BenchmarkLightPropagation.cxx
+ * @brief Progressive light propagation (paper §5.1, §5.2) with all reflectance kinds (SPEC §7:
+ * speed is measured by a benchmark, never by timed tests).
+ *
+ *   BenchmarkLightPropagation [--threads N] [--tolerance T] [--scene name.scene]...
+ *
+ * 1. For each scene (default: the Cornell box and the teapot room, whose mirror wall and phong
+ *    teapot shoot through weight tables) at the scene's settings: interval subdivision, cover,
+ *    then propagation to ConvergenceTolerance T (default 1e-5, the filter's default). Prints
+ *    patches, cover entries, the set-up of the weight tables (seconds), shots to convergence,
+ *    propagation seconds, entry updates per second (the column walks of §5.2), and for the
+ *    non-diffuse shots the strip pairs summed over the weight tables.
+ * 2. Per-shot cost against the column size for diffuse shooters (§5.2: "eta ... becomes
+ *    O(N)", here O(column)): every patch of the Cornell box shoots 50 times; the shots are
+ *    binned by column size and a least-squares line through (column size, seconds) gives the
+ *    cost per update.
+ * 3. Per-shot cost against D, the cells of the hemisphere, for a general BRDF (§5.2:
+ *    "The cost of propagation, eta is O(ND)"): the furnace box split 4 x 4 per face with phong
+ *    walls, grids 8 x 32 to 64 x 256; per grid the mean column size, strip pairs per shot and
+ *    microseconds per shot over the first 300 shots.
+ */
+#include "IntervalSubdivision.h"
+#include "LightPropagation.h"
+#include "ParallelFor.h"
+#include "SceneLoader.h"
+#include "SphericalCover.h"
+
+#include "CoverTestUtilities.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+using namespace sphcover;
+
+namespace
+{
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point start)
+{
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::vector<Patch> Subdivide(const Scene& scene, const ParallelFor& parallelFor)
+{
+  SubdivisionSettings settings;
+  settings.MaxLevel = scene.Settings.MaxLevel;
+  settings.ThetaBins = scene.Settings.ThetaBins;
+  settings.PhiBins = scene.Settings.PhiBins;
+  for (double& tolerance : settings.Tolerance)
+  {
+    tolerance = scene.Settings.Tolerance;
+  }
+  IntervalSubdivision subdivision(scene, settings);
+  subdivision.Run(nullptr, parallelFor);
+  return subdivision.Patches();
+}
+
+void Converge(const std::string& name, double tolerance, const ParallelFor& parallelFor)
+{
+  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
+  const std::vector<Patch> patches = Subdivide(scene, parallelFor);
+  SphericalCoverOptions options;
+  options.ThetaBins = scene.Settings.ThetaBins;
+  options.PhiBins = scene.Settings.PhiBins;
+  SphericalCover cover;
+  Clock::time_point start = Clock::now();
+  cover.Build(patches, options, parallelFor);
+  const double coverSeconds = Seconds(start);
+
+  start = Clock::now();
+  LightPropagation propagation(cover, LightPropagation::MaterialsOfPatches(scene, patches));
+  std::vector<HemisphereFrame> frames;
+  for (const Patch& patch : patches)
+  {
+    frames.push_back(HemisphereFrame::OfPatch(patch));
+  }
+  propagation.SetFrames(frames);
+  const double setUpSeconds = Seconds(start);
+  std::size_t nonDiffuse = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+  {
+    nonDiffuse += propagation.IsLambertian(i) ? 0 : 1;
+  }
+  std::printf("%s: %zu patches (%zu non-diffuse), %zu entries, grid %d x %d; cover %.2f s; "
+              "weight tables %.3f s\n",
+    name.c_str(),
+    patches.size(),
+    nonDiffuse,
+    cover.EntryCount(),
+    options.ThetaBins,
+    options.PhiBins,
+    coverSeconds,
+    setUpSeconds);
+  PropagationSettings settings;
+  settings.ConvergenceTolerance = tolerance;
+  int reported = 0;
+  const bool converged = propagation.Run(settings,
+    [&](double fraction)
+    {
+      // Progress on long runs: every tenth of the unshot energy gone.
+      if (fraction * 10 >= reported + 1)
+      {
+        reported = static_cast<int>(fraction * 10);
+        std::printf("  ... %d%% of the unshot energy shot, %zu shots, %.1f s\n",
+          10 * reported,
+          propagation.History().size(),
+          propagation.History().back().Seconds);
+      }
+      return true;
+    });
+  const std::vector<ShotRecord>& history = propagation.History();
+  const double seconds = history.empty() ? 0.0 : history.back().Seconds;
+  std::size_t updates = 0;
+  std::size_t pairs = 0;
+  std::size_t directionalShots = 0;
+  std::size_t fallbacks = 0;
+  std::size_t meanFallbacks = 0;
+  for (const ShotRecord& record : history)
+  {
+    updates += record.ReceiverUpdates;
+    pairs += record.WeightEvaluations;
+    directionalShots += record.WeightEvaluations > 0 ? 1 : 0;
+    fallbacks += record.Fallbacks;
+    meanFallbacks += record.MeanFallbacks;
+  }
+  const EnergyBalance energy = propagation.Energy();
+  std::printf(
+    "  %s after %zu shots (tolerance %g): %.3f s, %.3g entry updates/s, %.1f us/shot; "
+    "%zu directional shots, %zu strip pairs (%.3g pairs/s), %zu updates without h_ji (%zu "
+    "by the mean); energy "
+    "imbalance %.2e\n",
+    converged ? "converged" : "NOT converged",
+    history.size(),
+    tolerance,
+    seconds,
+    seconds > 0 ? static_cast<double>(updates) / seconds : 0.0,
+    history.empty() ? 0.0 : 1e6 * seconds / static_cast<double>(history.size()),
+    directionalShots,
+    pairs,
+    seconds > 0 ? static_cast<double>(pairs) / seconds : 0.0,
+    fallbacks,
+    meanFallbacks,
+    energy.RelativeImbalance);
+}
+
+void CostAgainstColumn(const ParallelFor& parallelFor)
+{
+  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/cornell_box.scene"));
+  const std::vector<Patch> patches = Subdivide(scene, parallelFor);
+  SphericalCoverOptions options;
+  options.ThetaBins = scene.Settings.ThetaBins;
+  options.PhiBins = scene.Settings.PhiBins;
+  SphericalCover cover;
+  cover.Build(patches, options, parallelFor);
+  LightPropagation propagation(cover, LightPropagation::MaterialsOfPatches(scene, patches));
+  const int repeats = 50;
+  std::map<std::size_t, std::pair<double, int>> bins; // column size / 50 -> seconds, shots
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int n = 0;
+  for (std::size_t j = 0; j < patches.size(); ++j)
+  {
+    const Clock::time_point start = Clock::now();
+    std::size_t column = 0;
+    for (int r = 0; r < repeats; ++r)
+    {
+      column = propagation.Shoot(j);
+    }
+    const double perShot = Seconds(start) / repeats;
+    auto& bin = bins[column / 50];
+    bin.first += perShot;
+    bin.second += 1;
+    sx += static_cast<double>(column);
+    sy += perShot;
+    sxx += static_cast<double>(column) * static_cast<double>(column);
+    sxy += static_cast<double>(column) * perShot;
+    ++n;
+  }
+  std::printf("diffuse shot cost vs column size (Cornell box, %zu patches, %d shots each):\n",
+    patches.size(),
+    repeats);
+  std::printf("  %-16s %8s %14s\n", "column size", "patches", "us per shot");
+  for (const auto& [bin, value] : bins)
+  {
+    std::printf("  [%5zu, %5zu)   %8d %14.3f\n",
+      bin * 50,
+      bin * 50 + 50,
+      value.second,
+      1e6 * value.first / value.second);
+  }
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  const double intercept = (sy - slope * sx) / n;
+  std::printf(
+    "  least squares: %.2f ns per update + %.2f us per shot\n", 1e9 * slope, 1e6 * intercept);
+}
+
+void CostAgainstCells(const ParallelFor& parallelFor)
+{
+  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/furnace_box.scene"));
+  const std::vector<Patch> patches = sphcover_test::SplitScene(scene, 4);
+  Material phong;
+  phong.Type = MaterialType::Phong;
+  phong.Diffuse = glm::dvec3(0.2, 0.3, 0.0);
+  phong.Specular = glm::dvec3(0.1, 0.3, 0.8);
+  phong.PhongExponent = 20.0;
+  phong.Emission = glm::dvec3(1.0);
+  const std::vector<Material> materials(patches.size(), phong);
+  std::printf("general-BRDF shot cost vs D (furnace box, %zu phong patches, first 300 shots):\n",
+    patches.size());
+  std::printf("  %6s %8s %12s %10s %16s %14s %14s\n",
+    "grid",
+    "D",
+    "table s",
+    "column",
+    "pairs per shot",
+    "us per shot",
+    "ns per pair");
+  for (int theta : { 8, 16, 32, 64 })
+  {
+    SphericalCoverOptions options;
+    options.ThetaBins = theta;
+    options.PhiBins = 4 * theta;
+    SphericalCover cover;
+    cover.Build(patches, options, parallelFor);
+    Clock::time_point start = Clock::now();
+    LightPropagation propagation(cover, materials);
+    const double tableSeconds = Seconds(start);
+    PropagationSettings settings;
+    settings.MaximumShots = 300;
+    settings.ConvergenceTolerance = 0.0;
+    propagation.Run(settings);
+    const std::vector<ShotRecord>& history = propagation.History();
+    std::size_t pairs = 0;
+    std::size_t updates = 0;
+    for (const ShotRecord& record : history)
+    {
+      pairs += record.WeightEvaluations;
+      updates += record.ReceiverUpdates;
+    }
+    const double seconds = history.back().Seconds;
+    const double shots = static_cast<double>(history.size());
+    std::printf("  %3dx%-4d %8d %12.3f %10.1f %16.0f %14.2f %14.2f\n",
+      theta,
+      4 * theta,
+      theta * 4 * theta,
+      tableSeconds,
+      static_cast<double>(updates) / shots,
+      static_cast<double>(pairs) / shots,
+      1e6 * seconds / shots,
+      pairs > 0 ? 1e9 * seconds / static_cast<double>(pairs) : 0.0);
+  }
+}
+}
+
+int main(int argc, char* argv[])
+{
+  // One line at a time, so a long run shows its progress when redirected.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  int threads = 0;
+  double tolerance = 1e-5;
+  std::vector<std::string> scenes;
+  for (int k = 1; k < argc; ++k)
+  {
+    if (!std::strcmp(argv[k], "--threads") && k + 1 < argc)
+    {
+      threads = std::atoi(argv[++k]);
+    }
+    else if (!std::strcmp(argv[k], "--tolerance") && k + 1 < argc)
+    {
+      tolerance = std::atof(argv[++k]);
+    }
+    else if (!std::strcmp(argv[k], "--scene") && k + 1 < argc)
+    {
+      scenes.emplace_back(argv[++k]);
+    }
+    else
+    {
+      std::fprintf(
+        stderr, "usage: %s [--threads N] [--tolerance T] [--scene name.scene]...\n", argv[0]);
+      return 2;
+    }
+  }
+  if (scenes.empty())
+  {
+    scenes = { "cornell_box.scene", "teapot_room.scene" };
+  }
+  const ParallelFor parallelFor = threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
+  for (const std::string& scene : scenes)
+  {
+    Converge(scene, tolerance, parallelFor);
+  }
+  CostAgainstColumn(parallelFor);
+  CostAgainstCells(parallelFor);
+  return 0;
+}
