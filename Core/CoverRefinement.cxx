@@ -350,16 +350,12 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   const double tNear = 1e-7 * bounds.Diagonal();
   const double ownTolerance = 2.0 * this->Settings.Cover.FillOptions.TessellationTolerance;
   const int m = this->Settings.ProbesPerSide;
-  auto enclosed = [&](const Patch& patch, double u, double v, std::size_t& probes) -> int
+  // The side of the first surface met along one ray: 1 back, 0 front or none, -1 undecided.
+  auto backSideFirst = [&](const Patch& patch,
+                         const glm::dvec3& origin,
+                         const glm::dvec3& direction,
+                         std::size_t& probes) -> int
   {
-    const glm::dvec3 normal = patch.Geometry.UnnormalizedNormal(u, v);
-    const double length = glm::length(normal);
-    if (!(length > 0.0))
-    {
-      return -1; // no normal (a collapsed edge): no verdict
-    }
-    const glm::dvec3 origin = patch.Geometry.Evaluate(u, v);
-    const glm::dvec3 direction = normal / length;
     double near = tNear;
     for (int attempt = 0; attempt < 8; ++attempt)
     {
@@ -380,6 +376,36 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
       return !front && !this->Environment.Surfaces[hit].TwoSided ? 1 : 0;
     }
     return -1;
+  };
+  // A point is enclosed when the first surface met is a back side along its normal and along
+  // the four directions 45 degrees from it towards +-T and +-B: a point inside a closed solid
+  // (or in a thin gap under a surface turned away) meets back sides all around, a point that
+  // merely sees some back side through an opening (a teapot's lid gap) does not.
+  auto enclosed = [&](const Patch& patch, double u, double v, std::size_t& probes) -> int
+  {
+    const glm::dvec3 normal = patch.Geometry.UnnormalizedNormal(u, v);
+    const double length = glm::length(normal);
+    if (!(length > 0.0))
+    {
+      return -1; // no normal (a collapsed edge): no verdict
+    }
+    const glm::dvec3 origin = patch.Geometry.Evaluate(u, v);
+    const HemisphereFrame frame = HemisphereFrame::FromPartials(
+      origin, normal / length, patch.Geometry.PartialU(u, v), patch.Geometry.PartialV(u, v));
+    const glm::dvec3 directions[5] = { frame.Normal,
+      glm::normalize(frame.Normal + frame.Tangent),
+      glm::normalize(frame.Normal - frame.Tangent),
+      glm::normalize(frame.Normal + frame.Bitangent),
+      glm::normalize(frame.Normal - frame.Bitangent) };
+    for (const glm::dvec3& direction : directions)
+    {
+      const int verdict = backSideFirst(patch, origin, direction, probes);
+      if (verdict != 1)
+      {
+        return verdict;
+      }
+    }
+    return 1;
   };
   // Whether a patch straddles an enclosure boundary: some probes enclosed, some not.
   auto straddles = [&](const Patch& patch, std::size_t& probes)

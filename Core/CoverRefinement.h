@@ -61,13 +61,15 @@
  * reciprocity error of the Cornell box (a floor patch straddling a block's footprint with its
  * centre under the block takes nothing from the block's front although a third of it sees the
  * front at F ~ 0.2; 9.5% on floor / short_block_front). A point is enclosed when the first
- * surface along its normal is met from its back side (a one-sided surface; two-sided ones
- * have no back). A patch is split (SplitInThree, reason RBuffer) while among a
- * ProbesPerSide x ProbesPerSide grid of its points (the centres of equal parameter cells) some
- * are enclosed and some are not, up to MaxLevel; only the patches along the boundaries are
- * split, and the pieces wholly inside keep a row that sees nothing but the solid's inside
- * (correctly: they receive no light). The Step 3 analysis from the source side finds the same
- * patches (the floor patch is partly hidden in the ceiling's hemispheres) but needs every
+ * surface met along its normal, and along the four directions 45 degrees from it, is met from
+ * its back side (a one-sided surface; two-sided ones have no back): inside a closed solid
+ * every direction meets a back side, whereas a point that sees some back side through an
+ * opening (into a teapot through its lid gap) is not enclosed. A patch is split (SplitInThree,
+ * reason RBuffer) while among a ProbesPerSide x ProbesPerSide grid of its points (the centres of
+ * equal parameter cells) some are enclosed and some are not, up to MaxLevel; only the patches along
+ * the boundaries are split, and the pieces wholly inside keep a row that sees nothing but the
+ * solid's inside (correctly: they receive no light). The Step 3 analysis from the source side finds
+ * the same patches (the floor patch is partly hidden in the ceiling's hemispheres) but needs every
  * hemisphere filled once per level, where the probes cost a few rays per patch (Embree, on the
  * ray fill's tessellation of the scene's surfaces). Probes find a boundary crossing a patch
  * unless it clips a corner between them (an error of that corner's area only).
