@@ -80,6 +80,10 @@ std::string RefinementSettings::Problem() const
   {
     return "RefinementSettings: HiddenFraction must be in (0, 1)";
   }
+  if (!(this->EnclosureMargin >= 0.0 && this->EnclosureMargin <= 4.0))
+  {
+    return "RefinementSettings: EnclosureMargin must be in [0, 4]";
+  }
   if (this->ProbesPerSide < 2 || this->ProbesPerSide > 16)
   {
     return "RefinementSettings: ProbesPerSide must be in [2, 16]";
@@ -383,15 +387,21 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   // merely sees some back side through an opening (a teapot's lid gap) does not.
   auto enclosed = [&](const Patch& patch, double u, double v, std::size_t& probes) -> int
   {
-    const glm::dvec3 normal = patch.Geometry.UnnormalizedNormal(u, v);
+    // On the whole surface at the patch's (u, v) mapped into its domain (the probes may lie
+    // around the patch, within the surface).
+    const BezierPatch& surface =
+      this->Environment.Surfaces[static_cast<size_t>(patch.SurfaceIndex)].Patch;
+    u = std::min(1.0, std::max(0.0, patch.Domain.U0 + u * (patch.Domain.U1 - patch.Domain.U0)));
+    v = std::min(1.0, std::max(0.0, patch.Domain.V0 + v * (patch.Domain.V1 - patch.Domain.V0)));
+    const glm::dvec3 normal = surface.UnnormalizedNormal(u, v);
     const double length = glm::length(normal);
     if (!(length > 0.0))
     {
       return -1; // no normal (a collapsed edge): no verdict
     }
-    const glm::dvec3 origin = patch.Geometry.Evaluate(u, v);
+    const glm::dvec3 origin = surface.Evaluate(u, v);
     const HemisphereFrame frame = HemisphereFrame::FromPartials(
-      origin, normal / length, patch.Geometry.PartialU(u, v), patch.Geometry.PartialV(u, v));
+      origin, normal / length, surface.PartialU(u, v), surface.PartialV(u, v));
     const glm::dvec3 directions[5] = { frame.Normal,
       glm::normalize(frame.Normal + frame.Tangent),
       glm::normalize(frame.Normal - frame.Tangent),
@@ -408,15 +418,23 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
     return 1;
   };
   // Whether a patch straddles an enclosure boundary: some probes enclosed, some not.
+  // The probes cover the patch and a margin of EnclosureMargin patch widths around it (within
+  // the surface): a patch is split when an enclosure boundary crosses it or passes that near,
+  // which grades the pieces towards the boundary (see the file comment).
+  const double margin = this->Settings.EnclosureMargin;
+  const int n = m + 2 * static_cast<int>(std::ceil(margin * m));
   auto straddles = [&](const Patch& patch, std::size_t& probes)
   {
     bool in = false;
     bool out = false;
-    for (int b = 0; b < m; ++b)
+    for (int b = 0; b < n; ++b)
     {
-      for (int a = 0; a < m; ++a)
+      for (int a = 0; a < n; ++a)
       {
-        const int verdict = enclosed(patch, (a + 0.5) / m, (b + 0.5) / m, probes);
+        const int verdict = enclosed(patch,
+          -margin + (1.0 + 2.0 * margin) * (a + 0.5) / n,
+          -margin + (1.0 + 2.0 * margin) * (b + 0.5) / n,
+          probes);
         in = in || verdict == 1;
         out = out || verdict == 0;
         if (in && out)

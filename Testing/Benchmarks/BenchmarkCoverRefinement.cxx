@@ -10,7 +10,8 @@
  *                            [--hemispheres 0|1] [--scene name.scene]...
  *
  * --enclosures and --hemispheres switch the receiver-side enclosure probes and the Step 3
- * hemisphere analysis (RefinementSettings) on or off; both are on by default.
+ * hemisphere analysis (RefinementSettings) on or off; both are on by default. --margin sets
+ * RefinementSettings::EnclosureMargin; --skip-before skips the cover before refinement.
  *
  * The refinement may go K levels (default 2) deeper than the scene's MaxLevel: at the scenes'
  * settings the interval subdivision already takes every patch to MaxLevel, so with the same
@@ -52,6 +53,8 @@ void Run(const std::string& name,
   int extraLevels,
   bool enclosures,
   bool hemispheres,
+  double margin,
+  bool skipBefore,
   const ParallelFor& parallelFor)
 {
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -75,16 +78,21 @@ void Run(const std::string& name,
 
   start = std::chrono::steady_clock::now();
   SphericalCover coverBefore;
-  coverBefore.Build(before, coverOptions, parallelFor);
+  if (!skipBefore)
+  {
+    coverBefore.Build(before, coverOptions, parallelFor);
+  }
   const double coverBeforeSeconds = Seconds(start);
-  const sphcover_test::Exchange reciprocityBefore =
-    sphcover_test::MeasureExchange(scene, before, coverBefore);
+  const sphcover_test::Exchange reciprocityBefore = skipBefore
+    ? sphcover_test::Exchange()
+    : sphcover_test::MeasureExchange(scene, before, coverBefore);
 
   RefinementSettings refinementSettings;
   refinementSettings.Cover = coverOptions;
   refinementSettings.MaxLevel = scene.Settings.MaxLevel + extraLevels;
   refinementSettings.SplitEnclosureBoundaries = enclosures;
   refinementSettings.AnalyseHemispheres = hemispheres;
+  refinementSettings.EnclosureMargin = margin;
   start = std::chrono::steady_clock::now();
   CoverRefinement refinement(scene, before, refinementSettings);
   refinement.Run(nullptr, parallelFor);
@@ -178,6 +186,8 @@ int main(int argc, char* argv[])
   int threads = 2;
   int extraLevels = 2;
   bool enclosures = true;
+  double margin = RefinementSettings().EnclosureMargin;
+  bool skipBefore = false;
   bool hemispheres = true;
   std::vector<std::string> scenes;
   for (int k = 1; k < argc; ++k)
@@ -194,6 +204,14 @@ int main(int argc, char* argv[])
     {
       enclosures = std::atoi(argv[++k]) != 0;
     }
+    else if (std::strcmp(argv[k], "--margin") == 0 && k + 1 < argc)
+    {
+      margin = std::atof(argv[++k]);
+    }
+    else if (std::strcmp(argv[k], "--skip-before") == 0)
+    {
+      skipBefore = true;
+    }
     else if (std::strcmp(argv[k], "--hemispheres") == 0 && k + 1 < argc)
     {
       hemispheres = std::atoi(argv[++k]) != 0;
@@ -206,7 +224,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: %s [--threads N] [--extra-levels K] [--enclosures 0|1] [--hemispheres 0|1] "
-        "[--scene name.scene]...\n",
+        "[--margin W] [--skip-before] [--scene name.scene]...\n",
         argv[0]);
       return 2;
     }
@@ -221,7 +239,7 @@ int main(int argc, char* argv[])
   std::printf("threads %d\n", threads);
   for (const std::string& scene : scenes)
   {
-    Run(scene, extraLevels, enclosures, hemispheres, parallelFor);
+    Run(scene, extraLevels, enclosures, hemispheres, margin, skipBefore, parallelFor);
   }
   return 0;
 }

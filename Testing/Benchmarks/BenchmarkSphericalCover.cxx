@@ -15,7 +15,7 @@
  * --pipeline (the figures of the closing note of issue 4): per scene (default the Cornell box
  * and the teapot room) the patches of the real pipeline at the scene's settings (interval
  * subdivision, then the receiver-side refinement that vtkSphericalCoverFilter applies by
- * default, 4 levels deeper), then for 1 and 2 threads and each fill: N, strips, bytes (and
+ * default, 3 levels deeper), then for 1 and 2 threads and each fill: N, strips, bytes (and
  * bytes per strip), seconds; and Embree's raw ray throughput on this machine for the same
  * number of rays (N x samples per hemisphere, from the characteristic points along the sample
  * directions, no classification), so the cover's cost reads as a ratio to that limit.
@@ -120,7 +120,7 @@ std::vector<Patch> PipelinePatches(const Scene& scene)
   RefinementSettings refinement;
   refinement.Cover.ThetaBins = scene.Settings.ThetaBins;
   refinement.Cover.PhiBins = scene.Settings.PhiBins;
-  refinement.MaxLevel = scene.Settings.MaxLevel + 4;
+  refinement.MaxLevel = scene.Settings.MaxLevel + 3;
   refinement.AnalyseHemispheres = false;
   CoverRefinement refine(scene, subdivide.Patches(), refinement);
   refine.Run(nullptr, ThreadPoolFor(2));
