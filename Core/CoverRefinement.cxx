@@ -320,6 +320,28 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
   return true;
 }
 
+void CoverRefinement::SetProbeExtents(std::vector<UVRect> extents, std::vector<int> groups)
+{
+  if ((!extents.empty() && extents.size() != this->Environment.Surfaces.size()) ||
+    (!groups.empty() && groups.size() != this->Environment.Surfaces.size()))
+  {
+    throw std::invalid_argument("CoverRefinement: one probe extent and group per surface");
+  }
+  this->ProbeExtents = std::move(extents);
+  this->ProbeGroups = std::move(groups);
+}
+
+UVRect CoverRefinement::ProbeExtent(int surface) const
+{
+  return this->ProbeExtents.empty() ? UVRect::Unit()
+                                    : this->ProbeExtents[static_cast<size_t>(surface)];
+}
+
+int CoverRefinement::GroupOf(int surface) const
+{
+  return this->ProbeGroups.empty() ? surface : this->ProbeGroups[static_cast<size_t>(surface)];
+}
+
 bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   const ParallelFor& run,
   double progressShare)
@@ -371,7 +393,7 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
       {
         return 0;
       }
-      if (static_cast<int>(hit) == patch.SurfaceIndex &&
+      if (this->GroupOf(static_cast<int>(hit)) == this->GroupOf(patch.SurfaceIndex) &&
         distance < ownTolerance * environment[hit].Geometry.Size())
       {
         near = distance * (1.0 + 1e-6) + tNear;
@@ -391,8 +413,11 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
     // around the patch, within the surface).
     const BezierPatch& surface =
       this->Environment.Surfaces[static_cast<size_t>(patch.SurfaceIndex)].Patch;
-    u = std::min(1.0, std::max(0.0, patch.Domain.U0 + u * (patch.Domain.U1 - patch.Domain.U0)));
-    v = std::min(1.0, std::max(0.0, patch.Domain.V0 + v * (patch.Domain.V1 - patch.Domain.V0)));
+    const UVRect extent = this->ProbeExtent(patch.SurfaceIndex);
+    u = std::min(
+      extent.U1, std::max(extent.U0, patch.Domain.U0 + u * (patch.Domain.U1 - patch.Domain.U0)));
+    v = std::min(
+      extent.V1, std::max(extent.V0, patch.Domain.V0 + v * (patch.Domain.V1 - patch.Domain.V0)));
     const glm::dvec3 normal = surface.UnnormalizedNormal(u, v);
     const double length = glm::length(normal);
     if (!(length > 0.0))

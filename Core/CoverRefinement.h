@@ -178,6 +178,17 @@ public:
   bool Run(const ProgressCallback& progress = nullptr,
     const ParallelFor& parallelFor = SequentialFor);
 
+  /**
+   * Where the enclosure probes of a patch may lie when its margin reaches beyond it: by default
+   * its surface's unit square. A caller whose scene surfaces are pieces of larger surfaces (the
+   * cover filter, whose input cells are the subdivision's patches) gives, per scene surface,
+   * the rectangle of its own parameters that the whole larger surface spans (probes then reach
+   * into the neighbouring pieces: the polynomial of a piece continues the surface it was cut
+   * from), and the group (larger surface) of each, whose hits near a probe are its own
+   * surface's. Empty vectors: the defaults. Throws std::invalid_argument for wrong sizes.
+   */
+  void SetProbeExtents(std::vector<UVRect> extents, std::vector<int> groups);
+
   /// The refined patch list, ordered by surface, then by v, then by u of their domains (as
   /// IntervalSubdivision::Patches()).
   std::vector<Patch> Patches() const;
@@ -202,8 +213,13 @@ private:
     class RBuffer& buffer,
     Analysis& result) const;
 
+  UVRect ProbeExtent(int surface) const;
+  int GroupOf(int surface) const;
+
   const Scene& Environment;
   RefinementSettings Settings;
+  std::vector<UVRect> ProbeExtents;
+  std::vector<int> ProbeGroups;
   /// Every patch ever made (a split appends its three pieces).
   std::vector<Patch> Nodes;
   /// The current patch list Q: indices into Nodes, a split piece in its parent's place.

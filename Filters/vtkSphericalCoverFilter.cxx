@@ -108,6 +108,21 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     try
     {
       sphcover::CoverRefinement refinement(scene, std::move(cells), settings);
+      // Each cell's probes may reach into its neighbours, within the surface it was cut from:
+      // that surface's unit square in the cell's own parameters.
+      std::vector<sphcover::UVRect> extents;
+      std::vector<int> groups;
+      for (const sphcover::Patch& patch : patches)
+      {
+        const sphcover::UVRect& d = patch.Domain;
+        const double du = d.U1 - d.U0;
+        const double dv = d.V1 - d.V0;
+        extents.push_back(du > 0.0 && dv > 0.0
+            ? sphcover::UVRect{ -d.U0 / du, (1.0 - d.U0) / du, -d.V0 / dv, (1.0 - d.V0) / dv }
+            : sphcover::UVRect::Unit());
+        groups.push_back(patch.SurfaceIndex);
+      }
+      refinement.SetProbeExtents(std::move(extents), std::move(groups));
       const bool completed = refinement.Run(
         [this, refinementShare](double fraction)
         {

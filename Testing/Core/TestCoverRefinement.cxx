@@ -437,6 +437,8 @@ TEST(CoverRefinement, RejectsUnusableSettings)
   settings = RefinementSettings();
   settings.Cover.ThetaBins = 0;
   EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
+  CoverRefinement refinement(scene, patches, RefinementSettings());
+  EXPECT_THROW(refinement.SetProbeExtents({ UVRect::Unit() }, {}), std::invalid_argument);
   std::vector<Patch> foreign = patches;
   foreign[0].SurfaceIndex = static_cast<int>(scene.Surfaces.size());
   EXPECT_THROW(CoverRefinement(scene, foreign, RefinementSettings()), std::invalid_argument);
