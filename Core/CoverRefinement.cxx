@@ -4,8 +4,12 @@
 #include "BoundingBoxTree.h"
 #include "HemisphereGrid.h"
 #include "RBuffer.h"
+#include "RayCastFill.h"
+
+#include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -75,6 +79,14 @@ std::string RefinementSettings::Problem() const
   if (!(this->HiddenFraction > 0.0 && this->HiddenFraction < 1.0))
   {
     return "RefinementSettings: HiddenFraction must be in (0, 1)";
+  }
+  if (!(this->EnclosureMargin >= 0.0 && this->EnclosureMargin <= 4.0))
+  {
+    return "RefinementSettings: EnclosureMargin must be in [0, 4]";
+  }
+  if (this->ProbesPerSide < 2 || this->ProbesPerSide > 16)
+  {
+    return "RefinementSettings: ProbesPerSide must be in [2, 16]";
   }
   if (!(this->MinimumHiddenCells >= 0.0) || !(this->MinimumVisibleCells >= 0.0))
   {
@@ -288,6 +300,250 @@ void CoverRefinement::Analyse(std::size_t receiver,
 bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& parallelFor)
 {
   const ParallelFor& run = parallelFor ? parallelFor : ParallelFor(SequentialFor);
+  // The probes cost a few rays per patch; the hemisphere analysis most of the time.
+  const double probeShare = this->Settings.AnalyseHemispheres ? 0.05 : 1.0;
+  if (this->Settings.SplitEnclosureBoundaries &&
+    !this->SplitAcrossEnclosures(progress, run, probeShare))
+  {
+    return false;
+  }
+  if (this->Settings.AnalyseHemispheres &&
+    !this->AnalyseHemispheres(
+      progress, run, this->Settings.SplitEnclosureBoundaries ? probeShare : 0.0))
+  {
+    return false;
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+void CoverRefinement::SetProbeExtents(std::vector<UVRect> extents, std::vector<int> groups)
+{
+  if ((!extents.empty() && extents.size() != this->Environment.Surfaces.size()) ||
+    (!groups.empty() && groups.size() != this->Environment.Surfaces.size()))
+  {
+    throw std::invalid_argument("CoverRefinement: one probe extent and group per surface");
+  }
+  this->ProbeExtents = std::move(extents);
+  this->ProbeGroups = std::move(groups);
+}
+
+UVRect CoverRefinement::ProbeExtent(int surface) const
+{
+  return this->ProbeExtents.empty() ? UVRect::Unit()
+                                    : this->ProbeExtents[static_cast<size_t>(surface)];
+}
+
+int CoverRefinement::GroupOf(int surface) const
+{
+  return this->ProbeGroups.empty() ? surface : this->ProbeGroups[static_cast<size_t>(surface)];
+}
+
+bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
+  const ParallelFor& run,
+  double progressShare)
+{
+  // The environment the probes see: the scene's whole surfaces (splitting changes no geometry).
+  std::vector<Patch> environment;
+  environment.reserve(this->Environment.Surfaces.size());
+  Box bounds;
+  for (size_t s = 0; s < this->Environment.Surfaces.size(); ++s)
+  {
+    environment.emplace_back(
+      static_cast<int>(s), UVRect::Unit(), 0, this->Environment.Surfaces[s].Patch);
+    const IntervalVec3& box = environment.back().Geometry.Bounds();
+    if (s == 0)
+    {
+      bounds = Box{ box.Lower(), box.Upper() };
+    }
+    else
+    {
+      bounds.Extend(Box{ box.Lower(), box.Upper() });
+    }
+  }
+  if (environment.empty())
+  {
+    return true;
+  }
+  const HemisphereGrid grid(1, 1, 1, 1);
+  const RayCastFiller rays(environment, grid, this->Settings.Cover.FillOptions);
+  // Rays start on their own surface: skip the first 1e-7 of the scene's size (single-precision
+  // rays; far below any gap that matters, such as the light's 0.5 mm in a 550 mm box), and hits
+  // of the probe's own surface within its tessellation error.
+  const double tNear = 1e-7 * bounds.Diagonal();
+  const double ownTolerance = 2.0 * this->Settings.Cover.FillOptions.TessellationTolerance;
+  const int m = this->Settings.ProbesPerSide;
+  // The side of the first surface met along one ray: 1 back, 0 front or none, -1 undecided.
+  auto backSideFirst = [&](const Patch& patch,
+                         const glm::dvec3& origin,
+                         const glm::dvec3& direction,
+                         std::size_t& probes) -> int
+  {
+    double near = tNear;
+    for (int attempt = 0; attempt < 8; ++attempt)
+    {
+      ++probes;
+      std::size_t hit;
+      double distance;
+      bool front;
+      if (!rays.FirstHit(origin, direction, near, hit, distance, front))
+      {
+        return 0;
+      }
+      if (this->GroupOf(static_cast<int>(hit)) == this->GroupOf(patch.SurfaceIndex) &&
+        distance < ownTolerance * environment[hit].Geometry.Size())
+      {
+        near = distance * (1.0 + 1e-6) + tNear;
+        continue;
+      }
+      return !front && !this->Environment.Surfaces[hit].TwoSided ? 1 : 0;
+    }
+    return -1;
+  };
+  // A point is enclosed when the first surface met is a back side along its normal and along
+  // the four directions 45 degrees from it towards +-T and +-B: a point inside a closed solid
+  // (or in a thin gap under a surface turned away) meets back sides all around, a point that
+  // merely sees some back side through an opening (a teapot's lid gap) does not.
+  auto enclosed = [&](const Patch& patch, double u, double v, std::size_t& probes) -> int
+  {
+    // On the whole surface at the patch's (u, v) mapped into its domain (the probes may lie
+    // around the patch, within the surface).
+    const BezierPatch& surface =
+      this->Environment.Surfaces[static_cast<size_t>(patch.SurfaceIndex)].Patch;
+    const UVRect extent = this->ProbeExtent(patch.SurfaceIndex);
+    u = std::min(
+      extent.U1, std::max(extent.U0, patch.Domain.U0 + u * (patch.Domain.U1 - patch.Domain.U0)));
+    v = std::min(
+      extent.V1, std::max(extent.V0, patch.Domain.V0 + v * (patch.Domain.V1 - patch.Domain.V0)));
+    const glm::dvec3 normal = surface.UnnormalizedNormal(u, v);
+    const double length = glm::length(normal);
+    if (!(length > 0.0))
+    {
+      return -1; // no normal (a collapsed edge): no verdict
+    }
+    const glm::dvec3 origin = surface.Evaluate(u, v);
+    const HemisphereFrame frame = HemisphereFrame::FromPartials(
+      origin, normal / length, surface.PartialU(u, v), surface.PartialV(u, v));
+    const glm::dvec3 directions[5] = { frame.Normal,
+      glm::normalize(frame.Normal + frame.Tangent),
+      glm::normalize(frame.Normal - frame.Tangent),
+      glm::normalize(frame.Normal + frame.Bitangent),
+      glm::normalize(frame.Normal - frame.Bitangent) };
+    for (const glm::dvec3& direction : directions)
+    {
+      const int verdict = backSideFirst(patch, origin, direction, probes);
+      if (verdict != 1)
+      {
+        return verdict;
+      }
+    }
+    return 1;
+  };
+  // Whether a patch straddles an enclosure boundary: some probes enclosed, some not.
+  // The probes cover the patch and a margin of EnclosureMargin patch widths around it (within
+  // the surface): a patch is split when an enclosure boundary crosses it or passes that near,
+  // which grades the pieces towards the boundary (see the file comment).
+  const double margin = this->Settings.EnclosureMargin;
+  const int n = m + 2 * static_cast<int>(std::ceil(margin * m));
+  auto straddles = [&](const Patch& patch, std::size_t& probes)
+  {
+    bool in = false;
+    bool out = false;
+    for (int b = 0; b < n; ++b)
+    {
+      for (int a = 0; a < n; ++a)
+      {
+        const int verdict = enclosed(patch,
+          -margin + (1.0 + 2.0 * margin) * (a + 0.5) / n,
+          -margin + (1.0 + 2.0 * margin) * (b + 0.5) / n,
+          probes);
+        in = in || verdict == 1;
+        out = out || verdict == 0;
+        if (in && out)
+        {
+          return true;
+        }
+      }
+    }
+    return false;
+  };
+
+  // Every leaf independently (its pieces split recursively), merged in leaf order.
+  const size_t count = this->Leaves.size();
+  std::vector<std::vector<Patch>> pieces(count);
+  std::vector<std::size_t> splits(count, 0);
+  std::vector<std::size_t> probes(count, 0);
+  for (size_t first = 0; first < count; first += BatchSize)
+  {
+    const size_t batch = std::min(BatchSize, count - first);
+    run(batch,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t k = first + begin; k < first + end; ++k)
+        {
+          const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+          if (leaf.Level >= this->Settings.MaxLevel || !straddles(leaf, probes[k]))
+          {
+            continue;
+          }
+          const BezierPatch& surface =
+            this->Environment.Surfaces[static_cast<size_t>(leaf.SurfaceIndex)].Patch;
+          std::vector<Patch> stack{ leaf };
+          while (!stack.empty())
+          {
+            const Patch patch = std::move(stack.back());
+            stack.pop_back();
+            if (patch.Level >= this->Settings.MaxLevel ||
+              (splits[k] > 0 && !straddles(patch, probes[k])))
+            {
+              pieces[k].push_back(patch);
+              continue;
+            }
+            ++splits[k];
+            std::array<Patch, 3> three = SplitInThree(patch, surface, SplitReason::RBuffer);
+            for (int t = 2; t >= 0; --t)
+            {
+              stack.push_back(std::move(three[static_cast<size_t>(t)]));
+            }
+          }
+        }
+      });
+    if (progress && !progress(progressShare * double(first + batch) / count))
+    {
+      return false;
+    }
+  }
+  std::vector<int> nextLeaves;
+  for (size_t k = 0; k < count; ++k)
+  {
+    this->Stats.Probes += probes[k];
+    if (pieces[k].empty())
+    {
+      nextLeaves.push_back(this->Leaves[k]);
+      continue;
+    }
+    this->Stats.Splits += splits[k];
+    this->Stats.EnclosureSplits += splits[k];
+    for (Patch& piece : pieces[k])
+    {
+      nextLeaves.push_back(static_cast<int>(this->Nodes.size()));
+      this->Nodes.push_back(std::move(piece));
+      this->VisibleNodes.emplace_back();
+      this->Analysed.push_back(false);
+    }
+  }
+  this->Leaves = std::move(nextLeaves);
+  this->Stats.OutputPatches = this->Leaves.size();
+  return true;
+}
+
+bool CoverRefinement::AnalyseHemispheres(const ProgressCallback& progress,
+  const ParallelFor& run,
+  double progressStart)
+{
   const SphericalCoverOptions& options = this->Settings.Cover;
   const HemisphereGrid grid(
     options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
@@ -357,8 +613,10 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
       }
       this->Stats.RowsAnalysed += batch;
       if (progress &&
-        !progress(std::min(
-          1.0, (this->Stats.Rounds + double(first + batch) / receivers.size()) / expectedRounds)))
+        !progress(progressStart +
+          (1.0 - progressStart) *
+            std::min(1.0,
+              (this->Stats.Rounds + double(first + batch) / receivers.size()) / expectedRounds)))
       {
         return false;
       }
@@ -413,10 +671,6 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
     }
     this->Leaves = std::move(nextLeaves);
     this->Stats.OutputPatches = this->Leaves.size();
-  }
-  if (progress)
-  {
-    progress(1.0);
   }
   return true;
 }

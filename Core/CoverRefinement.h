@@ -51,6 +51,39 @@
  * from P_i has hidden pieces). The rounds end when no patch asks to be split; every round
  * deepens by one level, so there are at most MaxLevel + 1 rounds.
  *
+ * Receiver side (before Step 3, RefinementSettings::SplitEnclosureBoundaries). A patch part of
+ * which lies inside a closed solid, or under a surface turned away from it, is not
+ * characterised by its centre for receiving light (§4.2.4; §4.2.5 "full visibility ...
+ * depends on being not hidden by any other patch"): the floor under a bottomless block sees
+ * only the block's inside, the ceiling above the light (hanging 0.5 mm below it) only the
+ * light's back, while the rest of the same patch sees the room. A characteristic point on one
+ * side of such an enclosure boundary gives the whole patch its row, which is the largest
+ * reciprocity error of the Cornell box (a floor patch straddling a block's footprint with its
+ * centre under the block takes nothing from the block's front although a third of it sees the
+ * front at F ~ 0.2; 9.5% on floor / short_block_front). A point is enclosed when the first
+ * surface met along its normal, and along the four directions 45 degrees from it, is met from
+ * its back side (a one-sided surface; two-sided ones have no back): inside a closed solid
+ * every direction meets a back side, whereas a point that sees some back side through an
+ * opening (into a teapot through its lid gap) is not enclosed. A patch is split (SplitInThree,
+ * reason RBuffer) while among a ProbesPerSide x ProbesPerSide grid of its points (the centres of
+ * equal parameter cells) some are enclosed and some are not, up to MaxLevel; only the patches along
+ * the boundaries are split, and the pieces wholly inside keep a row that sees nothing but the
+ * solid's inside (correctly: they receive no light). The Step 3 analysis from the source side finds
+ * the same patches (the floor patch is partly hidden in the ceiling's hemispheres) but needs every
+ * hemisphere filled once per level, where the probes cost a few rays per patch (Embree, on the
+ * ray fill's tessellation of the scene's surfaces). Probes find a boundary crossing a patch
+ * unless it clips a corner between them (an error of that corner's area only).
+ *
+ * An enclosure boundary is also a contact line: a block's faces rise from it, and next to it
+ * what a floor point receives from the face changes fast (from half its hemisphere at the
+ * line to a tenth a patch width away). One point per 61 mm x 20 mm floor patch there misses
+ * that variation by about 1% of the floor / block-face exchange even once the straddling
+ * patches are split fine (measured: the same 1.2 to 1.4% at 4 and 6 extra levels, with the
+ * block faces' side converged within 0.2% and the floor's hemispheres within 0.2% of a 64 x 256
+ * grid). The probes therefore also cover EnclosureMargin patch widths around the patch: a
+ * patch is split while a boundary passes within that distance, so the pieces shrink towards
+ * the boundary like the variation they have to follow.
+ *
  * Hemisphere interpolation (§3.4, §4.3 Step 5, note 5) is not used: the paper interpolates to
  * avoid "expensive" hemisphere computations, but here a hemisphere is one R-buffer fill (the
  * same cost as the analysis that decides the split), the interpolated rows of Fig. 7 are
@@ -92,6 +125,16 @@ struct RefinementSettings
   double MinimumVisibleCells = 0.5;
   /// Split Q_j when its image in H_i is disconnected.
   bool SplitDisconnected = true;
+  /// Receiver side: split patches across enclosure boundaries first (see the file comment).
+  bool SplitEnclosureBoundaries = true;
+  /// Probe points per side of a patch for the enclosure test, in [2, 16].
+  int ProbesPerSide = 5;
+  /// The probes also cover this many patch widths around the patch (in [0, 4]; see the file
+  /// comment).
+  double EnclosureMargin = 1.0;
+  /// Step 3 from the source side: analyse the hemispheres (rounds of R-buffer fills of every
+  /// affected receiver; the costly part). Off: the receiver side alone.
+  bool AnalyseHemispheres = true;
 
   /// Empty if the settings are usable, else what is wrong with them.
   std::string Problem() const;
@@ -110,6 +153,10 @@ struct RefinementStatistics
   std::size_t DisconnectedSplits = 0;
   /// (receiver, source) pairs that asked for a split the limits refused.
   std::size_t LimitedRequests = 0;
+  /// Splits of the receiver side (enclosure boundaries), included in Splits.
+  std::size_t EnclosureSplits = 0;
+  /// Enclosure probes cast (rays).
+  std::size_t Probes = 0;
 };
 
 class CoverRefinement
@@ -131,6 +178,17 @@ public:
   bool Run(const ProgressCallback& progress = nullptr,
     const ParallelFor& parallelFor = SequentialFor);
 
+  /**
+   * Where the enclosure probes of a patch may lie when its margin reaches beyond it: by default
+   * its surface's unit square. A caller whose scene surfaces are pieces of larger surfaces (the
+   * cover filter, whose input cells are the subdivision's patches) gives, per scene surface,
+   * the rectangle of its own parameters that the whole larger surface spans (probes then reach
+   * into the neighbouring pieces: the polynomial of a piece continues the surface it was cut
+   * from), and the group (larger surface) of each, whose hits near a probe are its own
+   * surface's. Empty vectors: the defaults. Throws std::invalid_argument for wrong sizes.
+   */
+  void SetProbeExtents(std::vector<UVRect> extents, std::vector<int> groups);
+
   /// The refined patch list, ordered by surface, then by v, then by u of their domains (as
   /// IntervalSubdivision::Patches()).
   std::vector<Patch> Patches() const;
@@ -138,6 +196,15 @@ public:
   const RefinementStatistics& Statistics() const { return this->Stats; }
 
 private:
+  /// The receiver side: splits the patches across enclosure boundaries (file comment).
+  bool SplitAcrossEnclosures(const ProgressCallback& progress,
+    const ParallelFor& parallelFor,
+    double progressShare);
+  /// Step 3 from the source side (file comment), from progressStart to 1.
+  bool AnalyseHemispheres(const ProgressCallback& progress,
+    const ParallelFor& parallelFor,
+    double progressStart);
+
   struct Analysis;
   /// Fills and analyses the R-buffer of leaf `receiver` of `current`.
   void Analyse(std::size_t receiver,
@@ -146,8 +213,13 @@ private:
     class RBuffer& buffer,
     Analysis& result) const;
 
+  UVRect ProbeExtent(int surface) const;
+  int GroupOf(int surface) const;
+
   const Scene& Environment;
   RefinementSettings Settings;
+  std::vector<UVRect> ProbeExtents;
+  std::vector<int> ProbeGroups;
   /// Every patch ever made (a split appends its three pieces).
   std::vector<Patch> Nodes;
   /// The current patch list Q: indices into Nodes, a split piece in its parent's place.

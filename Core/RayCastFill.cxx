@@ -514,4 +514,46 @@ void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistic
     &impl.SurfaceOfPatch);
 }
 
+bool RayCastFiller::FirstHit(const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  double tNear,
+  std::size_t& patch,
+  double& distance,
+  bool& front) const
+{
+  ReceiverContext context;
+  rtcInitIntersectContext(&context.Context);
+  context.Context.filter = FilterHit;
+  context.Receiver = RTC_INVALID_GEOMETRY_ID;
+  context.SelfExclusion = 0.0f;
+  context.CountSelf = true;
+  context.BackFacesOcclude = true; // every side counts: the caller asks which one it met
+  RTCRayHit rayHit;
+  rayHit.ray.org_x = static_cast<float>(origin.x);
+  rayHit.ray.org_y = static_cast<float>(origin.y);
+  rayHit.ray.org_z = static_cast<float>(origin.z);
+  rayHit.ray.dir_x = static_cast<float>(direction.x);
+  rayHit.ray.dir_y = static_cast<float>(direction.y);
+  rayHit.ray.dir_z = static_cast<float>(direction.z);
+  rayHit.ray.tnear = static_cast<float>(tNear);
+  rayHit.ray.tfar = std::numeric_limits<float>::infinity();
+  rayHit.ray.time = 0.0f;
+  rayHit.ray.mask = 0xFFFFFFFFu;
+  rayHit.ray.id = 0;
+  rayHit.ray.flags = 0;
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(this->Impl->Scene, &context.Context, &rayHit);
+  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+  {
+    return false;
+  }
+  patch = rayHit.hit.geomID;
+  distance = rayHit.ray.tfar;
+  front = rayHit.hit.Ng_x * rayHit.ray.dir_x + rayHit.hit.Ng_y * rayHit.ray.dir_y +
+      rayHit.hit.Ng_z * rayHit.ray.dir_z <
+    0.0f;
+  return true;
+}
+
 } // namespace sphcover

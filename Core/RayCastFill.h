@@ -88,6 +88,18 @@ public:
   /// Tessellation resolution of a patch.
   void Resolution(std::size_t patch, int& quadsU, int& quadsV) const;
 
+  /**
+   * The first patch met by the ray origin + t direction, t > tNear, from either side (no
+   * receiver, no self-exclusion): its index, the distance t (of the tessellation) and whether
+   * the side met is the front. False when the ray escapes. Thread-safe, like Fill().
+   */
+  bool FirstHit(const glm::dvec3& origin,
+    const glm::dvec3& direction,
+    double tNear,
+    std::size_t& patch,
+    double& distance,
+    bool& front) const;
+
 private:
   struct Implementation;
   std::unique_ptr<Implementation> Impl;

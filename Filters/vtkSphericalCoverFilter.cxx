@@ -9,6 +9,7 @@
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
 
+#include "CoverRefinement.h"
 #include "HemisphereGrid.h"
 #include "Patch.h"
 #include "Scene.h"
@@ -27,6 +28,7 @@
 #include <vtkPolyData.h>
 #include <vtkTable.h>
 
+#include <algorithm>
 #include <exception>
 #include <iomanip>
 #include <sstream>
@@ -95,6 +97,90 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
                                                  : sphcover::RBufferFill::Projection;
   options.FillOptions.BackFacesOcclude = this->BackFacesOcclude;
 
+  // Cell of the input each patch was cut from (the identity without refinement).
+  std::vector<vtkIdType> cellOfPatch(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k)
+  {
+    cellOfPatch[k] = static_cast<vtkIdType>(k);
+  }
+  const double refinementShare = this->Refinement == REFINEMENT_FULL ? 0.6 : 0.05;
+  if (this->Refinement != REFINEMENT_OFF && !patches.empty())
+  {
+    // The refinement cuts pieces from the scene's surfaces; here each input cell is a surface
+    // of its own (vtkSurfaceGridAdapter), so the patches are refined as whole cells and their
+    // pieces mapped back to the cells' surfaces and parameter rectangles afterwards.
+    std::vector<sphcover::Patch> cells;
+    int deepest = 0;
+    for (size_t c = 0; c < patches.size(); ++c)
+    {
+      cells.emplace_back(
+        static_cast<int>(c), sphcover::UVRect::Unit(), patches[c].Level, scene.Surfaces[c].Patch);
+      deepest = std::max(deepest, patches[c].Level);
+    }
+    sphcover::RefinementSettings settings;
+    settings.Cover = options;
+    settings.MaxLevel = deepest + this->RefinementLevels;
+    settings.AnalyseHemispheres = this->Refinement == REFINEMENT_FULL;
+    try
+    {
+      sphcover::CoverRefinement refinement(scene, std::move(cells), settings);
+      // Each cell's probes may reach into its neighbours, within the surface it was cut from:
+      // that surface's unit square in the cell's own parameters.
+      std::vector<sphcover::UVRect> extents;
+      std::vector<int> groups;
+      for (const sphcover::Patch& patch : patches)
+      {
+        const sphcover::UVRect& d = patch.Domain;
+        const double du = d.U1 - d.U0;
+        const double dv = d.V1 - d.V0;
+        extents.push_back(du > 0.0 && dv > 0.0
+            ? sphcover::UVRect{ -d.U0 / du, (1.0 - d.U0) / du, -d.V0 / dv, (1.0 - d.V0) / dv }
+            : sphcover::UVRect::Unit());
+        groups.push_back(patch.SurfaceIndex);
+      }
+      refinement.SetProbeExtents(std::move(extents), std::move(groups));
+      const bool completed = refinement.Run(
+        [this, refinementShare](double fraction)
+        {
+          this->UpdateProgress(refinementShare * fraction);
+          return !this->GetAbortExecute();
+        },
+        vtkSMPParallelFor::Make());
+      if (!completed)
+      {
+        vtkWarningMacro("Spherical cover aborted.");
+        return 0;
+      }
+      std::vector<sphcover::Patch> pieces = refinement.Patches();
+      std::vector<sphcover::Patch> refined;
+      refined.reserve(pieces.size());
+      cellOfPatch.clear();
+      for (sphcover::Patch& piece : pieces)
+      {
+        const size_t cell = static_cast<size_t>(piece.SurfaceIndex);
+        const sphcover::UVRect& whole = patches[cell].Domain;
+        const sphcover::UVRect part = piece.Domain;
+        // An unsplit cell keeps its rectangle exactly; a piece's is mapped into it.
+        piece.Domain = piece.Reason == sphcover::SplitReason::None
+          ? whole
+          : sphcover::UVRect{ whole.U0 + (whole.U1 - whole.U0) * part.U0,
+              whole.U0 + (whole.U1 - whole.U0) * part.U1,
+              whole.V0 + (whole.V1 - whole.V0) * part.V0,
+              whole.V0 + (whole.V1 - whole.V0) * part.V1 };
+        piece.SurfaceIndex = patches[cell].SurfaceIndex;
+        refined.push_back(std::move(piece));
+        cellOfPatch.push_back(static_cast<vtkIdType>(cell));
+      }
+      patches = std::move(refined);
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorMacro(<< "Cover refinement failed: " << e.what());
+      return 0;
+    }
+  }
+  const double coverStart = this->Refinement == REFINEMENT_OFF ? 0.0 : refinementShare;
+
   sphcover::SphericalCover cover;
   try
   {
@@ -114,9 +200,9 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     const bool completed = cover.Build(patches,
       options,
       vtkSMPParallelFor::Make(),
-      [this](double fraction)
+      [this, coverStart](double fraction)
       {
-        this->UpdateProgress(0.95 * fraction);
+        this->UpdateProgress(coverStart + (0.95 - coverStart) * fraction);
         return !this->GetAbortExecute();
       });
     if (!completed)
@@ -155,7 +241,46 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   pointsOut->SetPoints(characteristic->GetPoints());
   pointsOut->SetVerts(characteristic->GetVerts());
   vtkPointData* pd = pointsOut->GetPointData();
-  pd->PassData(input->GetCellData());
+  {
+    // Each point gets the cell data of the input patch it was cut from; a piece's own
+    // UVRange, Level and SplitReason replace its cell's.
+    vtkCellData* cd = input->GetCellData();
+    pd->CopyAllocate(cd, count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      pd->CopyData(cd, cellOfPatch[static_cast<size_t>(i)], i);
+    }
+    pd->SetNumberOfTuples(count);
+    if (this->Refinement != REFINEMENT_OFF)
+    {
+      vtkDataArray* uvRange = pd->GetArray(names::UVRange);
+      vtkDataArray* level = pd->GetArray(names::Level);
+      vtkDataArray* reason = pd->GetArray(names::SplitReason);
+      for (vtkIdType i = 0; i < count; ++i)
+      {
+        const sphcover::Patch& patch = patches[static_cast<size_t>(i)];
+        if (patch.Reason != sphcover::SplitReason::RBuffer)
+        {
+          continue; // not split: its cell's values
+        }
+        if (uvRange && uvRange->GetNumberOfComponents() == 4)
+        {
+          const double rect[4] = {
+            patch.Domain.U0, patch.Domain.U1, patch.Domain.V0, patch.Domain.V1
+          };
+          uvRange->SetTuple(i, rect);
+        }
+        if (level)
+        {
+          level->SetComponent(i, 0, patch.Level);
+        }
+        if (reason)
+        {
+          reason->SetComponent(i, 0, static_cast<double>(patch.Reason));
+        }
+      }
+    }
+  }
   pd->RemoveArray(names::HigherOrderDegrees);
   pd->SetNormals(normals);
   pd->AddArray(tangents);
@@ -212,4 +337,10 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
+  os << indent << "Refinement: "
+     << (this->Refinement == REFINEMENT_OFF
+            ? "Off"
+            : (this->Refinement == REFINEMENT_ENCLOSURES ? "EnclosureBoundaries" : "Full"))
+     << "\n";
+  os << indent << "RefinementLevels: " << this->RefinementLevels << "\n";
 }

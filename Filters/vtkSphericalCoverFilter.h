@@ -20,6 +20,17 @@
  * Output 1 (vtkTable): the strips, `Receiver`, `Source`, `Theta` (row), `PhiBegin`, `PhiEnd`
  * (columns, end exclusive), `R` (mean distance).
  *
+ * Before the cover is built, the patches may be refined (Refinement, sphcover::CoverRefinement):
+ * the points are then those of the refined patches, each with the cell data of the input patch
+ * it was cut from (UVRange, Level and SplitReason its own). What of paper §4.3 is done: the
+ * R-buffer criterion of §4.2.5 from the receiver side (patches straddling an enclosure
+ * boundary, the default), Step 3 from the source side (REFINEMENT_FULL: substantially hidden
+ * or disconnected images, ternary splits within the level limit of note 2, rounds until no
+ * patch asks), and Step 5's replacement of a split patch by all its pieces. Not done: the
+ * interpolation of hemispheres at new characteristic points (§3.4, Step 5, note 5); every
+ * refined patch gets its own R-buffer, which keeps every hemisphere exact (covered once, pi in
+ * a closed scene) where interpolated rows would not be.
+ *
  * Before building, the memory the cover needs is estimated; above MemoryLimit (MiB) the
  * filter refuses with an error.
  *
@@ -87,6 +98,39 @@ public:
   vtkBooleanMacro(BackFacesOcclude, bool);
   ///@}
 
+  enum RefinementModes
+  {
+    REFINEMENT_OFF = 0,
+    /// Receiver side only: patches straddling an enclosure boundary (CoverRefinement.h).
+    REFINEMENT_ENCLOSURES = 1,
+    /// Enclosure boundaries, then paper §4.3 Step 3 from the source side (every hemisphere
+    /// analysed once per level; several cover builds' worth of time).
+    REFINEMENT_FULL = 2
+  };
+
+  ///@{
+  /**
+   * The R-buffer refinement of paper §4.2.5 / §4.3 Steps 3 and 5 before the cover is built
+   * (sphcover::CoverRefinement): REFINEMENT_OFF, REFINEMENT_ENCLOSURES (patches part of which
+   * lies inside a closed solid or under a surface turned away, such as the floor along a
+   * block's footprint, or within one patch width of such a boundary, are split; costs a few
+   * hundred rays per patch) or REFINEMENT_FULL (then also
+   * patches substantially hidden or disconnected in some hemisphere). The output then has one
+   * point per refined patch. Default is REFINEMENT_ENCLOSURES.
+   */
+  vtkSetClampMacro(Refinement, int, REFINEMENT_OFF, REFINEMENT_FULL);
+  vtkGetMacro(Refinement, int);
+  ///@}
+
+  ///@{
+  /**
+   * How many ternary levels the refinement may split below the deepest input patch (paper §4.3
+   * note 2's limit). Default is 3.
+   */
+  vtkSetClampMacro(RefinementLevels, int, 0, 12);
+  vtkGetMacro(RefinementLevels, int);
+  ///@}
+
   ///@{
   /** Largest memory the cover may take, in MiB; a bigger estimate is refused. Default 8192. */
   vtkSetClampMacro(MemoryLimit, double, 0.0, 1.0e9);
@@ -107,6 +151,8 @@ protected:
   int FillMethod = PROJECTION;
   bool BackFacesOcclude = true;
   double MemoryLimit = 8192.0;
+  int Refinement = REFINEMENT_ENCLOSURES;
+  int RefinementLevels = 3;
 
 private:
   vtkSphericalCoverFilter(const vtkSphericalCoverFilter&) = delete;

@@ -6,7 +6,12 @@
  * cover over the refined patches (SPEC §7: speed is measured by a benchmark, never by timed
  * tests).
  *
- *   BenchmarkCoverRefinement [--threads N] [--extra-levels K] [--scene name.scene]...
+ *   BenchmarkCoverRefinement [--threads N] [--extra-levels K] [--enclosures 0|1]
+ *                            [--hemispheres 0|1] [--scene name.scene]...
+ *
+ * --enclosures and --hemispheres switch the receiver-side enclosure probes and the Step 3
+ * hemisphere analysis (RefinementSettings) on or off; both are on by default. --margin sets
+ * RefinementSettings::EnclosureMargin; --skip-before skips the cover before refinement.
  *
  * The refinement may go K levels (default 2) deeper than the scene's MaxLevel: at the scenes'
  * settings the interval subdivision already takes every patch to MaxLevel, so with the same
@@ -44,7 +49,13 @@ double Seconds(std::chrono::steady_clock::time_point start)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFor)
+void Run(const std::string& name,
+  int extraLevels,
+  bool enclosures,
+  bool hemispheres,
+  double margin,
+  bool skipBefore,
+  const ParallelFor& parallelFor)
 {
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
   SubdivisionSettings subdivisionSettings;
@@ -67,14 +78,21 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
 
   start = std::chrono::steady_clock::now();
   SphericalCover coverBefore;
-  coverBefore.Build(before, coverOptions, parallelFor);
+  if (!skipBefore)
+  {
+    coverBefore.Build(before, coverOptions, parallelFor);
+  }
   const double coverBeforeSeconds = Seconds(start);
-  const sphcover_test::Exchange reciprocityBefore =
-    sphcover_test::MeasureExchange(scene, before, coverBefore);
+  const sphcover_test::Exchange reciprocityBefore = skipBefore
+    ? sphcover_test::Exchange()
+    : sphcover_test::MeasureExchange(scene, before, coverBefore);
 
   RefinementSettings refinementSettings;
   refinementSettings.Cover = coverOptions;
   refinementSettings.MaxLevel = scene.Settings.MaxLevel + extraLevels;
+  refinementSettings.SplitEnclosureBoundaries = enclosures;
+  refinementSettings.AnalyseHemispheres = hemispheres;
+  refinementSettings.EnclosureMargin = margin;
   start = std::chrono::steady_clock::now();
   CoverRefinement refinement(scene, before, refinementSettings);
   refinement.Run(nullptr, parallelFor);
@@ -89,12 +107,15 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
     sphcover_test::MeasureExchange(scene, after, coverAfter);
 
   const RefinementStatistics& s = refinement.Statistics();
-  std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d)\n",
+  std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d, enclosure probes %s, "
+              "hemisphere analysis %s)\n",
     name.c_str(),
     coverOptions.ThetaBins,
     coverOptions.PhiBins,
     scene.Settings.MaxLevel,
-    refinementSettings.MaxLevel);
+    refinementSettings.MaxLevel,
+    enclosures ? "on" : "off",
+    hemispheres ? "on" : "off");
   std::printf("  subdivision          %8zu patches  %8.2f s\n", before.size(), subdivisionSeconds);
   std::printf("  cover before         %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
               "worst |row - 1| %.2e\n",
@@ -103,13 +124,17 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
     reciprocityBefore.WorstReciprocity,
     reciprocityBefore.WorstPair.c_str(),
     reciprocityBefore.WorstRowError);
-  std::printf("  refinement           %8zu patches  %8.2f s  rounds %d, hemispheres analysed %zu, "
-              "splits %zu (%zu for disconnection only), refused by limits %zu\n",
+  std::printf(
+    "  refinement           %8zu patches  %8.2f s  rounds %d, hemispheres analysed %zu, "
+    "splits %zu (%zu across enclosure boundaries by %zu probe rays, %zu for disconnection "
+    "only), refused by limits %zu\n",
     after.size(),
     refinementSeconds,
     s.Rounds,
     s.RowsAnalysed,
     s.Splits,
+    s.EnclosureSplits,
+    s.Probes,
     s.DisconnectedSplits,
     s.LimitedRequests);
   std::printf("  cover after          %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
@@ -119,6 +144,37 @@ void Run(const std::string& name, int extraLevels, const ParallelFor& parallelFo
     reciprocityAfter.WorstReciprocity,
     reciprocityAfter.WorstPair.c_str(),
     reciprocityAfter.WorstRowError);
+  // Every pair still above 1%, with its exchange relative to the smaller area.
+  {
+    const size_t count = scene.Surfaces.size();
+    std::vector<int> groups;
+    std::vector<double> area(count, 0.0);
+    for (const Patch& patch : after)
+    {
+      groups.push_back(patch.SurfaceIndex);
+      area[static_cast<size_t>(patch.SurfaceIndex)] += patch.Area;
+    }
+    const std::vector<double> f = coverAfter.FormFactors(groups, static_cast<int>(count));
+    for (size_t a = 0; a < count; ++a)
+    {
+      for (size_t b = a + 1; b < count; ++b)
+      {
+        const double ab = area[a] * f[a * count + b];
+        const double ba = area[b] * f[b * count + a];
+        if (std::max(ab, ba) > 0.0 && std::fabs(ab - ba) > 0.01 * std::max(ab, ba))
+        {
+          std::printf("    pair above 1%%: %s / %s  F %.4g / %.4g  error %.2e  exchange / min "
+                      "area %.2e\n",
+            scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[a].NameIndex)].c_str(),
+            scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[b].NameIndex)].c_str(),
+            f[a * count + b],
+            f[b * count + a],
+            std::fabs(ab - ba) / std::max(ab, ba),
+            std::min(ab, ba) / std::min(area[a], area[b]));
+        }
+      }
+    }
+  }
   std::printf("  hemispheres computed after subdivision: %zu (refinement) + %zu (final cover)\n",
     s.RowsAnalysed,
     after.size());
@@ -129,6 +185,10 @@ int main(int argc, char* argv[])
 {
   int threads = 2;
   int extraLevels = 2;
+  bool enclosures = true;
+  double margin = RefinementSettings().EnclosureMargin;
+  bool skipBefore = false;
+  bool hemispheres = true;
   std::vector<std::string> scenes;
   for (int k = 1; k < argc; ++k)
   {
@@ -140,14 +200,32 @@ int main(int argc, char* argv[])
     {
       extraLevels = std::max(0, std::atoi(argv[++k]));
     }
+    else if (std::strcmp(argv[k], "--enclosures") == 0 && k + 1 < argc)
+    {
+      enclosures = std::atoi(argv[++k]) != 0;
+    }
+    else if (std::strcmp(argv[k], "--margin") == 0 && k + 1 < argc)
+    {
+      margin = std::atof(argv[++k]);
+    }
+    else if (std::strcmp(argv[k], "--skip-before") == 0)
+    {
+      skipBefore = true;
+    }
+    else if (std::strcmp(argv[k], "--hemispheres") == 0 && k + 1 < argc)
+    {
+      hemispheres = std::atoi(argv[++k]) != 0;
+    }
     else if (std::strcmp(argv[k], "--scene") == 0 && k + 1 < argc)
     {
       scenes.emplace_back(argv[++k]);
     }
     else
     {
-      std::fprintf(
-        stderr, "usage: %s [--threads N] [--extra-levels K] [--scene name.scene]...\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--threads N] [--extra-levels K] [--enclosures 0|1] [--hemispheres 0|1] "
+        "[--margin W] [--skip-before] [--scene name.scene]...\n",
+        argv[0]);
       return 2;
     }
   }
@@ -161,7 +239,7 @@ int main(int argc, char* argv[])
   std::printf("threads %d\n", threads);
   for (const std::string& scene : scenes)
   {
-    Run(scene, extraLevels, parallelFor);
+    Run(scene, extraLevels, enclosures, hemispheres, margin, skipBefore, parallelFor);
   }
   return 0;
 }

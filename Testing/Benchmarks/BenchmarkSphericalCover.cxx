@@ -6,14 +6,27 @@
  * memory are measured by a benchmark program, never by timed tests).
  *
  *   BenchmarkSphericalCover [--threads N] [--splits 1,2,3,4,6] [--scene path.scene]
+ *   BenchmarkSphericalCover --pipeline [--scene path.scene]...
  *
  * Prints, per resolution and fill: patches N, rows, entries (non-null h_ij), strips, bytes
  * (and the estimate made before building), seconds, cells per second, the candidate culling
  * counts, and how the time grows with N (exponent of N between consecutive resolutions).
+ *
+ * --pipeline (the figures of the closing note of issue 4): per scene (default the Cornell box
+ * and the teapot room) the patches of the real pipeline at the scene's settings (interval
+ * subdivision, then the receiver-side refinement that vtkSphericalCoverFilter applies by
+ * default, 3 levels deeper), then for 1 and 2 threads and each fill: N, strips, bytes (and
+ * bytes per strip), seconds; and Embree's raw ray throughput on this machine for the same
+ * number of rays (N x samples per hemisphere, from the characteristic points along the sample
+ * directions, no classification), so the cover's cost reads as a ratio to that limit.
  */
 #include "BezierPatch.h"
+#include "CoverRefinement.h"
+#include "HemisphereGrid.h"
+#include "IntervalSubdivision.h"
 #include "ParallelFor.h"
 #include "Patch.h"
+#include "RayCastFill.h"
 #include "SceneLoader.h"
 #include "SphericalCover.h"
 
@@ -86,8 +99,129 @@ ParallelFor ThreadPoolFor(int threads)
 }
 }
 
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The patches of sphcover solve at the scene's settings (subdivision, default refinement).
+std::vector<Patch> PipelinePatches(const Scene& scene)
+{
+  SubdivisionSettings subdivision;
+  subdivision.MaxLevel = scene.Settings.MaxLevel;
+  subdivision.ThetaBins = scene.Settings.ThetaBins;
+  subdivision.PhiBins = scene.Settings.PhiBins;
+  for (double& tolerance : subdivision.Tolerance)
+  {
+    tolerance = scene.Settings.Tolerance;
+  }
+  IntervalSubdivision subdivide(scene, subdivision);
+  subdivide.Run(nullptr, ThreadPoolFor(2));
+  RefinementSettings refinement;
+  refinement.Cover.ThetaBins = scene.Settings.ThetaBins;
+  refinement.Cover.PhiBins = scene.Settings.PhiBins;
+  refinement.MaxLevel = scene.Settings.MaxLevel + 3;
+  refinement.AnalyseHemispheres = false;
+  CoverRefinement refine(scene, subdivide.Patches(), refinement);
+  refine.Run(nullptr, ThreadPoolFor(2));
+  return refine.Patches();
+}
+
+void RunPipeline(const std::string& scenePath)
+{
+  const Scene scene = LoadSceneFile(scenePath);
+  const std::vector<Patch> patches = PipelinePatches(scene);
+  SphericalCoverOptions options;
+  options.ThetaBins = scene.Settings.ThetaBins;
+  options.PhiBins = scene.Settings.PhiBins;
+  const HemisphereGrid grid(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  std::printf("scene %s: N = %zu characteristic points, grid %d x %d, %d x %d samples per "
+              "cell, %zu rays per hemisphere\n",
+    scenePath.c_str(),
+    patches.size(),
+    options.ThetaBins,
+    options.PhiBins,
+    options.SamplesTheta,
+    options.SamplesPhi,
+    grid.SampleCount());
+  std::printf("  %-10s %7s %6s %10s %12s %8s %9s\n",
+    "fill",
+    "threads",
+    "N",
+    "strips",
+    "bytes",
+    "B/strip",
+    "seconds");
+  for (const RBufferFill fill : { RBufferFill::Projection, RBufferFill::RayCasting })
+  {
+    for (const int threads : { 1, 2 })
+    {
+      options.Fill = fill;
+      SphericalCover cover;
+      const auto start = std::chrono::steady_clock::now();
+      cover.Build(patches, options, ThreadPoolFor(threads));
+      const double seconds = SecondsSince(start);
+      std::printf("  %-10s %7d %6zu %10zu %12zu %8zu %9.2f\n",
+        RBufferFillName(fill),
+        threads,
+        patches.size(),
+        cover.StripCount(),
+        cover.MemoryBytes(),
+        SphericalCover::BytesPerStrip,
+        seconds);
+      std::fflush(stdout);
+    }
+  }
+  // Embree's limit: the same rays (every sample direction of every hemisphere), first hit only.
+  const RayCastFiller rays(patches, grid, options.FillOptions);
+  for (const int threads : { 1, 2 })
+  {
+    std::atomic<unsigned long long> hits{ 0 };
+    const auto start = std::chrono::steady_clock::now();
+    ThreadPoolFor(threads)(patches.size(),
+      [&](std::size_t begin, std::size_t end)
+      {
+        unsigned long long found = 0;
+        for (std::size_t i = begin; i < end; ++i)
+        {
+          const HemisphereFrame frame = HemisphereFrame::OfPatch(patches[i]);
+          const double near = 1e-3 * patches[i].Geometry.Size();
+          for (int row = 0; row < grid.SampleRows(); ++row)
+          {
+            for (int column = 0; column < grid.SampleColumns(); ++column)
+            {
+              std::size_t patch;
+              double distance;
+              bool front;
+              found += rays.FirstHit(frame.Origin,
+                frame.ToWorld(grid.SampleDirection(row, column)),
+                near,
+                patch,
+                distance,
+                front);
+            }
+          }
+        }
+        hits += found;
+      });
+    const double seconds = SecondsSince(start);
+    const double count = static_cast<double>(patches.size()) * grid.SampleCount();
+    std::printf("  raw Embree %7d %6zu rays %.3e in %.2f s: %.3e rays/s (%llu hits)\n",
+      threads,
+      patches.size(),
+      count,
+      seconds,
+      count / seconds,
+      static_cast<unsigned long long>(hits));
+    std::fflush(stdout);
+  }
+}
+
 int main(int argc, char** argv)
 {
+  bool pipeline = false;
+  std::vector<std::string> pipelineScenes;
   int threads = 1;
   std::vector<int> splits{ 1, 2, 3, 4, 6 };
   std::string scenePath = std::string(SPHCOVER_DATA_DIR) + "/scenes/cornell_box.scene";
@@ -111,13 +245,34 @@ int main(int argc, char** argv)
     else if (arg == "--scene" && k + 1 < argc)
     {
       scenePath = argv[++k];
+      pipelineScenes.push_back(scenePath);
+    }
+    else if (arg == "--pipeline")
+    {
+      pipeline = true;
     }
     else
     {
-      std::fprintf(
-        stderr, "usage: %s [--threads N] [--splits 1,2,3] [--scene file.scene]\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--threads N] [--splits 1,2,3] [--scene file.scene]\n"
+        "       %s --pipeline [--scene file.scene]...\n",
+        argv[0],
+        argv[0]);
       return 2;
     }
+  }
+  if (pipeline)
+  {
+    if (pipelineScenes.empty())
+    {
+      pipelineScenes = { std::string(SPHCOVER_DATA_DIR) + "/scenes/cornell_box.scene",
+        std::string(SPHCOVER_DATA_DIR) + "/scenes/teapot_room.scene" };
+    }
+    for (const std::string& path : pipelineScenes)
+    {
+      RunPipeline(path);
+    }
+    return 0;
   }
   const Scene scene = LoadSceneFile(scenePath);
   const SphericalCoverOptions defaults;

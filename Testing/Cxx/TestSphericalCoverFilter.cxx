@@ -5,6 +5,8 @@
 // - a built cover written with VTK's XML writer and read back is identical, array for array
 //   and cell for cell;
 // - the result does not depend on the number of threads;
+// - the refinement splits patches across enclosure boundaries, keeping the total area, and
+//   honours abort;
 // - bad inputs and a memory limit below the estimate give one clear error.
 #include "FailureExpectation.h"
 #include "vtkIntervalSubdivisionFilter.h"
@@ -14,7 +16,9 @@
 
 #include "SphericalCover.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellData.h>
+#include <vtkCommand.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -148,6 +152,58 @@ int TestSphericalCoverFilter(int, char*[])
   sphcover::SphericalCover threaded;
   vtkSphericalCoverArrays::Load(cover->GetOutput(), threaded);
   Check(SameCover(built, threaded), "the cover does not depend on the number of threads");
+
+  // The refinement (the default: enclosure boundaries) splits the floor patches along the
+  // blocks' footprints and the ceiling's around the light: more points, the same total area,
+  // the pieces marked SplitReason 5 (R-buffer) within the level limit; off, one point per patch.
+  {
+    vtkNew<vtkSphericalCoverFilter> unrefined;
+    unrefined->SetInputConnection(boxPatches->GetOutputPort(0));
+    unrefined->SetRefinement(vtkSphericalCoverFilter::REFINEMENT_OFF);
+    unrefined->Update();
+    const vtkIdType patches = boxPatches->GetOutput()->GetNumberOfCells();
+    vtkPolyData* refinedPoints = cover->GetOutput();
+    Check(unrefined->GetOutput()->GetNumberOfPoints() == patches,
+      "without refinement one point per patch");
+    Check(refinedPoints->GetNumberOfPoints() > patches, "the refinement splits some patches");
+    auto areaSum = [](vtkPolyData* points)
+    {
+      vtkDataArray* area = points->GetPointData()->GetArray("Area");
+      double sum = 0.0;
+      for (vtkIdType k = 0; k < area->GetNumberOfTuples(); ++k)
+      {
+        sum += area->GetComponent(k, 0);
+      }
+      return sum;
+    };
+    Check(std::fabs(areaSum(refinedPoints) / areaSum(unrefined->GetOutput()) - 1.0) < 1e-9,
+      "the refined patches' areas add up to the patches'");
+    vtkDataArray* reason = refinedPoints->GetPointData()->GetArray("SplitReason");
+    vtkDataArray* level = refinedPoints->GetPointData()->GetArray("Level");
+    vtkIdType pieces = 0;
+    bool withinLimit = reason && level;
+    for (vtkIdType k = 0; withinLimit && k < refinedPoints->GetNumberOfPoints(); ++k)
+    {
+      if (reason->GetComponent(k, 0) == 5)
+      {
+        ++pieces;
+        withinLimit = level->GetComponent(k, 0) <= 2 + cover->GetRefinementLevels();
+      }
+    }
+    std::cout << "refinement: " << patches << " patches -> " << refinedPoints->GetNumberOfPoints()
+              << " points, " << pieces << " pieces\n";
+    Check(withinLimit && pieces > 0, "the pieces are marked and within the level limit");
+
+    // Abort during the refinement: no output, no crash.
+    vtkNew<vtkSphericalCoverFilter> aborted;
+    aborted->SetInputConnection(boxPatches->GetOutputPort(0));
+    vtkNew<vtkCallbackCommand> abort;
+    abort->SetCallback([](vtkObject* caller, unsigned long, void*, void*)
+      { static_cast<vtkAlgorithm*>(caller)->SetAbortExecute(1); });
+    aborted->AddObserver(vtkCommand::ProgressEvent, abort);
+    aborted->Update();
+    Check(aborted->GetOutput()->GetNumberOfPoints() == 0, "an aborted cover has no output");
+  }
 
   // Bad inputs and limits.
   vtkNew<vtkSphericalCoverFilter> refused;

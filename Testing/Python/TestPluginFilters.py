@@ -22,7 +22,7 @@ subdivision = globals()["IntervalSubdivision"](Input=scene)
 cxx = vtkIntervalSubdivisionFilter()
 
 BOOLEANS_AND_ENUMS = ("RangeMethod", "SelfShadowing", "HemisphericalContainment", "SphericalShape",
-                      "Characterisability", "FillMethod", "BackFacesOcclude")
+                      "Characterisability", "FillMethod", "BackFacesOcclude", "Refinement")
 
 
 def check_properties(proxy, native, names):
@@ -85,21 +85,42 @@ if abs(total / expected - 1) > 1e-6:
 # The spherical cover of the (coarsely) subdivided box.
 cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0))
 check_properties(cover, vtkSphericalCoverFilter(), ["ThetaBins", "PhiBins", "SamplesPerCell", "FillMethod",
-                 "BackFacesOcclude", "MemoryLimit"])
+                 "BackFacesOcclude", "MemoryLimit", "Refinement", "RefinementLevels"])
 subdivision.MaxLevel = 1
+# Without refinement one point per patch; with the default refinement the floor patches along
+# the blocks' footprints (and the ceiling's around the light) are split, the area unchanged.
+cover.Refinement = "Off"
+cover.UpdatePipeline()
+patch_count = subdivision.GetDataInformation(0).GetNumberOfCells()
+unrefined = servermanager.Fetch(cover)
+if unrefined.GetNumberOfPoints() != patch_count:
+    failures.append("one cover point per patch expected without refinement")
+cover.Refinement = "Enclosure Boundaries"
 cover.UpdatePipeline()
 cover_points = servermanager.Fetch(cover)
-if cover_points.GetNumberOfPoints() != subdivision.GetDataInformation(0).GetNumberOfCells():
-    failures.append("one cover point per patch expected")
+if cover_points.GetNumberOfPoints() <= patch_count:
+    failures.append("the refinement split no patch along the blocks' footprints")
+
+
+def area_sum(points):
+    area = points.GetPointData().GetArray("Area")
+    return sum(area.GetValue(k) for k in range(area.GetNumberOfTuples()))
+
+
+if abs(area_sum(cover_points) / area_sum(unrefined) - 1) > 1e-9:
+    failures.append("the refined patches' areas do not add up to the patches'")
 for name in ["Normals", "Tangents", "Area", "PatchId", "SurfaceId", "CoveredProjectedSolidAngle",
              "VisibleSources", "MaterialId", "Diffuse", "Emission"]:
     if cover_points.GetPointData().GetArray(name) is None:
         failures.append(f"cover points lack {name}")
 covered = cover_points.GetPointData().GetArray("CoveredProjectedSolidAngle")
 values = [covered.GetValue(k) for k in range(covered.GetNumberOfTuples())]
+areas = cover_points.GetPointData().GetArray("Area")
 # The Cornell box is open at the front: no point sees more than pi; points on the floor under
-# the blocks see nothing, all others something.
-if max(values) > 3.14159265358979 + 1e-9 or sum(v > 0 for v in values) < 0.9 * len(values):
+# the blocks (a small share of the area, but many small pieces) see nothing, all others
+# something.
+seeing = sum(areas.GetValue(k) for k in range(len(values)) if values[k] > 0)
+if max(values) > 3.14159265358979 + 1e-9 or seeing < 0.9 * area_sum(cover_points):
     failures.append(f"covered projected solid angles out of range: {min(values)}..{max(values)}")
 if cover.GetDataInformation(1).GetNumberOfRows() == 0:
     failures.append("the strip table is empty")
