@@ -1,7 +1,9 @@
 """Writes Example 4, cornell_box.pvsm: a ParaView state that opens the Cornell box pipeline
-(Patch Scene Reader -> Interval Subdivision -> Spherical Cover -> Light Propagation, and a
-Hemisphere Extractor) in a render view from the scene's camera: the patches as a wireframe,
-the characteristic points as spheres coloured by Radiosity, one hemisphere at its point.
+(Patch Scene Reader -> Interval Subdivision -> Spherical Cover -> Light Propagation -> Radiance
+Image, and a Hemisphere Extractor) in a render view from the scene's camera: the patches as a
+wireframe, the characteristic points as spheres coloured by Radiosity, one hemisphere at its
+point. The Radiance Image (the scene's camera "main", 256 x 256) is in the pipeline but not
+shown: show it in a render view (2-D) coloured by RGB with Map Scalars off, or save it as .exr.
 
 usage: pvbatch make_cornell_box_state.py PLUGIN DATA_DIR OUTPUT.pvsm
 
@@ -26,6 +28,11 @@ cover = globals()["SphericalCover"](registrationName="Spherical Cover",
                                     Input=OutputPort(subdivision, 0))
 propagation = globals()["LightPropagation"](registrationName="Light Propagation",
                                             Input=OutputPort(cover, 0))
+# The final image (paper §5.3): port 0 the illumination, Patches the subdivision's exact patches.
+image = globals()["RadianceImage"](registrationName="Radiance Image",
+                                   Input=OutputPort(propagation, 0),
+                                   Patches=OutputPort(subdivision, 0), CameraName="main",
+                                   Width=256, Height=256)
 hemisphere = globals()["HemisphereExtractor"](registrationName="Hemisphere Extractor",
                                               Input=OutputPort(cover, 0), PointId=0)
 

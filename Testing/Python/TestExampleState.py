@@ -1,9 +1,12 @@
 """pvbatch: Example 4, the ParaView state Data/examples/cornell_box.pvsm, opens the Cornell box
 pipeline: loaded (with the plug-in) from another folder with the Data folder as the data
 directory, as the GUI's "Search files under specified directory" does, it has the reader,
-Interval Subdivision, Spherical Cover, Light Propagation and Hemisphere Extractor connected in
-that order, the reader finds the scene, the pipeline updates to lit characteristic points (one
-per patch, with Radiosity) and a hemisphere mesh, and a render view shows them.
+Interval Subdivision, Spherical Cover, Light Propagation, Radiance Image (fed by Light
+Propagation and by the subdivision's patches) and Hemisphere Extractor connected in that order,
+the reader finds the scene, the pipeline updates to lit characteristic points (one per patch,
+with Radiosity), a hemisphere mesh and a 256 x 256 image through the scene's camera whose
+brightest pixel is the lamp (its emission, W m^-2 sr^-1, at least), and a render view shows
+the lit points.
 
 usage: pvbatch TestExampleState.py PLUGIN DATA_DIR"""
 import os
@@ -23,7 +26,7 @@ state = os.path.join(data, "examples", "cornell_box.pvsm")
 LoadState(state, data_directory=data)
 
 STAGES = ["cornell_box.scene", "Interval Subdivision", "Spherical Cover", "Light Propagation",
-          "Hemisphere Extractor"]
+          "Radiance Image", "Hemisphere Extractor"]
 proxies = {name: FindSource(name) for name in STAGES}
 for name, proxy in proxies.items():
     if proxy is None:
@@ -36,10 +39,16 @@ if not failures:
     expected_inputs = {"Interval Subdivision": "cornell_box.scene",
                        "Spherical Cover": "Interval Subdivision",
                        "Light Propagation": "Spherical Cover",
+                       "Radiance Image": "Light Propagation",
                        "Hemisphere Extractor": "Spherical Cover"}
     for name, upstream in expected_inputs.items():
         if proxies[name].Input.SMProxy != proxies[upstream].SMProxy:
             failures.append(f"{name} is not fed by {upstream}")
+    image = proxies["Radiance Image"]
+    patches_input = image.SMProxy.GetProperty("Patches")
+    if patches_input.GetProxy(0) != proxies["Interval Subdivision"].SMProxy or \
+            patches_input.GetOutputPortForConnection(0) != 0:
+        failures.append("Radiance Image's Patches are not the subdivision's patches (port 0)")
     propagation = proxies["Light Propagation"]
     propagation.UpdatePipeline()
     lit = propagation.GetDataInformation(0)
@@ -52,6 +61,22 @@ if not failures:
     hemisphere.UpdatePipeline()
     if hemisphere.GetDataInformation(1).GetNumberOfCells() == 0:
         failures.append("the hemisphere mesh is empty")
+    # The image: the size stored, and the lamp (emission 18.387, 10.9873, 2.75357 in the
+    # scene; exitant radiance = emission + reflection, paper §5) its brightest pixel.
+    image.UpdatePipeline()
+    info = image.GetDataInformation(0)
+    extent = info.GetExtent()
+    radiance = info.GetPointDataInformation().GetArrayInformation("Radiance")
+    if (extent[1] - extent[0] + 1, extent[3] - extent[2] + 1) != (256, 256) or radiance is None:
+        failures.append(f"the Radiance Image has extent {extent}, Radiance {radiance}")
+    else:
+        emission = [18.387, 10.9873, 2.75357]
+        brightest = [radiance.GetComponentRange(band)[1] for band in range(3)]
+        if any(b < e or b > 1.05 * e for b, e in zip(brightest, emission)):
+            failures.append(f"the image's brightest radiance {brightest} is not the lamp's "
+                            f"emission {emission} (at most 5% more)")
+        else:
+            print(f"Radiance Image: 256 x 256, brightest radiance {brightest}")
     views = GetRenderViews()
     if len(views) != 1:
         failures.append(f"{len(views)} render views, expected 1")
