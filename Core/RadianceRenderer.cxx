@@ -163,6 +163,59 @@ glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) co
   return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v);
 }
 
+void RadianceRenderer::SetDirectionalIllumination(DirectionalIllumination illumination)
+{
+  const std::size_t points = this->Interpolator.PointCount();
+  if (illumination.Cover.PatchCount() != points || illumination.Frames.size() != points ||
+    illumination.Materials.size() != points)
+  {
+    throw std::invalid_argument("RadianceRenderer: the directional illumination has a cover of " +
+      std::to_string(illumination.Cover.PatchCount()) + " points, " +
+      std::to_string(illumination.Frames.size()) + " frames and " +
+      std::to_string(illumination.Materials.size()) + " materials for " + std::to_string(points) +
+      " characteristic points");
+  }
+  if (illumination.IncidentRadiance.size() != illumination.Cover.EntryCount())
+  {
+    throw std::invalid_argument(
+      "RadianceRenderer: " + std::to_string(illumination.IncidentRadiance.size()) +
+      " incident radiance values for a cover of " +
+      std::to_string(illumination.Cover.EntryCount()) + " entries");
+  }
+  this->Reflectances = PointReflectances(illumination.Cover.Grid(), illumination.Materials);
+  this->Directional = std::make_unique<DirectionalIllumination>(std::move(illumination));
+}
+
+glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
+  double u,
+  double v,
+  const glm::dvec3& towardEye) const
+{
+  InterpolationStencil stencil;
+  if (!this->Interpolator.Stencil(surface, u, v, stencil))
+  {
+    return glm::dvec3(0.0);
+  }
+  // Paper §5.3.1 with §3.4: each neighbour's exitant radiance toward the eye (the eye's
+  // direction in its own hemisphere frame), blended with the interpolation weights; the same
+  // as the BRDF applied to the interpolated E, the BRDF being linear in E.
+  glm::dvec3 radiance(0.0);
+  for (int k = 0; k < stencil.Count; ++k)
+  {
+    const std::size_t point = stencil.Points[static_cast<size_t>(k)];
+    glm::dvec3 value = this->Exitant[point];
+    const ReflectanceWeights* table = this->Directional ? this->Reflectances.Table(point) : nullptr;
+    if (table)
+    {
+      const DirectionalIllumination& lit = *this->Directional;
+      value += DirectionalExitantRadiance(
+        lit.Cover, *table, point, lit.IncidentRadiance, lit.Frames[point].ToLocal(towardEye));
+    }
+    radiance += stencil.Weights[static_cast<size_t>(k)] * value;
+  }
+  return glm::max(radiance, glm::dvec3(0.0));
+}
+
 bool RadianceRenderer::Render(const Camera& camera,
   const RenderSettings& settings,
   RenderedImage& image,
@@ -227,7 +280,10 @@ bool RadianceRenderer::Render(const Camera& camera,
         }
         const double u = patch.Domain.U0 + hit.U * (patch.Domain.U1 - patch.Domain.U0);
         const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
-        sum += this->SurfaceRadiance(surface, u, v);
+        // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
+        // its Lambertian part (one hemisphere per point, on the front).
+        sum += hit.FrontSide ? this->SurfaceRadianceToward(surface, u, v, -direction)
+                             : this->SurfaceRadiance(surface, u, v);
       }
       const size_t pixel = static_cast<size_t>(j) * static_cast<size_t>(width) + i;
       const glm::dvec3 mean = sum / static_cast<double>(samples);
