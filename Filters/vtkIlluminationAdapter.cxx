@@ -19,8 +19,10 @@ namespace names = vtkSphericalCoverArrayNames;
 
 bool vtkIlluminationAdapter::Read(vtkPolyData* points,
   Illumination& illumination,
-  std::string& error)
+  std::string& error,
+  bool directional)
 {
+  illumination.Directional.reset();
   vtkPointData* pd = points->GetPointData();
   vtkDataArray* radiosity = pd->GetArray(names::Radiosity);
   vtkDataArray* surfaceId = pd->GetArray(names::SurfaceId);
@@ -69,7 +71,7 @@ bool vtkIlluminationAdapter::Read(vtkPolyData* points,
     error = e.what();
     return false;
   }
-  return vtkIlluminationAdapter::ReadDirectional(points, illumination, error);
+  return !directional || vtkIlluminationAdapter::ReadDirectional(points, illumination, error);
 }
 
 bool vtkIlluminationAdapter::ReadDirectional(vtkPolyData* points,

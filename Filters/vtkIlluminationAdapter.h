@@ -44,9 +44,14 @@ public:
   };
 
   /// False with a message in `error` (one sentence naming what is missing) when the points
-  /// lack Radiosity (3), SurfaceId or UVRange (4), or a rectangle is invalid, or, when some
-  /// point is non-diffuse, the cover, IncidentRadiance (3 per entry), Normals and Tangents.
-  static bool Read(vtkPolyData* points, Illumination& illumination, std::string& error);
+  /// lack Radiosity (3), SurfaceId or UVRange (4), or a rectangle is invalid, or, when
+  /// `directional` is set and some point is non-diffuse, the cover, IncidentRadiance (3 per
+  /// entry), Normals and Tangents. Without `directional` (a view-independent use such as
+  /// vtkIlluminationField) Illumination::Directional stays null.
+  static bool Read(vtkPolyData* points,
+    Illumination& illumination,
+    std::string& error,
+    bool directional = true);
 
   /// The material of every point from `Diffuse`, `Emission` (3 each), `MaterialType`,
   /// `Specular`, `PhongExponent`, `MaterialId` and the field arrays `MaterialNames`,
