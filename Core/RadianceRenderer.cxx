@@ -191,6 +191,46 @@ glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
   double v,
   const glm::dvec3& towardEye) const
 {
+  return this->RadianceToward(surface, u, v, towardEye, nullptr);
+}
+
+glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
+  const ReflectanceWeights& table,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
+  const DirectionalIllumination& lit = *this->Directional;
+  const glm::dvec3 local = lit.Frames[point].ToLocal(towardEye);
+  if (!cache)
+  {
+    return DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+  }
+  // DirectionalExitantRadiance depends on the direction through its cell only.
+  const HemisphereGrid& grid = lit.Cover.Grid();
+  const int cell = grid.CellOfLocalDirection(local);
+  if (cell < 0 || !(local.z > 0.0))
+  {
+    return glm::dvec3(0.0);
+  }
+  const uint64_t key = static_cast<uint64_t>(point) * static_cast<uint64_t>(grid.CellCount()) +
+    static_cast<uint64_t>(cell);
+  const std::size_t slot =
+    static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 52) % DirectionalCache::Size;
+  if (cache->Keys[slot] != key)
+  {
+    cache->Keys[slot] = key;
+    cache->Values[slot] =
+      DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+  }
+  return cache->Values[slot];
+}
+
+glm::dvec3 RadianceRenderer::RadianceToward(int surface,
+  double u,
+  double v,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
   InterpolationStencil stencil;
   if (!this->Interpolator.Stencil(surface, u, v, stencil))
   {
@@ -207,9 +247,7 @@ glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
     const ReflectanceWeights* table = this->Directional ? this->Reflectances.Table(point) : nullptr;
     if (table)
     {
-      const DirectionalIllumination& lit = *this->Directional;
-      value += DirectionalExitantRadiance(
-        lit.Cover, *table, point, lit.IncidentRadiance, lit.Frames[point].ToLocal(towardEye));
+      value += this->DirectionalPart(point, *table, towardEye, cache);
     }
     radiance += stencil.Weights[static_cast<size_t>(k)] * value;
   }
@@ -255,6 +293,8 @@ bool RadianceRenderer::Render(const Camera& camera,
       double Distance;
     };
     std::vector<Sample> hits;
+    std::unique_ptr<DirectionalCache> cache =
+      this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
     for (int i = 0; i < width; ++i)
     {
       hits.clear();
@@ -282,7 +322,7 @@ bool RadianceRenderer::Render(const Camera& camera,
         const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
         // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
         // its Lambertian part (one hemisphere per point, on the front).
-        sum += hit.FrontSide ? this->SurfaceRadianceToward(surface, u, v, -direction)
+        sum += hit.FrontSide ? this->RadianceToward(surface, u, v, -direction, cache.get())
                              : this->SurfaceRadiance(surface, u, v);
       }
       const size_t pixel = static_cast<size_t>(j) * static_cast<size_t>(width) + i;

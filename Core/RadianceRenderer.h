@@ -44,7 +44,8 @@
  * resolution of its points' hemispheres. The back side of a two-sided non-diffuse surface
  * shows its Lambertian part only (the cover has one hemisphere per point, on the front).
  * Without DirectionalIllumination every surface shows its Lambertian part only.
- * One evaluation costs O(strips of the point's row); it is done per sample and neighbour.
+ * One evaluation costs O(strips of the point's row); the samples of a row of pixels share a
+ * cache of the evaluations per (point, eye cell), as neighbouring samples mostly repeat them.
  *
  * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, the image's row 0
  * at the bottom (vtkImageData's order). Each pixel is sampled at SamplesPerPixel stratified,
@@ -187,9 +188,31 @@ public:
     double v,
     const glm::dvec3& towardEye) const;
 
+  /// Directional exitant radiance already evaluated, per (point, out cell): neighbouring
+  /// samples share their characteristic points and mostly the eye's cell, so a row of pixels
+  /// evaluates each pair once (a direct-mapped table; a value is the same whether it comes
+  /// from the table or is evaluated, so the image does not depend on the cache).
+  struct DirectionalCache
+  {
+    static constexpr std::size_t Size = 4096;
+    std::vector<uint64_t> Keys = std::vector<uint64_t>(Size, ~uint64_t(0));
+    std::vector<glm::dvec3> Values = std::vector<glm::dvec3>(Size);
+  };
+
   std::size_t TriangleCount() const;
 
 private:
+  glm::dvec3 RadianceToward(int surface,
+    double u,
+    double v,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+  /// I_dir of point toward the world direction, through the cache when given.
+  glm::dvec3 DirectionalPart(std::size_t point,
+    const ReflectanceWeights& table,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+
   std::vector<Patch> Patches;
   CharacteristicPointInterpolator Interpolator;
   std::vector<glm::dvec3> Exitant;

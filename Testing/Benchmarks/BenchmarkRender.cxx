@@ -5,7 +5,10 @@
  * casting the same primary rays with raw Embree (SPEC §7: speed is measured by a benchmark
  * program, never by timed tests).
  *
- *   BenchmarkRender [--threads N] [--size 512] [--spp 1]
+ *   BenchmarkRender [--threads N] [--size 512] [--spp 1] [--max-level L]
+ *
+ * --max-level overrides the scenes' subdivision depth (the teapot room's non-diffuse
+ * propagation at its own depth 5 takes many minutes).
  *
  * Per scene (the Cornell box and the teapot room, their first camera at size x size):
  *  - the solved state: subdivision, spherical cover and propagation at the scene's settings,
@@ -186,7 +189,7 @@ struct RawScene
   }
 };
 
-void Run(const char* name, int threads, int size, int samples)
+void Run(const char* name, int threads, int size, int samples, int maxLevel)
 {
   const ParallelFor parallelFor = threads <= 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -194,7 +197,7 @@ void Run(const char* name, int threads, int size, int samples)
   // The solved state at the scene's settings.
   auto start = Clock::now();
   SubdivisionSettings subdivisionSettings;
-  subdivisionSettings.MaxLevel = scene.Settings.MaxLevel;
+  subdivisionSettings.MaxLevel = maxLevel >= 0 ? maxLevel : scene.Settings.MaxLevel;
   subdivisionSettings.ThetaBins = scene.Settings.ThetaBins;
   subdivisionSettings.PhiBins = scene.Settings.PhiBins;
   for (double& tolerance : subdivisionSettings.Tolerance)
@@ -296,6 +299,7 @@ int main(int argc, char* argv[])
   int threads = 1;
   int size = 512;
   int samples = 1;
+  int maxLevel = -1;
   for (int k = 1; k + 1 < argc; k += 2)
   {
     if (std::strcmp(argv[k], "--threads") == 0)
@@ -310,13 +314,17 @@ int main(int argc, char* argv[])
     {
       samples = std::atoi(argv[k + 1]);
     }
+    else if (std::strcmp(argv[k], "--max-level") == 0)
+    {
+      maxLevel = std::atoi(argv[k + 1]);
+    }
   }
   std::printf("%d thread(s), %dx%d pixels, %d sample(s) per pixel\n", threads, size, size, samples);
   std::printf("scene              patches triangles subdiv_s cover_s prop_ms setup_ms render_ms "
               "Mrays/s  raw_ms  ratio    dir_ms dirset_ms\n");
   for (const char* scene : { "cornell_box.scene", "teapot_room.scene" })
   {
-    Run(scene, threads, size, samples);
+    Run(scene, threads, size, samples, maxLevel);
   }
   return 0;
 }
