@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "LightPropagation.h"
 
+#include "DirectionalReflection.h"
+
 #include "Patch.h"
 #include "Scene.h"
 #include "SphericalCover.h"
@@ -39,12 +41,6 @@ std::vector<glm::dvec3> ReflectanceOf(const std::vector<Material>& materials)
 }
 
 /// Materials that give the same BRDF share a model and a weight table.
-bool SameReflectance(const Material& a, const Material& b)
-{
-  return a.Type == b.Type && a.Diffuse == b.Diffuse && a.Specular == b.Specular &&
-    a.PhongExponent == b.PhongExponent && a.TableFile == b.TableFile && a.Table == b.Table;
-}
-
 std::vector<glm::dvec3> EmissionOf(const std::vector<Material>& materials)
 {
   std::vector<glm::dvec3> le;
@@ -112,28 +108,12 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
 
 void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
 {
-  std::vector<const Material*> distinct;
+  this->Reflectances = PointReflectances(this->Cover.Grid(), materialOfPatch);
   for (std::size_t i = 0; i < materialOfPatch.size(); ++i)
   {
-    const Material& material = materialOfPatch[i];
-    if (material.Type == MaterialType::Diffuse)
-    {
-      continue;
-    }
-    std::size_t k = 0;
-    while (k < distinct.size() && !SameReflectance(*distinct[k], material))
-    {
-      ++k;
-    }
-    if (k == distinct.size())
-    {
-      distinct.push_back(&material);
-      this->Models.emplace_back(material);
-      this->Tables.emplace_back(this->Models.back(), this->Cover.Grid());
-    }
-    this->ModelOfPatch[i] = static_cast<int>(k);
+    this->ModelOfPatch[i] = this->Reflectances.ModelOf(i);
   }
-  if (this->Models.empty())
+  if (this->Reflectances.Empty())
   {
     return;
   }
@@ -150,8 +130,7 @@ void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
       {
         continue;
       }
-      const ReflectanceWeights& table =
-        this->Tables[static_cast<std::size_t>(this->ModelOfPatch[i])];
+      const ReflectanceWeights& table = *this->Reflectances.Table(i);
       for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
       {
         const SphericalCover::Strip& strip = cover.StripAt(k);
@@ -165,14 +144,12 @@ void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
 
 const Reflectance* LightPropagation::ReflectanceModel(std::size_t patch) const
 {
-  const int k = this->ModelOfPatch[patch];
-  return k < 0 ? nullptr : &this->Models[static_cast<std::size_t>(k)];
+  return this->Reflectances.Model(patch);
 }
 
 const ReflectanceWeights* LightPropagation::Weights(std::size_t patch) const
 {
-  const int k = this->ModelOfPatch[patch];
-  return k < 0 ? nullptr : &this->Tables[static_cast<std::size_t>(k)];
+  return this->Reflectances.Table(patch);
 }
 
 std::vector<Material> LightPropagation::MaterialsOfPatches(const Scene& scene,
@@ -194,7 +171,8 @@ void LightPropagation::Reset()
   // Before any shot every patch holds its own emission, unshot.
   this->Unshot = this->Le;
   // Per-entry unshot incident radiance only when some patch is non-diffuse (24 bytes/entry).
-  this->UnshotIncident.assign(this->Models.empty() ? 0 : this->Cover.EntryCount(), glm::dvec3(0.0));
+  this->UnshotIncident.assign(
+    this->Reflectances.Empty() ? 0 : this->Cover.EntryCount(), glm::dvec3(0.0));
   this->DirectionalUnshot.assign(this->PatchCount(), 0.0);
   this->Shots.clear();
   this->ElapsedSeconds = 0.0;
@@ -205,8 +183,7 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
 {
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
-  const ReflectanceWeights& table =
-    this->Tables[static_cast<std::size_t>(this->ModelOfPatch[shooter])];
+  const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
   const std::size_t rowBegin = cover.EntryBegin(shooter);
   const std::size_t rowEnd = cover.EntryEnd(shooter);
 
@@ -319,8 +296,7 @@ glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
     ++this->LastMeanFallbacks;
     return mean;
   }
-  const ReflectanceWeights& table =
-    this->Tables[static_cast<std::size_t>(this->ModelOfPatch[shooter])];
+  const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
   const int rowOut = grid.RowOfCell(cell);
   const int columnOut = grid.ColumnOfCell(cell);
   glm::dvec3 sum(0.0);
@@ -535,34 +511,14 @@ glm::dvec3 LightPropagation::Brightness(std::size_t patch) const
 glm::dvec3 LightPropagation::ExitantRadianceToward(std::size_t patch,
   const glm::dvec3& localDirection) const
 {
-  const HemisphereGrid& grid = this->Cover.Grid();
-  const int cell = grid.CellOfLocalDirection(localDirection);
-  if (cell < 0 || !(localDirection.z > 0.0))
+  if (!(localDirection.z > 0.0) || this->Cover.Grid().CellOfLocalDirection(localDirection) < 0)
   {
     return glm::dvec3(0.0);
   }
-  if (this->ModelOfPatch[patch] < 0)
-  {
-    return this->ExitantRadiance(patch);
-  }
-  const ReflectanceWeights& table =
-    this->Tables[static_cast<std::size_t>(this->ModelOfPatch[patch])];
-  const int rowOut = grid.RowOfCell(cell);
-  const int columnOut = grid.ColumnOfCell(cell);
-  glm::dvec3 sum(0.0);
-  for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
-  {
-    for (std::size_t k = this->Cover.StripBegin(e); k < this->Cover.StripEnd(e); ++k)
-    {
-      const SphericalCover::Strip& strip = this->Cover.StripAt(k);
-      if (table.RowsCoupled(rowOut, strip.Row))
-      {
-        sum += table.StripWeight(rowOut, columnOut, strip.Row, strip.PhiBegin, strip.PhiEnd) *
-          this->Incident[e];
-      }
-    }
-  }
-  return this->ExitantRadiance(patch) + sum;
+  const ReflectanceWeights* table = this->Reflectances.Table(patch);
+  return table ? this->ExitantRadiance(patch) +
+      DirectionalExitantRadiance(this->Cover, *table, patch, this->Incident, localDirection)
+               : this->ExitantRadiance(patch);
 }
 
 EnergyBalance LightPropagation::Energy() const

@@ -90,7 +90,8 @@
  *  - absorbed power A (E - (Brightness - pi Le));
  *  - ExitantRadianceToward(i, direction) evaluates the BRDF toward any direction through the
  *    weight table at the direction's cell (paper §5.3.1: "E interpolated then the BRDF
- *    evaluated toward the eye").
+ *    evaluated toward the eye"); the one implementation is DirectionalExitantRadiance, which
+ *    the renderer uses too.
  *
  * Limitations: the shooter is found by a scan of the N patches per shot (O(N), the same order
  * as a worst-case column), not by a priority queue. Two-sided surfaces are handled as the
@@ -99,6 +100,7 @@
 #ifndef SPHCOVER_LIGHTPROPAGATION_H
 #define SPHCOVER_LIGHTPROPAGATION_H
 
+#include "DirectionalReflection.h"
 #include "HemisphereGrid.h"
 #include "Material.h"
 #include "ParallelFor.h"
@@ -298,10 +300,9 @@ private:
   std::size_t NextInOrder = 0;
 
   // Non-diffuse patches (see the file comment).
-  /// Index into Models / Tables, -1 for a Lambertian patch.
+  /// Index into Reflectances, -1 for a Lambertian patch.
   std::vector<int> ModelOfPatch;
-  std::vector<sphcover::Reflectance> Models;
-  std::vector<ReflectanceWeights> Tables;
+  PointReflectances Reflectances;
   /// For entry e = (i, j): the entry (j, i), or -1 when h_ji is null (only when some patch
   /// is non-diffuse).
   std::vector<int64_t> Transposed;

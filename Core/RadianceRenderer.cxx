@@ -163,6 +163,97 @@ glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) co
   return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v);
 }
 
+void RadianceRenderer::SetDirectionalIllumination(DirectionalIllumination illumination)
+{
+  const std::size_t points = this->Interpolator.PointCount();
+  if (illumination.Cover.PatchCount() != points || illumination.Frames.size() != points ||
+    illumination.Materials.size() != points)
+  {
+    throw std::invalid_argument("RadianceRenderer: the directional illumination has a cover of " +
+      std::to_string(illumination.Cover.PatchCount()) + " points, " +
+      std::to_string(illumination.Frames.size()) + " frames and " +
+      std::to_string(illumination.Materials.size()) + " materials for " + std::to_string(points) +
+      " characteristic points");
+  }
+  if (illumination.IncidentRadiance.size() != illumination.Cover.EntryCount())
+  {
+    throw std::invalid_argument(
+      "RadianceRenderer: " + std::to_string(illumination.IncidentRadiance.size()) +
+      " incident radiance values for a cover of " +
+      std::to_string(illumination.Cover.EntryCount()) + " entries");
+  }
+  this->Reflectances = PointReflectances(illumination.Cover.Grid(), illumination.Materials);
+  this->Directional = std::make_unique<DirectionalIllumination>(std::move(illumination));
+}
+
+glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
+  double u,
+  double v,
+  const glm::dvec3& towardEye) const
+{
+  return this->RadianceToward(surface, u, v, towardEye, nullptr);
+}
+
+glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
+  const ReflectanceWeights& table,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
+  const DirectionalIllumination& lit = *this->Directional;
+  const glm::dvec3 local = lit.Frames[point].ToLocal(towardEye);
+  if (!cache)
+  {
+    return DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+  }
+  // DirectionalExitantRadiance depends on the direction through its cell only.
+  const HemisphereGrid& grid = lit.Cover.Grid();
+  const int cell = grid.CellOfLocalDirection(local);
+  if (cell < 0 || !(local.z > 0.0))
+  {
+    return glm::dvec3(0.0);
+  }
+  const uint64_t key = static_cast<uint64_t>(point) * static_cast<uint64_t>(grid.CellCount()) +
+    static_cast<uint64_t>(cell);
+  const std::size_t slot =
+    static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 52) % DirectionalCache::Size;
+  if (cache->Keys[slot] != key)
+  {
+    cache->Keys[slot] = key;
+    cache->Values[slot] =
+      DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+  }
+  return cache->Values[slot];
+}
+
+glm::dvec3 RadianceRenderer::RadianceToward(int surface,
+  double u,
+  double v,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
+  InterpolationStencil stencil;
+  if (!this->Interpolator.Stencil(surface, u, v, stencil))
+  {
+    return glm::dvec3(0.0);
+  }
+  // Paper §5.3.1 with §3.4: each neighbour's exitant radiance toward the eye (the eye's
+  // direction in its own hemisphere frame), blended with the interpolation weights; the same
+  // as the BRDF applied to the interpolated E, the BRDF being linear in E.
+  glm::dvec3 radiance(0.0);
+  for (int k = 0; k < stencil.Count; ++k)
+  {
+    const std::size_t point = stencil.Points[static_cast<size_t>(k)];
+    glm::dvec3 value = this->Exitant[point];
+    const ReflectanceWeights* table = this->Directional ? this->Reflectances.Table(point) : nullptr;
+    if (table)
+    {
+      value += this->DirectionalPart(point, *table, towardEye, cache);
+    }
+    radiance += stencil.Weights[static_cast<size_t>(k)] * value;
+  }
+  return glm::max(radiance, glm::dvec3(0.0));
+}
+
 bool RadianceRenderer::Render(const Camera& camera,
   const RenderSettings& settings,
   RenderedImage& image,
@@ -202,6 +293,8 @@ bool RadianceRenderer::Render(const Camera& camera,
       double Distance;
     };
     std::vector<Sample> hits;
+    std::unique_ptr<DirectionalCache> cache =
+      this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
     for (int i = 0; i < width; ++i)
     {
       hits.clear();
@@ -227,7 +320,10 @@ bool RadianceRenderer::Render(const Camera& camera,
         }
         const double u = patch.Domain.U0 + hit.U * (patch.Domain.U1 - patch.Domain.U0);
         const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
-        sum += this->SurfaceRadiance(surface, u, v);
+        // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
+        // its Lambertian part (one hemisphere per point, on the front).
+        sum += hit.FrontSide ? this->RadianceToward(surface, u, v, -direction, cache.get())
+                             : this->SurfaceRadiance(surface, u, v);
       }
       const size_t pixel = static_cast<size_t>(j) * static_cast<size_t>(width) + i;
       const glm::dvec3 mean = sum / static_cast<double>(samples);

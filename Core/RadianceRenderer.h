@@ -23,13 +23,29 @@
  * (CharacteristicPointInterpolator, §3.4 Fig. 6), clamped at zero per band. Emitters show their
  * emission (it is part of I).
  *
- * Remaining step (not implemented here): for non-diffuse surfaces paper §5.3.1 interpolates
- * the illumination function E itself (the hemispheres of the four characteristic points, row
- * by row as strips, §3.4 Fig. 7) and evaluates the BRDF toward the eye. This renderer renders
- * their view-independent part only: the emission plus the diffuse exitant radiance the
- * propagation stores (for phong the Lambertian part; a mirror shows its emission only, as its
- * diffuse reflectance is zero). The per-entry incident radiance of the cover that §5.3.1 needs
- * is what LightPropagation::IncidentRadiances() holds.
+ * Non-diffuse surfaces (paper §5.3.1, with the interpolation of §3.4 Fig. 7): "the
+ * illumination function E is interpolated between the neighbouring characteristic points and
+ * the BRDF evaluated toward the eye". Given DirectionalIllumination (the cover, the incident
+ * radiance E_e of every entry, the hemisphere frame and material of every point), the radiance
+ * toward the eye of a visible point on a non-diffuse surface is
+ *     L = sum_k w_k (I_k + I_dir,k(eye_k)),
+ * the sum over the stencil's characteristic points k with their interpolation weights w_k,
+ * I_k the Lambertian part as above (emission + k_d / pi E, `Radiosity`) and I_dir,k the
+ * directional part of point k toward the eye direction expressed in k's hemisphere frame
+ * (normal, phi from the tangent dP/du, SPEC §4.3), evaluated by DirectionalExitantRadiance
+ * (the same function the propagation uses): the weight table of the BRDF at the eye's cell
+ * applied to E_k. The BRDF is linear in E, so the blend of the evaluated points is the BRDF
+ * applied to the blended E: interpolating the hemispherical tessellations strip by strip
+ * (Fig. 7) and then applying the BRDF gives the same value, without building the interpolated
+ * tessellation per pixel. For an ideal mirror I_dir,k is k_s times E of the region of k's
+ * hemisphere holding the mirror direction of the eye's cell; for phong and tabulated BRDFs it
+ * is sum over the row's strips of w(eye cell, strip) E. The directional part is resolved to
+ * the cells of the HemisphereGrid (what the cover stores): a mirror shows the scene at the
+ * resolution of its points' hemispheres. The back side of a two-sided non-diffuse surface
+ * shows its Lambertian part only (the cover has one hemisphere per point, on the front).
+ * Without DirectionalIllumination every surface shows its Lambertian part only.
+ * One evaluation costs O(strips of the point's row); the samples of a row of pixels share a
+ * cache of the evaluations per (point, eye cell), as neighbouring samples mostly repeat them.
  *
  * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, the image's row 0
  * at the bottom (vtkImageData's order). Each pixel is sampled at SamplesPerPixel stratified,
@@ -47,8 +63,12 @@
 
 #include "Camera.h"
 #include "CharacteristicPointInterpolator.h"
+#include "DirectionalReflection.h"
+#include "HemisphereGrid.h"
+#include "Material.h"
 #include "ParallelFor.h"
 #include "Patch.h"
+#include "SphericalCover.h"
 
 #include <glm/vec3.hpp>
 
@@ -61,8 +81,21 @@
 namespace sphcover
 {
 
-class HemisphereGrid;
 class RayCastFiller;
+
+/// What the directional part of non-diffuse surfaces needs (paper §5.3.1; see the file comment):
+/// the propagation's result on the cover.
+struct DirectionalIllumination
+{
+  /// The spherical cover of the characteristic points (the interpolator's points, same order).
+  SphericalCover Cover;
+  /// Incident radiance E_e of every entry of the cover (RGB, W m^-2 sr^-1).
+  std::vector<glm::dvec3> IncidentRadiance;
+  /// The hemisphere frame of every point (the cover's frames, HemisphereFrame::OfPatch).
+  std::vector<HemisphereFrame> Frames;
+  /// The material of every point.
+  std::vector<Material> Materials;
+};
 
 struct RenderSettings
 {
@@ -135,19 +168,59 @@ public:
     const ParallelFor& parallelFor = SequentialFor,
     const ProgressCallback& progress = nullptr) const;
 
+  /**
+   * Adds the directional part of non-diffuse surfaces (see the file comment). Throws
+   * std::invalid_argument when the cover's point count, the frames or the materials differ
+   * from the characteristic points or IncidentRadiance from the cover's entries, and what
+   * Reflectance throws for a bad material (InputError for an unreadable BRDF table).
+   */
+  void SetDirectionalIllumination(DirectionalIllumination illumination);
+  bool HasDirectionalIllumination() const { return this->Directional != nullptr; }
+
   /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
-  /// §5.3.2); zero where the surface has no characteristic points.
+  /// §5.3.2); zero where the surface has no characteristic points. The Lambertian part only.
   glm::dvec3 SurfaceRadiance(int surface, double u, double v) const;
+  /// The radiance of the front side at (u, v) toward the unit world direction `towardEye`:
+  /// SurfaceRadiance plus, with DirectionalIllumination, the interpolated directional part of
+  /// a non-diffuse surface (paper §5.3.1), clamped at zero per band.
+  glm::dvec3 SurfaceRadianceToward(int surface,
+    double u,
+    double v,
+    const glm::dvec3& towardEye) const;
+
+  /// Directional exitant radiance already evaluated, per (point, out cell): neighbouring
+  /// samples share their characteristic points and mostly the eye's cell, so a row of pixels
+  /// evaluates each pair once (a direct-mapped table; a value is the same whether it comes
+  /// from the table or is evaluated, so the image does not depend on the cache).
+  struct DirectionalCache
+  {
+    static constexpr std::size_t Size = 4096;
+    std::vector<uint64_t> Keys = std::vector<uint64_t>(Size, ~uint64_t(0));
+    std::vector<glm::dvec3> Values = std::vector<glm::dvec3>(Size);
+  };
 
   std::size_t TriangleCount() const;
 
 private:
+  glm::dvec3 RadianceToward(int surface,
+    double u,
+    double v,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+  /// I_dir of point toward the world direction, through the cache when given.
+  glm::dvec3 DirectionalPart(std::size_t point,
+    const ReflectanceWeights& table,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+
   std::vector<Patch> Patches;
   CharacteristicPointInterpolator Interpolator;
   std::vector<glm::dvec3> Exitant;
   std::vector<bool> TwoSided;
   std::unique_ptr<HemisphereGrid> Grid;
   std::unique_ptr<RayCastFiller> Caster;
+  std::unique_ptr<DirectionalIllumination> Directional;
+  PointReflectances Reflectances;
 };
 
 } // namespace sphcover

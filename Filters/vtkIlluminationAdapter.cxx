@@ -2,10 +2,15 @@
 #include "vtkIlluminationAdapter.h"
 
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkSphericalCoverArrays.h"
 
 #include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
+
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <exception>
@@ -14,8 +19,10 @@ namespace names = vtkSphericalCoverArrayNames;
 
 bool vtkIlluminationAdapter::Read(vtkPolyData* points,
   Illumination& illumination,
-  std::string& error)
+  std::string& error,
+  bool directional)
 {
+  illumination.Directional.reset();
   vtkPointData* pd = points->GetPointData();
   vtkDataArray* radiosity = pd->GetArray(names::Radiosity);
   vtkDataArray* surfaceId = pd->GetArray(names::SurfaceId);
@@ -64,5 +71,151 @@ bool vtkIlluminationAdapter::Read(vtkPolyData* points,
     error = e.what();
     return false;
   }
+  return !directional || vtkIlluminationAdapter::ReadDirectional(points, illumination, error);
+}
+
+bool vtkIlluminationAdapter::ReadDirectional(vtkPolyData* points,
+  Illumination& illumination,
+  std::string& error)
+{
+  illumination.Directional.reset();
+  vtkDataArray* type = points->GetPointData()->GetArray(names::MaterialType);
+  bool nonDiffuse = false;
+  for (vtkIdType i = 0; type && i < points->GetNumberOfPoints() && !nonDiffuse; ++i)
+  {
+    nonDiffuse = type->GetComponent(i, 0) != 0.0;
+  }
+  if (!nonDiffuse)
+  {
+    return true; // every surface is Lambertian: Radiosity is all of it
+  }
+  auto directional = std::make_unique<sphcover::DirectionalIllumination>();
+  if (!vtkIlluminationAdapter::ReadMaterials(points, directional->Materials, error))
+  {
+    return false;
+  }
+  if (!vtkIlluminationAdapter::ReadFrames(points, directional->Frames))
+  {
+    error = "the input has non-diffuse points but lacks the point arrays Normals and Tangents "
+            "(3 components) of their hemisphere frames";
+    return false;
+  }
+  const std::string problem = vtkSphericalCoverArrays::Load(points, directional->Cover);
+  if (!problem.empty())
+  {
+    error = "the input has non-diffuse points but no usable cover: " + problem;
+    return false;
+  }
+  vtkDataArray* incident = points->GetFieldData()->GetArray(names::IncidentRadiance);
+  const vtkIdType entries = static_cast<vtkIdType>(directional->Cover.EntryCount());
+  if (!incident || incident->GetNumberOfComponents() != 3 ||
+    incident->GetNumberOfTuples() != entries)
+  {
+    error = "the input has non-diffuse points but no field array IncidentRadiance with 3 "
+            "components for each of the cover's " +
+      std::to_string(entries) + " entries (vtkLightPropagationFilter's output 0 has it)";
+    return false;
+  }
+  directional->IncidentRadiance.assign(static_cast<size_t>(entries), glm::dvec3(0.0));
+  for (vtkIdType e = 0; e < entries; ++e)
+  {
+    incident->GetTuple(e, &directional->IncidentRadiance[static_cast<size_t>(e)][0]);
+  }
+  illumination.Directional = std::move(directional);
+  return true;
+}
+
+bool vtkIlluminationAdapter::ReadFrames(vtkPolyData* points,
+  std::vector<sphcover::HemisphereFrame>& frames)
+{
+  frames.clear();
+  vtkDataArray* normals = points->GetPointData()->GetArray(names::Normals);
+  vtkDataArray* tangents = points->GetPointData()->GetArray(names::Tangents);
+  if (!normals || !tangents || normals->GetNumberOfComponents() != 3 ||
+    tangents->GetNumberOfComponents() != 3)
+  {
+    return false;
+  }
+  const vtkIdType count = points->GetNumberOfPoints();
+  frames.resize(static_cast<size_t>(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    sphcover::HemisphereFrame& frame = frames[static_cast<size_t>(i)];
+    points->GetPoint(i, &frame.Origin[0]);
+    normals->GetTuple(i, &frame.Normal[0]);
+    tangents->GetTuple(i, &frame.Tangent[0]);
+    frame.Bitangent = glm::cross(frame.Normal, frame.Tangent);
+  }
+  return true;
+}
+
+bool vtkIlluminationAdapter::ReadMaterials(vtkPolyData* points,
+  std::vector<sphcover::Material>& materials,
+  std::string& error)
+{
+  vtkPointData* pointData = points->GetPointData();
+  vtkDataArray* diffuse = pointData->GetArray(names::Diffuse);
+  vtkDataArray* emission = pointData->GetArray(names::Emission);
+  vtkDataArray* type = pointData->GetArray(names::MaterialType);
+  vtkDataArray* specular = pointData->GetArray(names::Specular);
+  vtkDataArray* exponent = pointData->GetArray(names::PhongExponent);
+  vtkDataArray* materialId = pointData->GetArray(names::MaterialId);
+  auto* materialNames =
+    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::MaterialNames));
+  auto* materialFiles =
+    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::MaterialFiles));
+  if (!diffuse || !emission || diffuse->GetNumberOfComponents() != 3 ||
+    emission->GetNumberOfComponents() != 3)
+  {
+    error = "the cover points lack the Diffuse and Emission arrays (3 components)";
+    return false;
+  }
+  // One material per point, as the scene reader described it (vtkSurfaceGridBuilder): the
+  // kind, its reflectances and exponent, and for a tabulated BRDF its table file by MaterialId.
+  const vtkIdType count = points->GetNumberOfPoints();
+  materials.assign(static_cast<size_t>(count), sphcover::Material());
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    sphcover::Material& material = materials[static_cast<size_t>(i)];
+    const int kind = type ? static_cast<int>(type->GetComponent(i, 0)) : 0;
+    if (kind < 0 || kind > static_cast<int>(sphcover::MaterialType::Tabulated))
+    {
+      error =
+        "point " + std::to_string(i) + " has the unknown material type " + std::to_string(kind);
+      return false;
+    }
+    material.Type = static_cast<sphcover::MaterialType>(kind);
+    diffuse->GetTuple(i, &material.Diffuse[0]);
+    emission->GetTuple(i, &material.Emission[0]);
+    if (material.Type != sphcover::MaterialType::Diffuse && (!specular || !exponent))
+    {
+      error = "point " + std::to_string(i) + " has a " + sphcover::MaterialTypeName(material.Type) +
+        " material but the points lack the Specular and PhongExponent arrays";
+      return false;
+    }
+    if (specular && exponent)
+    {
+      specular->GetTuple(i, &material.Specular[0]);
+      material.PhongExponent = exponent->GetComponent(i, 0);
+    }
+    const vtkIdType id = materialId ? static_cast<vtkIdType>(materialId->GetComponent(i, 0)) : -1;
+    if (materialNames && id >= 0 && id < materialNames->GetNumberOfValues())
+    {
+      material.Name = materialNames->GetValue(id);
+    }
+    if (material.Type == sphcover::MaterialType::Tabulated)
+    {
+      if (!materialFiles || id < 0 || id >= materialFiles->GetNumberOfValues() ||
+        materialFiles->GetValue(id).empty())
+      {
+        error = "point " + std::to_string(i) +
+          " has a tabulated material but no BRDF table file (MaterialId and the MaterialFiles "
+          "field array)";
+        return false;
+      }
+      material.TableFile = materialFiles->GetValue(id);
+    }
+  }
+
   return true;
 }

@@ -61,7 +61,9 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   }
   vtkIlluminationAdapter::Illumination lit;
   std::string problem;
-  if (!vtkIlluminationAdapter::Read(illumination, lit, problem))
+  // View-independent: the emission and diffuse part only (the directional part of paper
+  // §5.3.1 needs the eye), so the cover and E are not read.
+  if (!vtkIlluminationAdapter::Read(illumination, lit, problem, false))
   {
     vtkErrorMacro(<< "Cannot build the illumination field: " << problem << ".");
     return 0;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkLightPropagationFilter.h"
 
+#include "vtkIlluminationAdapter.h"
 #include "vtkNamedArrays.h"
 #include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
@@ -89,71 +90,14 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     vtkErrorMacro(<< "Cannot propagate light: " << problem);
     return 0;
   }
-  vtkPointData* inputPoints = input->GetPointData();
-  vtkDataArray* diffuse = inputPoints->GetArray(names::Diffuse);
-  vtkDataArray* emission = inputPoints->GetArray(names::Emission);
-  vtkDataArray* type = inputPoints->GetArray(names::MaterialType);
-  vtkDataArray* specular = inputPoints->GetArray(names::Specular);
-  vtkDataArray* exponent = inputPoints->GetArray(names::PhongExponent);
-  vtkDataArray* materialId = inputPoints->GetArray(names::MaterialId);
-  auto* materialNames =
-    vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray(names::MaterialNames));
-  auto* materialFiles =
-    vtkStringArray::SafeDownCast(input->GetFieldData()->GetAbstractArray(names::MaterialFiles));
-  if (!diffuse || !emission || diffuse->GetNumberOfComponents() != 3 ||
-    emission->GetNumberOfComponents() != 3)
+  std::vector<sphcover::Material> materials;
+  std::string materialProblem;
+  if (!vtkIlluminationAdapter::ReadMaterials(input, materials, materialProblem))
   {
-    vtkErrorMacro(<< "Cannot propagate light: the cover points lack the Diffuse and Emission "
-                     "arrays (3 components)");
+    vtkErrorMacro(<< "Cannot propagate light: " << materialProblem);
     return 0;
   }
-  // One material per point, as the scene reader described it (vtkSurfaceGridBuilder): the
-  // kind, its reflectances and exponent, and for a tabulated BRDF its table file by MaterialId.
   const vtkIdType count = input->GetNumberOfPoints();
-  std::vector<sphcover::Material> materials(static_cast<size_t>(count));
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    sphcover::Material& material = materials[static_cast<size_t>(i)];
-    const int kind = type ? static_cast<int>(type->GetComponent(i, 0)) : 0;
-    if (kind < 0 || kind > static_cast<int>(sphcover::MaterialType::Tabulated))
-    {
-      vtkErrorMacro(<< "Cannot propagate light: point " << i << " has the unknown material type "
-                    << kind);
-      return 0;
-    }
-    material.Type = static_cast<sphcover::MaterialType>(kind);
-    diffuse->GetTuple(i, &material.Diffuse[0]);
-    emission->GetTuple(i, &material.Emission[0]);
-    if (material.Type != sphcover::MaterialType::Diffuse && (!specular || !exponent))
-    {
-      vtkErrorMacro(<< "Cannot propagate light: point " << i << " has a "
-                    << sphcover::MaterialTypeName(material.Type)
-                    << " material but the points lack the Specular and PhongExponent arrays");
-      return 0;
-    }
-    if (specular && exponent)
-    {
-      specular->GetTuple(i, &material.Specular[0]);
-      material.PhongExponent = exponent->GetComponent(i, 0);
-    }
-    const vtkIdType id = materialId ? static_cast<vtkIdType>(materialId->GetComponent(i, 0)) : -1;
-    if (materialNames && id >= 0 && id < materialNames->GetNumberOfValues())
-    {
-      material.Name = materialNames->GetValue(id);
-    }
-    if (material.Type == sphcover::MaterialType::Tabulated)
-    {
-      if (!materialFiles || id < 0 || id >= materialFiles->GetNumberOfValues() ||
-        materialFiles->GetValue(id).empty())
-      {
-        vtkErrorMacro(<< "Cannot propagate light: point " << i
-                      << " has a tabulated material but no BRDF table file (MaterialId and the "
-                         "MaterialFiles field array)");
-        return 0;
-      }
-      material.TableFile = materialFiles->GetValue(id);
-    }
-  }
 
   sphcover::PropagationSettings settings;
   settings.ConvergenceTolerance = this->ConvergenceTolerance;
@@ -165,20 +109,9 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     sphcover::LightPropagation propagation(cover, materials);
     // The points' hemisphere frames (vtkSphericalCoverFilter's Normals and Tangents), for the
     // receivers a non-diffuse point's hemisphere does not hold (LightPropagation::SetFrames).
-    vtkDataArray* normals = inputPoints->GetArray(names::Normals);
-    vtkDataArray* tangents = inputPoints->GetArray(names::Tangents);
-    if (normals && tangents && normals->GetNumberOfComponents() == 3 &&
-      tangents->GetNumberOfComponents() == 3)
+    std::vector<sphcover::HemisphereFrame> frames;
+    if (vtkIlluminationAdapter::ReadFrames(input, frames))
     {
-      std::vector<sphcover::HemisphereFrame> frames(static_cast<size_t>(count));
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        sphcover::HemisphereFrame& frame = frames[static_cast<size_t>(i)];
-        input->GetPoint(i, &frame.Origin[0]);
-        normals->GetTuple(i, &frame.Normal[0]);
-        tangents->GetTuple(i, &frame.Tangent[0]);
-        frame.Bitangent = glm::cross(frame.Normal, frame.Tangent);
-      }
       propagation.SetFrames(std::move(frames));
     }
     bool aborted = false;

@@ -199,10 +199,16 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
                        "two inputs do not come from one solution.");
       return 0;
     }
-    const sphcover::RadianceRenderer renderer(std::move(patches),
+    sphcover::RadianceRenderer renderer(std::move(patches),
       std::move(lit.Interpolator),
       std::move(lit.ExitantRadiance),
       std::move(lit.TwoSidedSurface));
+    if (lit.Directional)
+    {
+      // Non-diffuse surfaces: the BRDF toward the eye applied to the interpolated incident
+      // radiance E of the cover (paper §5.3.1).
+      renderer.SetDirectionalIllumination(std::move(*lit.Directional));
+    }
     const bool completed = renderer.Render(camera,
       settings,
       image,

@@ -8,7 +8,9 @@
  *  - port 0, the illumination: vtkLightPropagationFilter's first output, the characteristic
  *    points with point data `Radiosity` (exitant radiance, emission included), `SurfaceId` and
  *    `UVRange` (each point's patch in its surface's parameters) and optionally `TwoSided`; its
- *    field data carries the scene's cameras.
+ *    field data carries the scene's cameras. When some point is non-diffuse, also the material
+ *    arrays, `Normals` and `Tangents` (the hemisphere frames) and, in field data, the cover and
+ *    `IncidentRadiance` (3 per entry), all of which the propagation's output carries.
  *  - port 1, the patches: vtkIntervalSubdivisionFilter's first output (exact Bezier
  *    sub-patches with `SurfaceId` and `UVRange`), whose tessellation is ray cast.
  * Two ports because the illumination holds the points, not the patches' geometry; the patches
@@ -18,8 +20,9 @@
  * Visible surface: Embree against a tessellation of the patches, refined on the exact Bezier
  * patch, so the visible point's (surface, u, v) is exact; brightness: the bilinear
  * interpolation of the characteristic points' exitant radiance around (u, v), extrapolated near
- * the edges (paper §3.4, §5.3.2; see RadianceRenderer.h, also for what is not yet done for
- * non-diffuse surfaces, §5.3.1).
+ * the edges (paper §3.4, §5.3.2); for a non-diffuse surface plus the directional part of
+ * §5.3.1, the incident radiance E of the same neighbouring points reflected by the BRDF toward
+ * the eye, blended with the same weights (see RadianceRenderer.h).
  *
  * Camera: CameraName selects one of the scene's cameras (position, focal point, view up, view
  * angle); otherwise Position, FocalPoint, ViewUp and ViewAngle are used. The image size is

@@ -5,7 +5,10 @@
  * casting the same primary rays with raw Embree (SPEC §7: speed is measured by a benchmark
  * program, never by timed tests).
  *
- *   BenchmarkRender [--threads N] [--size 512] [--spp 1]
+ *   BenchmarkRender [--threads N] [--size 512] [--spp 1] [--max-level L]
+ *
+ * --max-level overrides the scenes' subdivision depth (the teapot room's non-diffuse
+ * propagation at its own depth 5 takes many minutes).
  *
  * Per scene (the Cornell box and the teapot room, their first camera at size x size):
  *  - the solved state: subdivision, spherical cover and propagation at the scene's settings,
@@ -14,9 +17,10 @@
  *  - raw Embree: the same count of rays, same directions, against the same tessellation (the
  *    resolution RayCastFiller chooses per patch), rtcIntersect1 with no filter, no refinement
  *    and no interpolation: milliseconds, and the render's cost as a ratio to it.
- * The teapot room has a mirror, which this version's propagation refuses: its render is timed
- * with the emission as exitant radiance (the render's cost does not depend on the values) and
- * its pipeline time has no propagation.
+ *  - the render with the directional part of non-diffuse surfaces (paper §5.3.1: the teapot
+ *    room's mirror wall and phong teapot), milliseconds (`dir_ms`), next to the render with
+ *    the Lambertian part only (`render_ms`): the cost of the BRDF evaluations, O(strips of
+ *    the row) per sample and neighbour (DirectionalExitantRadiance).
  */
 #include "CharacteristicPointInterpolator.h"
 #include "HemisphereGrid.h"
@@ -185,7 +189,7 @@ struct RawScene
   }
 };
 
-void Run(const char* name, int threads, int size, int samples)
+void Run(const char* name, int threads, int size, int samples, int maxLevel)
 {
   const ParallelFor parallelFor = threads <= 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -193,7 +197,7 @@ void Run(const char* name, int threads, int size, int samples)
   // The solved state at the scene's settings.
   auto start = Clock::now();
   SubdivisionSettings subdivisionSettings;
-  subdivisionSettings.MaxLevel = scene.Settings.MaxLevel;
+  subdivisionSettings.MaxLevel = maxLevel >= 0 ? maxLevel : scene.Settings.MaxLevel;
   subdivisionSettings.ThetaBins = scene.Settings.ThetaBins;
   subdivisionSettings.PhiBins = scene.Settings.PhiBins;
   for (double& tolerance : subdivisionSettings.Tolerance)
@@ -214,25 +218,24 @@ void Run(const char* name, int threads, int size, int samples)
   start = Clock::now();
   const std::vector<Material> materials = LightPropagation::MaterialsOfPatches(scene, patches);
   std::vector<glm::dvec3> exitant;
-  bool propagated = true;
-  try
+  DirectionalIllumination directional;
+  for (const Patch& patch : patches)
+  {
+    directional.Frames.push_back(HemisphereFrame::OfPatch(patch));
+  }
   {
     LightPropagation propagation(cover, materials);
+    propagation.SetFrames(directional.Frames);
     propagation.Run();
     for (size_t i = 0; i < patches.size(); ++i)
     {
       exitant.push_back(propagation.ExitantRadiance(i));
     }
-  }
-  catch (const std::invalid_argument&)
-  {
-    propagated = false;
-    for (const Material& material : materials)
-    {
-      exitant.push_back(material.Emission);
-    }
+    directional.IncidentRadiance = propagation.IncidentRadiances();
   }
   const double propagateSeconds = SecondsSince(start);
+  directional.Cover = std::move(cover);
+  directional.Materials = materials;
 
   std::vector<int> surfaces;
   std::vector<UVRect> domains;
@@ -245,6 +248,10 @@ void Run(const char* name, int threads, int size, int samples)
   const RadianceRenderer renderer(
     patches, CharacteristicPointInterpolator(surfaces, domains), exitant);
   const double setupSeconds = SecondsSince(start);
+  RadianceRenderer nonDiffuse(patches, CharacteristicPointInterpolator(surfaces, domains), exitant);
+  start = Clock::now();
+  nonDiffuse.SetDirectionalIllumination(std::move(directional));
+  const double directionalSetupSeconds = SecondsSince(start);
   Camera camera = scene.Cameras.at(0);
   camera.Width = size;
   camera.Height = size;
@@ -254,6 +261,9 @@ void Run(const char* name, int threads, int size, int samples)
   start = Clock::now();
   renderer.Render(camera, settings, image, parallelFor);
   const double renderSeconds = SecondsSince(start);
+  start = Clock::now();
+  nonDiffuse.Render(camera, settings, image, parallelFor);
+  const double directionalSeconds = SecondsSince(start);
 
   const RawScene raw(patches);
   start = Clock::now();
@@ -261,7 +271,7 @@ void Run(const char* name, int threads, int size, int samples)
   const double rawSeconds = SecondsSince(start);
   const double rays = static_cast<double>(size) * size * samples;
 
-  std::printf("%-18s %7zu %9zu %7.1f %7.1f %9.1f %8.1f %9.2f %8.1f %7.1f %6.2f  %s\n",
+  std::printf("%-18s %7zu %9zu %7.1f %7.1f %9.1f %8.1f %9.2f %8.1f %7.1f %6.2f %9.2f %8.1f\n",
     name,
     patches.size(),
     renderer.TriangleCount(),
@@ -273,10 +283,12 @@ void Run(const char* name, int threads, int size, int samples)
     rays / renderSeconds / 1e6,
     1e3 * rawSeconds,
     renderSeconds / rawSeconds,
-    propagated ? "" : "(not propagated: mirror)");
+    1e3 * directionalSeconds,
+    1e3 * directionalSetupSeconds);
   std::printf("%-18s whole pipeline %.1f s (%zu of %.0f rays hit)\n",
     "",
-    subdivideSeconds + coverSeconds + propagateSeconds + setupSeconds + renderSeconds,
+    subdivideSeconds + coverSeconds + propagateSeconds + setupSeconds + directionalSetupSeconds +
+      directionalSeconds,
     hits,
     rays);
 }
@@ -287,6 +299,7 @@ int main(int argc, char* argv[])
   int threads = 1;
   int size = 512;
   int samples = 1;
+  int maxLevel = -1;
   for (int k = 1; k + 1 < argc; k += 2)
   {
     if (std::strcmp(argv[k], "--threads") == 0)
@@ -301,13 +314,17 @@ int main(int argc, char* argv[])
     {
       samples = std::atoi(argv[k + 1]);
     }
+    else if (std::strcmp(argv[k], "--max-level") == 0)
+    {
+      maxLevel = std::atoi(argv[k + 1]);
+    }
   }
   std::printf("%d thread(s), %dx%d pixels, %d sample(s) per pixel\n", threads, size, size, samples);
   std::printf("scene              patches triangles subdiv_s cover_s prop_ms setup_ms render_ms "
-              "Mrays/s  raw_ms  ratio\n");
+              "Mrays/s  raw_ms  ratio    dir_ms dirset_ms\n");
   for (const char* scene : { "cornell_box.scene", "teapot_room.scene" })
   {
-    Run(scene, threads, size, samples);
+    Run(scene, threads, size, samples, maxLevel);
   }
   return 0;
 }
