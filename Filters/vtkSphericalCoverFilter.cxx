@@ -286,6 +286,14 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   pd->AddArray(tangents);
   pd->AddArray(characteristic->GetPointData()->GetArray(names::Area));
   pd->AddArray(characteristic->GetPointData()->GetArray(names::PatchId));
+  {
+    auto inputPatch = vtkNamedArrays::Int(names::InputPatchId, 1, count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      inputPatch->SetValue(i, static_cast<int>(cellOfPatch[static_cast<size_t>(i)]));
+    }
+    pd->AddArray(inputPatch);
+  }
   pd->AddArray(covered);
   pd->AddArray(visible);
   pointsOut->GetFieldData()->PassData(input->GetFieldData());

@@ -22,7 +22,8 @@
  *
  * Before the cover is built, the patches may be refined (Refinement, sphcover::CoverRefinement):
  * the points are then those of the refined patches, each with the cell data of the input patch
- * it was cut from (UVRange, Level and SplitReason its own). What of paper §4.3 is done: the
+ * it was cut from (UVRange, Level and SplitReason its own), `PatchId` numbering the refined
+ * patches and `InputPatchId` the input cell it was cut from. What of paper §4.3 is done: the
  * R-buffer criterion of §4.2.5 from the receiver side (patches straddling an enclosure
  * boundary, the default), Step 3 from the source side (REFINEMENT_FULL: substantially hidden
  * or disconnected images, ternary splits within the level limit of note 2, rounds until no

@@ -36,6 +36,9 @@ constexpr const char* SourceFile = "SourceFile";
 
 // Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
 constexpr const char* PatchId = "PatchId";
+/// Cover points: the cell of the cover's input (the subdivision's Patches) a point's patch was
+/// cut from by the cover's refinement (PatchId numbers the refined patches).
+constexpr const char* InputPatchId = "InputPatchId";
 constexpr const char* Level = "Level";
 /// 4 components: u0, u1, v0, v1 of the patch in its surface's parameters.
 constexpr const char* UVRange = "UVRange";

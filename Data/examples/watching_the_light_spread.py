@@ -30,16 +30,22 @@ subdivision = globals()["IntervalSubdivision"](Input=scene, MaxLevel=2)
 cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0), ThetaBins=16, PhiBins=64)
 propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
 
-# Each patch takes the radiosity of its characteristic point (the points' PatchId indexes the
-# patches), so the patches show the solution as flat-shaded radiosity.
+# Each patch takes the area-weighted mean radiosity of its characteristic points (the points'
+# InputPatchId indexes the subdivision's patches; the cover's refinement may give a patch several
+# points), so the patches show the solution as flat-shaded radiosity.
 lit_patches = ProgrammableFilter(Input=[OutputPort(subdivision, 0), OutputPort(propagation, 0)])
 lit_patches.OutputDataSetType = "vtkUnstructuredGrid"
 lit_patches.Script = """
 import numpy
 patches, points = inputs[0], inputs[1]
 output.ShallowCopy(patches.VTKObject)
-radiosity = numpy.zeros((patches.GetNumberOfCells(), 3))
-radiosity[points.PointData["PatchId"]] = points.PointData["Radiosity"]
+count = patches.GetNumberOfCells()
+ids = numpy.asarray(points.PointData["InputPatchId"])
+area = numpy.asarray(points.PointData["Area"])
+power = numpy.zeros((count, 3))
+numpy.add.at(power, ids, numpy.asarray(points.PointData["Radiosity"]) * area[:, None])
+total = numpy.bincount(ids, weights=area, minlength=count)
+radiosity = power / numpy.maximum(total, 1e-300)[:, None]
 cells = radiosity[patches.CellData["PatchId"]]
 output.CellData.append(cells, "Radiosity")
 # For display: exposure (radiance 0.4 W m^-2 sr^-1 -> white), clipping, sRGB-like gamma 2.2.

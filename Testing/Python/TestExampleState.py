@@ -4,7 +4,7 @@ directory, as the GUI's "Search files under specified directory" does, it has th
 Interval Subdivision, Spherical Cover, Light Propagation, Radiance Image (fed by Light
 Propagation and by the subdivision's patches) and Hemisphere Extractor connected in that order,
 the reader finds the scene, the pipeline updates to lit characteristic points (one per patch,
-with Radiosity), a hemisphere mesh and a 256 x 256 image through the scene's camera whose
+with Radiosity; the cover's refinement may split a patch into several), a hemisphere mesh and a 256 x 256 image through the scene's camera whose
 brightest pixel is the lamp (its emission, W m^-2 sr^-1, at least), and a render view shows
 the lit points.
 
@@ -52,9 +52,13 @@ if not failures:
     propagation = proxies["Light Propagation"]
     propagation.UpdatePipeline()
     lit = propagation.GetDataInformation(0)
+    cover_points = proxies["Spherical Cover"].GetDataInformation(0).GetNumberOfPoints()
     patches = proxies["Interval Subdivision"].GetDataInformation(0).GetNumberOfCells()
-    if lit.GetNumberOfPoints() == 0 or lit.GetNumberOfPoints() != patches:
-        failures.append(f"{lit.GetNumberOfPoints()} lit points for {patches} patches")
+    # One lit point per cover point; the cover's refinement may split patches (never merge).
+    if lit.GetNumberOfPoints() == 0 or lit.GetNumberOfPoints() != cover_points or \
+            cover_points < patches:
+        failures.append(f"{lit.GetNumberOfPoints()} lit points, {cover_points} cover points "
+                        f"for {patches} patches")
     if lit.GetPointDataInformation().GetArrayInformation("Radiosity") is None:
         failures.append("the lit points have no Radiosity")
     hemisphere = proxies["Hemisphere Extractor"]

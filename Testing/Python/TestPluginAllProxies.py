@@ -255,11 +255,23 @@ def check_cover():
     check_port_names(cover, ["Cover Points", "Strips"])
     points = check_output("SphericalCover Cover Points", output(cover, 0), "vtkPolyData",
                           point={"Normals": 3, "Area": 1, "PatchId": 1, "SurfaceId": 1,
-                                 "CoveredProjectedSolidAngle": 1, "VisibleSources": 1})
+                                 "CoveredProjectedSolidAngle": 1, "VisibleSources": 1,
+                                 "InputPatchId": 1})
     check_output("SphericalCover Strips", output(cover, 1), "vtkTable",
                  rows={"Receiver": 1, "Source": 1, "Theta": 1, "PhiBegin": 1, "PhiEnd": 1, "R": 1})
-    if points and points.GetNumberOfPoints() != output(subdivision, 0).GetNumberOfCells():
-        failures.append("SphericalCover: not one cover point per patch")
+    # The cover's refinement (vtkSphericalCoverFilter::Refinement) splits patches, never merges
+    # them: at least one point per patch, and the points' areas add up to the patches' area.
+    patches = output(subdivision, 0)
+    if points and points.GetNumberOfPoints() < patches.GetNumberOfCells():
+        failures.append("SphericalCover: fewer cover points than patches")
+    elif points:
+        def total(data, cells):
+            attributes = data.GetCellData() if cells else data.GetPointData()
+            area = attributes.GetArray("Area")
+            return sum(area.GetValue(k) for k in range(area.GetNumberOfTuples()))
+        covered, subdivided = total(points, False), total(patches, True)
+        if abs(covered - subdivided) > 1e-9 * subdivided:
+            failures.append(f"SphericalCover: points' area {covered} != patches' {subdivided}")
 
 
 def check_propagation():
