@@ -96,6 +96,28 @@ void ChooseResolution(const BezierPatch& patch, double tolerance, int& nu, int& 
   }
 }
 
+/// An Embree ray from `origin` along `direction` (single precision, as Embree takes them),
+/// starting at `tNear`, with no hit yet.
+RTCRayHit MakeRayHit(const glm::dvec3& origin, const glm::dvec3& direction, float tNear = 0.0f)
+{
+  RTCRayHit rayHit;
+  rayHit.ray.org_x = static_cast<float>(origin.x);
+  rayHit.ray.org_y = static_cast<float>(origin.y);
+  rayHit.ray.org_z = static_cast<float>(origin.z);
+  rayHit.ray.dir_x = static_cast<float>(direction.x);
+  rayHit.ray.dir_y = static_cast<float>(direction.y);
+  rayHit.ray.dir_z = static_cast<float>(direction.z);
+  rayHit.ray.tnear = tNear;
+  rayHit.ray.tfar = std::numeric_limits<float>::infinity();
+  rayHit.ray.time = 0.0f;
+  rayHit.ray.mask = 0xFFFFFFFFu;
+  rayHit.ray.id = 0;
+  rayHit.ray.flags = 0;
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rayHit;
+}
+
 /// Per-sample hit parameters of one receiver.
 struct HitScratch
 {
@@ -332,21 +354,7 @@ bool RayCastFiller::CastRay(const glm::dvec3& origin,
   context.SelfExclusion = 0.0f;
   context.CountSelf = true;
   context.BackFacesOcclude = true;
-  RTCRayHit rayHit;
-  rayHit.ray.org_x = static_cast<float>(origin.x);
-  rayHit.ray.org_y = static_cast<float>(origin.y);
-  rayHit.ray.org_z = static_cast<float>(origin.z);
-  rayHit.ray.dir_x = static_cast<float>(direction.x);
-  rayHit.ray.dir_y = static_cast<float>(direction.y);
-  rayHit.ray.dir_z = static_cast<float>(direction.z);
-  rayHit.ray.tnear = 0.0f;
-  rayHit.ray.tfar = std::numeric_limits<float>::infinity();
-  rayHit.ray.time = 0.0f;
-  rayHit.ray.mask = 0xFFFFFFFFu;
-  rayHit.ray.id = 0;
-  rayHit.ray.flags = 0;
-  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rayHit = MakeRayHit(origin, direction);
   rtcIntersect1(impl.Scene, &context.Context, &rayHit);
   if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
   {
@@ -428,29 +436,12 @@ void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistic
   scratch.V.resize(grid.SampleCount());
   scratch.T.resize(grid.SampleCount());
 
-  const float origin[3] = { static_cast<float>(frame.Origin.x),
-    static_cast<float>(frame.Origin.y),
-    static_cast<float>(frame.Origin.z) };
   for (int row = 0; row < grid.SampleRows(); ++row)
   {
     for (int column = 0; column < grid.SampleColumns(); ++column)
     {
       const glm::dvec3 direction = frame.ToWorld(grid.SampleDirection(row, column));
-      RTCRayHit rayHit;
-      rayHit.ray.org_x = origin[0];
-      rayHit.ray.org_y = origin[1];
-      rayHit.ray.org_z = origin[2];
-      rayHit.ray.dir_x = static_cast<float>(direction.x);
-      rayHit.ray.dir_y = static_cast<float>(direction.y);
-      rayHit.ray.dir_z = static_cast<float>(direction.z);
-      rayHit.ray.tnear = 0.0f;
-      rayHit.ray.tfar = std::numeric_limits<float>::infinity();
-      rayHit.ray.time = 0.0f;
-      rayHit.ray.mask = 0xFFFFFFFFu;
-      rayHit.ray.id = 0;
-      rayHit.ray.flags = 0;
-      rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      RTCRayHit rayHit = MakeRayHit(frame.Origin, direction);
       rtcIntersect1(impl.Scene, &context.Context, &rayHit);
       if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
       {
@@ -528,21 +519,7 @@ bool RayCastFiller::FirstHit(const glm::dvec3& origin,
   context.SelfExclusion = 0.0f;
   context.CountSelf = true;
   context.BackFacesOcclude = true; // every side counts: the caller asks which one it met
-  RTCRayHit rayHit;
-  rayHit.ray.org_x = static_cast<float>(origin.x);
-  rayHit.ray.org_y = static_cast<float>(origin.y);
-  rayHit.ray.org_z = static_cast<float>(origin.z);
-  rayHit.ray.dir_x = static_cast<float>(direction.x);
-  rayHit.ray.dir_y = static_cast<float>(direction.y);
-  rayHit.ray.dir_z = static_cast<float>(direction.z);
-  rayHit.ray.tnear = static_cast<float>(tNear);
-  rayHit.ray.tfar = std::numeric_limits<float>::infinity();
-  rayHit.ray.time = 0.0f;
-  rayHit.ray.mask = 0xFFFFFFFFu;
-  rayHit.ray.id = 0;
-  rayHit.ray.flags = 0;
-  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rayHit = MakeRayHit(origin, direction, static_cast<float>(tNear));
   rtcIntersect1(this->Impl->Scene, &context.Context, &rayHit);
   if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
   {
