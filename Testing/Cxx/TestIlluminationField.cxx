@@ -9,6 +9,7 @@
 //   radiance mapped to sRGB (no lighting: the colours are the solution's).
 #include "FailureExpectation.h"
 #include "RenderTestPipeline.h"
+#include "TestFailures.h"
 #include "vtkIlluminationField.h"
 
 #include <vtkActor.h>
@@ -30,16 +31,7 @@
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
+using TestFailures::Check;
 
 void Furnace()
 {
@@ -144,8 +136,8 @@ int TestIlluminationField(int argc, char* argv[])
     vtkNew<vtkIlluminationField> bad;
     bad->SetInputConnection(0, pipeline.Subdivision->GetOutputPort(1));
     bad->SetPatchesConnection(pipeline.Subdivision->GetOutputPort(0));
-    Failures +=
-      FailureExpectation::Check(bad, { "Radiosity" }, "characteristic points without light");
+    TestFailures::Add(
+      FailureExpectation::Check(bad, { "Radiosity" }, "characteristic points without light"));
   }
 
   vtkNew<vtkPolyData> coloured;
@@ -173,5 +165,5 @@ int TestIlluminationField(int argc, char* argv[])
   window->Render();
   const int result = vtkRegressionTestImage(window);
   Check(result != vtkTesting::FAILED, "regression image");
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return TestFailures::ExitCode();
 }

@@ -12,6 +12,7 @@
 //   Le / (1 - albedo) within 1%;
 // - a missing BRDF table and an input without a cover give one clear error.
 #include "FailureExpectation.h"
+#include "TestFailures.h"
 #include "vtkIntervalSubdivisionFilter.h"
 #include "vtkLightPropagationFilter.h"
 #include "vtkPatchSceneReader.h"
@@ -31,16 +32,7 @@
 
 namespace
 {
-int failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+using TestFailures::Check;
 
 /// reader -> subdivision (MaxLevel) -> cover -> propagation, all updated.
 struct Pipeline
@@ -202,13 +194,13 @@ int TestLightPropagationFilter(int, char*[])
     }
     vtkNew<vtkLightPropagationFilter> noTable;
     noTable->SetInputData(points);
-    failures += FailureExpectation::Check(
-      noTable, { "/nonexistent/clay.brdf.csv", "cannot open file" }, "a missing BRDF table");
+    TestFailures::Add(FailureExpectation::Check(
+      noTable, { "/nonexistent/clay.brdf.csv", "cannot open file" }, "a missing BRDF table"));
     vtkNew<vtkPolyData> empty;
     vtkNew<vtkLightPropagationFilter> noCover;
     noCover->SetInputData(empty);
-    failures +=
-      FailureExpectation::Check(noCover, { "no spherical cover" }, "input without a cover");
+    TestFailures::Add(
+      FailureExpectation::Check(noCover, { "no spherical cover" }, "input without a cover"));
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return TestFailures::ExitCode();
 }

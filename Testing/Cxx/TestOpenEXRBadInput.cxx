@@ -8,6 +8,7 @@
 //   image, or an unwritable folder: one error, Write() returns 0, no file (and no temporary
 //   file) is left; an aborted write leaves an existing file untouched.
 #include "FailureExpectation.h"
+#include "TestFailures.h"
 #include "vtkOpenEXRReader.h"
 #include "vtkOpenEXRWriter.h"
 
@@ -30,16 +31,7 @@ namespace fs = std::filesystem;
 
 namespace
 {
-int failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+using TestFailures::Check;
 
 std::string ReadBytes(const fs::path& file)
 {
@@ -93,7 +85,7 @@ void CheckReaderFails(vtkOpenEXRReader* reader,
   const std::string& what)
 {
   reader->SetFileName(file.c_str());
-  failures += FailureExpectation::Check(reader, fragments, what);
+  TestFailures::Add(FailureExpectation::Check(reader, fragments, what));
   vtkImageData* output = reader->GetOutput();
   Check(output->GetNumberOfPoints() == 0 && output->GetPointData()->GetNumberOfArrays() == 0,
     what + ": the output is not empty");
@@ -323,5 +315,5 @@ int TestOpenEXRBadInput(int, char*[])
     Check(reader->CanReadFile(kept.string().c_str()) == 3, "the file was not replaced");
     Check(FilesStartingWith(folder, "kept.exr") == 1, "a temporary file was left");
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return TestFailures::ExitCode();
 }

@@ -9,6 +9,7 @@
 // - half pixels: R, G, B within half precision (relative 2^-11 for normal half values) and
 //   actually rounded, while the extra channel stays 32-bit exact;
 // - a double colour array is written as its values rounded to float.
+#include "TestFailures.h"
 #include "vtkOpenEXRReader.h"
 #include "vtkOpenEXRWriter.h"
 
@@ -35,16 +36,7 @@
 
 namespace
 {
-int failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+using TestFailures::Check;
 
 float FromBits(std::uint32_t bits)
 {
@@ -309,5 +301,5 @@ int TestOpenEXRRoundTrip(int, char*[])
     }
     Check(same, "double: the colour is not the double values rounded to float");
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return TestFailures::ExitCode();
 }

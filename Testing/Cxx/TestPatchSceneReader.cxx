@@ -6,6 +6,7 @@
 //   bit for bit, materials, names, triangle and two-sided flags;
 // - every .bpt model reads with the patch count and bounds its source documents;
 // - facts of the Cornell box: walls are VTK_QUADs, the box bounds, the official camera.
+#include "TestFailures.h"
 #include "vtkBPTReader.h"
 #include "vtkPatchSceneReader.h"
 #include "vtkSceneFileLoader.h"
@@ -31,16 +32,7 @@ namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
-int failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+using TestFailures::Check;
 
 void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
 {
@@ -203,5 +195,5 @@ int TestPatchSceneReader(int, char*[])
     }
     Check(boundsOk, file + ": bounds");
   }
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return TestFailures::ExitCode();
 }

@@ -12,6 +12,7 @@
 //   error each.
 #include "FailureExpectation.h"
 #include "RenderTestPipeline.h"
+#include "TestFailures.h"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -27,16 +28,7 @@
 
 namespace
 {
-int Failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++Failures;
-  }
-}
+using TestFailures::Check;
 
 /// `albedo`: the walls' directional albedo per band, for a tabulated BRDF (the reader's Diffuse
 /// otherwise).
@@ -89,8 +81,8 @@ void Furnace(const char* scene, int maxLevel, const double* albedo = nullptr)
     render->SetCameraName("inside");
     render->SetWidth(8);
     render->SetHeight(8);
-    Failures += FailureExpectation::Check(
-      render, { "non-diffuse", "IncidentRadiance" }, "non-diffuse points without E");
+    TestFailures::Add(FailureExpectation::Check(
+      render, { "non-diffuse", "IncidentRadiance" }, "non-diffuse points without E"));
   }
 }
 
@@ -190,36 +182,39 @@ void BadInput()
     vtkNew<vtkRadianceImageFilter> render;
     render->SetInputConnection(0, subdivision->GetOutputPort(1));
     render->SetPatchesConnection(subdivision->GetOutputPort(0));
-    Failures += FailureExpectation::Check(
-      render, { "Radiosity", "vtkLightPropagationFilter" }, "characteristic points without light");
+    TestFailures::Add(FailureExpectation::Check(
+      render, { "Radiosity", "vtkLightPropagationFilter" }, "characteristic points without light"));
   }
   RenderTestPipeline::Pipeline pipeline("cornell_box.scene", 0);
   pipeline.Render->SetWidth(16);
   pipeline.Render->SetHeight(16);
   pipeline.Render->SetCameraName("nonexistent");
-  Failures +=
-    FailureExpectation::Check(pipeline.Render, { "nonexistent", "'main'" }, "unknown camera");
+  TestFailures::Add(
+    FailureExpectation::Check(pipeline.Render, { "nonexistent", "'main'" }, "unknown camera"));
   pipeline.Render->SetCameraName("main");
   pipeline.Render->Update();
   Check(pipeline.Render->GetOutput()->GetNumberOfPoints() == 256, "the scene's camera renders");
   pipeline.Render->SetCameraName("");
   pipeline.Render->SetViewAngle(0.0);
-  Failures += FailureExpectation::Check(pipeline.Render, { "view angle" }, "zero view angle");
+  TestFailures::Add(
+    FailureExpectation::Check(pipeline.Render, { "view angle" }, "zero view angle"));
   pipeline.Render->SetViewAngle(-30.0);
-  Failures += FailureExpectation::Check(pipeline.Render, { "view angle" }, "negative view angle");
+  TestFailures::Add(
+    FailureExpectation::Check(pipeline.Render, { "view angle" }, "negative view angle"));
   pipeline.Render->SetViewAngle(30.0);
   pipeline.Render->SetViewUp(0.0, 0.0, -1.0); // parallel to the default view direction
-  Failures += FailureExpectation::Check(pipeline.Render, { "parallel" }, "view up along the view");
+  TestFailures::Add(
+    FailureExpectation::Check(pipeline.Render, { "parallel" }, "view up along the view"));
   pipeline.Render->SetViewUp(0.0, 1.0, 0.0);
   pipeline.Render->SetWidth(0);
-  Failures += FailureExpectation::Check(pipeline.Render, { "0x16" }, "width 0");
+  TestFailures::Add(FailureExpectation::Check(pipeline.Render, { "0x16" }, "width 0"));
   pipeline.Render->SetWidth(100000);
   pipeline.Render->SetHeight(100000);
-  Failures += FailureExpectation::Check(pipeline.Render, { "MiB", "limit" }, "huge image");
+  TestFailures::Add(FailureExpectation::Check(pipeline.Render, { "MiB", "limit" }, "huge image"));
   pipeline.Render->SetWidth(16);
   pipeline.Render->SetHeight(16);
   pipeline.Render->SetSamplesPerPixel(0);
-  Failures += FailureExpectation::Check(pipeline.Render, { "samples" }, "no samples");
+  TestFailures::Add(FailureExpectation::Check(pipeline.Render, { "samples" }, "no samples"));
 }
 }
 
@@ -233,5 +228,5 @@ int TestRadianceImageFilter(int, char*[])
   Furnace("furnace_clay.scene", 1, clay);
   CornellBackWall();
   BadInput();
-  return Failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return TestFailures::ExitCode();
 }

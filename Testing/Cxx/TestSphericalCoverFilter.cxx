@@ -9,6 +9,7 @@
 //   honours abort;
 // - bad inputs and a memory limit below the estimate give one clear error.
 #include "FailureExpectation.h"
+#include "TestFailures.h"
 #include "vtkIntervalSubdivisionFilter.h"
 #include "vtkPatchSceneReader.h"
 #include "vtkSphericalCoverArrays.h"
@@ -37,16 +38,7 @@
 
 namespace
 {
-int failures = 0;
-
-void Check(bool condition, const std::string& what)
-{
-  if (!condition)
-  {
-    std::cerr << "FAILED: " << what << "\n";
-    ++failures;
-  }
-}
+using TestFailures::Check;
 
 template<typename T>
 bool SameBytes(const std::vector<T>& a, const std::vector<T>& b)
@@ -209,17 +201,17 @@ int TestSphericalCoverFilter(int, char*[])
   vtkNew<vtkSphericalCoverFilter> refused;
   refused->SetInputConnection(boxPatches->GetOutputPort(0));
   refused->SetMemoryLimit(0.001);
-  failures +=
-    FailureExpectation::Check(refused, { "MemoryLimit" }, "a memory limit below the estimate");
+  TestFailures::Add(
+    FailureExpectation::Check(refused, { "MemoryLimit" }, "a memory limit below the estimate"));
   vtkNew<vtkUnstructuredGrid> bare;
   bare->ShallowCopy(boxPatches->GetOutput());
   bare->GetCellData()->RemoveArray("Emission");
   vtkNew<vtkSphericalCoverFilter> noMaterials;
   noMaterials->SetInputData(bare);
-  failures += FailureExpectation::Check(
-    noMaterials, { "lacks the material cell arrays" }, "input without materials");
+  TestFailures::Add(FailureExpectation::Check(
+    noMaterials, { "lacks the material cell arrays" }, "input without materials"));
   sphcover::SphericalCover none;
   Check(
     !vtkSphericalCoverArrays::Load(boxPatches->GetOutput(), none).empty(), "patches hold no cover");
-  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+  return TestFailures::ExitCode();
 }
