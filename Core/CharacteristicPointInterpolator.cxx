@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "CharacteristicPointInterpolator.h"
 
+#include "Patch.h"
+
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
@@ -131,6 +133,21 @@ bool PlaneWeights(const glm::dvec2* q, int count, const glm::dvec2& x, double* w
   }
   return true;
 }
+}
+
+CharacteristicPointInterpolator CharacteristicPointInterpolator::OfPatches(
+  const std::vector<Patch>& patches)
+{
+  std::vector<int> surfaces;
+  std::vector<UVRect> domains;
+  surfaces.reserve(patches.size());
+  domains.reserve(patches.size());
+  for (const Patch& patch : patches)
+  {
+    surfaces.push_back(patch.SurfaceIndex);
+    domains.push_back(patch.Domain);
+  }
+  return CharacteristicPointInterpolator(surfaces, domains);
 }
 
 CharacteristicPointInterpolator::CharacteristicPointInterpolator(

@@ -48,6 +48,7 @@
 
 namespace sphcover
 {
+struct Patch;
 
 /// At most four characteristic points and their weights (which sum to 1).
 struct InterpolationStencil
@@ -70,6 +71,8 @@ public:
    */
   CharacteristicPointInterpolator(const std::vector<int>& surfaceOfPoint,
     const std::vector<UVRect>& domainOfPoint);
+  /// The characteristic points of `patches` (one per patch: its SurfaceIndex and Domain).
+  static CharacteristicPointInterpolator OfPatches(const std::vector<Patch>& patches);
 
   std::size_t PointCount() const { return this->Domains.size(); }
   /// Number of surfaces indexed (one more than the largest surface index).

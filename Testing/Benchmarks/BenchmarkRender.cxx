@@ -237,18 +237,12 @@ void Run(const char* name, int threads, int size, int samples, int maxLevel)
   directional.Cover = std::move(cover);
   directional.Materials = materials;
 
-  std::vector<int> surfaces;
-  std::vector<UVRect> domains;
-  for (const Patch& patch : patches)
-  {
-    surfaces.push_back(patch.SurfaceIndex);
-    domains.push_back(patch.Domain);
-  }
   start = Clock::now();
   const RadianceRenderer renderer(
-    patches, CharacteristicPointInterpolator(surfaces, domains), exitant);
+    patches, CharacteristicPointInterpolator::OfPatches(patches), exitant);
   const double setupSeconds = SecondsSince(start);
-  RadianceRenderer nonDiffuse(patches, CharacteristicPointInterpolator(surfaces, domains), exitant);
+  RadianceRenderer nonDiffuse(
+    patches, CharacteristicPointInterpolator::OfPatches(patches), exitant);
   start = Clock::now();
   nonDiffuse.SetDirectionalIllumination(std::move(directional));
   const double directionalSetupSeconds = SecondsSince(start);

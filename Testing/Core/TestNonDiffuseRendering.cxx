@@ -21,18 +21,6 @@ using namespace sphcover_test;
 
 namespace
 {
-CharacteristicPointInterpolator InterpolatorOf(const std::vector<Patch>& patches)
-{
-  std::vector<int> surfaces;
-  std::vector<UVRect> domains;
-  for (const Patch& patch : patches)
-  {
-    surfaces.push_back(patch.SurfaceIndex);
-    domains.push_back(patch.Domain);
-  }
-  return CharacteristicPointInterpolator(surfaces, domains);
-}
-
 /// The propagated solution of `patches` with one material per patch, ready to render: the
 /// renderer casts against `visible` (all patches when empty) and has the directional part.
 struct Solution
@@ -110,7 +98,8 @@ TEST(NonDiffuseRendering, WhiteFurnacesOfMirrorPhongAndTabulatedWallsRenderUnifo
     const Scene scene = LoadSceneFile(ScenePath(c.Scene));
     const std::vector<Patch> patches = SplitScene(scene, Sanitized ? 2 : 3);
     Solution solution = Propagate(patches, std::vector<Material>(patches.size(), c.Walls));
-    RadianceRenderer renderer(patches, InterpolatorOf(patches), solution.Exitant);
+    RadianceRenderer renderer(
+      patches, CharacteristicPointInterpolator::OfPatches(patches), solution.Exitant);
     renderer.SetDirectionalIllumination(std::move(solution.Directional));
     ASSERT_FALSE(scene.Cameras.empty());
     Camera camera = scene.Cameras.front();
@@ -197,9 +186,11 @@ TEST(NonDiffuseRendering, FlatMirrorShowsTheViewOfTheMirroredCamera)
   Solution solution = Propagate(patches, materials);
   Solution copy;
   copy.Exitant = solution.Exitant;
-  RadianceRenderer viewer(patches, InterpolatorOf(patches), solution.Exitant);
+  RadianceRenderer viewer(
+    patches, CharacteristicPointInterpolator::OfPatches(patches), solution.Exitant);
   viewer.SetDirectionalIllumination(std::move(solution.Directional));
-  const RadianceRenderer mirrored(withoutMirror, InterpolatorOf(patches), copy.Exitant);
+  const RadianceRenderer mirrored(
+    withoutMirror, CharacteristicPointInterpolator::OfPatches(patches), copy.Exitant);
 
   Camera camera;
   camera.Position = glm::dvec3(150.0, 300.0, 100.0);

@@ -22,18 +22,6 @@ using namespace sphcover_test;
 
 namespace
 {
-CharacteristicPointInterpolator InterpolatorOf(const std::vector<Patch>& patches)
-{
-  std::vector<int> surfaces;
-  std::vector<UVRect> domains;
-  for (const Patch& patch : patches)
-  {
-    surfaces.push_back(patch.SurfaceIndex);
-    domains.push_back(patch.Domain);
-  }
-  return CharacteristicPointInterpolator(surfaces, domains);
-}
-
 /// The unit square at z = 0 (front side +z), split 3 x 3, with the radiance (u, v, 1) of every
 /// characteristic point: a linear field, which §5.3.2's interpolation reproduces exactly.
 RadianceRenderer LinearSquare()
@@ -49,7 +37,8 @@ RadianceRenderer LinearSquare()
   {
     radiance.emplace_back(patch.Domain.CenterU(), patch.Domain.CenterV(), 1.0);
   }
-  CharacteristicPointInterpolator interpolator = InterpolatorOf(patches);
+  CharacteristicPointInterpolator interpolator =
+    CharacteristicPointInterpolator::OfPatches(patches);
   return RadianceRenderer(patches, std::move(interpolator), radiance);
 }
 
@@ -85,7 +74,8 @@ TEST(RadianceRenderer, WhiteFurnaceRendersUniform)
     {
       exitant.push_back(propagation.ExitantRadiance(i));
     }
-    const RadianceRenderer renderer(patches, InterpolatorOf(patches), exitant);
+    const RadianceRenderer renderer(
+      patches, CharacteristicPointInterpolator::OfPatches(patches), exitant);
     ASSERT_FALSE(scene.Cameras.empty());
     Camera camera = scene.Cameras.front();
     camera.Width = 40;
