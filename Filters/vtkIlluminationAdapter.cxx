@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkIlluminationAdapter.h"
 
+#include "vtkMaterialArrays.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
@@ -153,69 +154,20 @@ bool vtkIlluminationAdapter::ReadMaterials(vtkPolyData* points,
   std::vector<sphcover::Material>& materials,
   std::string& error)
 {
-  vtkPointData* pointData = points->GetPointData();
-  vtkDataArray* diffuse = pointData->GetArray(names::Diffuse);
-  vtkDataArray* emission = pointData->GetArray(names::Emission);
-  vtkDataArray* type = pointData->GetArray(names::MaterialType);
-  vtkDataArray* specular = pointData->GetArray(names::Specular);
-  vtkDataArray* exponent = pointData->GetArray(names::PhongExponent);
-  vtkDataArray* materialId = pointData->GetArray(names::MaterialId);
-  auto* materialNames =
-    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::MaterialNames));
-  auto* materialFiles =
-    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::MaterialFiles));
-  if (!diffuse || !emission || diffuse->GetNumberOfComponents() != 3 ||
-    emission->GetNumberOfComponents() != 3)
+  // One material per point, as the scene reader described it (vtkSurfaceGridBuilder).
+  const vtkMaterialArrays arrays(points->GetPointData(), points->GetFieldData(), "point");
+  if (!arrays.Check(error))
   {
-    error = "the cover points lack the Diffuse and Emission arrays (3 components)";
     return false;
   }
-  // One material per point, as the scene reader described it (vtkSurfaceGridBuilder): the
-  // kind, its reflectances and exponent, and for a tabulated BRDF its table file by MaterialId.
   const vtkIdType count = points->GetNumberOfPoints();
   materials.assign(static_cast<size_t>(count), sphcover::Material());
   for (vtkIdType i = 0; i < count; ++i)
   {
-    sphcover::Material& material = materials[static_cast<size_t>(i)];
-    const int kind = type ? static_cast<int>(type->GetComponent(i, 0)) : 0;
-    if (kind < 0 || kind > static_cast<int>(sphcover::MaterialType::Tabulated))
+    if (!arrays.Read(i, materials[static_cast<size_t>(i)], error))
     {
-      error =
-        "point " + std::to_string(i) + " has the unknown material type " + std::to_string(kind);
       return false;
-    }
-    material.Type = static_cast<sphcover::MaterialType>(kind);
-    diffuse->GetTuple(i, &material.Diffuse[0]);
-    emission->GetTuple(i, &material.Emission[0]);
-    if (material.Type != sphcover::MaterialType::Diffuse && (!specular || !exponent))
-    {
-      error = "point " + std::to_string(i) + " has a " + sphcover::MaterialTypeName(material.Type) +
-        " material but the points lack the Specular and PhongExponent arrays";
-      return false;
-    }
-    if (specular && exponent)
-    {
-      specular->GetTuple(i, &material.Specular[0]);
-      material.PhongExponent = exponent->GetComponent(i, 0);
-    }
-    const vtkIdType id = materialId ? static_cast<vtkIdType>(materialId->GetComponent(i, 0)) : -1;
-    if (materialNames && id >= 0 && id < materialNames->GetNumberOfValues())
-    {
-      material.Name = materialNames->GetValue(id);
-    }
-    if (material.Type == sphcover::MaterialType::Tabulated)
-    {
-      if (!materialFiles || id < 0 || id >= materialFiles->GetNumberOfValues() ||
-        materialFiles->GetValue(id).empty())
-      {
-        error = "point " + std::to_string(i) +
-          " has a tabulated material but no BRDF table file (MaterialId and the MaterialFiles "
-          "field array)";
-        return false;
-      }
-      material.TableFile = materialFiles->GetValue(id);
     }
   }
-
   return true;
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSurfaceGridAdapter.h"
 
+#include "vtkMaterialArrays.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridBuilder.h"
 
@@ -47,17 +48,13 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
   }
   vtkCellData* cd = input->GetCellData();
   vtkFieldData* fd = input->GetFieldData();
-  vtkDataArray* materialId = cd->GetArray(names::MaterialId);
-  vtkDataArray* materialType = cd->GetArray(names::MaterialType);
-  vtkDataArray* diffuse = cd->GetArray(names::Diffuse);
-  vtkDataArray* specular = cd->GetArray(names::Specular);
-  vtkDataArray* exponent = cd->GetArray(names::PhongExponent);
-  vtkDataArray* emission = cd->GetArray(names::Emission);
+  const vtkMaterialArrays materials(cd, fd, "cell");
   vtkDataArray* nameId = cd->GetArray(names::SurfaceNameId);
   vtkDataArray* twoSided = cd->GetArray(names::TwoSided);
   vtkDataArray* degrees = cd->GetHigherOrderDegrees();
 
-  const bool hasMaterials = materialId && diffuse && specular && emission;
+  const bool hasMaterials = cd->GetArray(names::MaterialId) && cd->GetArray(names::Diffuse) &&
+    cd->GetArray(names::Specular) && cd->GetArray(names::Emission);
   if (!hasMaterials)
   {
     if (!allowDefaultMaterials)
@@ -72,11 +69,8 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
     white.Diffuse = glm::dvec3(0.8);
     scene.Materials.push_back(white);
   }
-  if (hasMaterials &&
-    (diffuse->GetNumberOfComponents() != 3 || specular->GetNumberOfComponents() != 3 ||
-      emission->GetNumberOfComponents() != 3))
+  if (hasMaterials && !materials.Check(error))
   {
-    error = "the Diffuse, Specular and Emission cell arrays must have 3 components";
     return false;
   }
 
@@ -162,24 +156,19 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
     int materialIndex = 0;
     if (hasMaterials)
     {
-      const int id = static_cast<int>(materialId->GetComponent(c, 0));
+      const int id = static_cast<int>(materials.MaterialId(c));
       auto found = materialIndexOf.find(id);
       if (found == materialIndexOf.end())
       {
         sphcover::Material material;
-        material.Name = StringValue(fd, names::MaterialNames, id);
+        if (!materials.Read(c, material, error))
+        {
+          return false;
+        }
         if (material.Name.empty())
         {
           material.Name = "material" + std::to_string(id);
         }
-        material.Type = materialType
-          ? static_cast<sphcover::MaterialType>(static_cast<int>(materialType->GetComponent(c, 0)))
-          : sphcover::MaterialType::Diffuse;
-        diffuse->GetTuple(c, &material.Diffuse[0]);
-        specular->GetTuple(c, &material.Specular[0]);
-        emission->GetTuple(c, &material.Emission[0]);
-        material.PhongExponent = exponent ? exponent->GetComponent(c, 0) : 0.0;
-        material.TableFile = StringValue(fd, names::MaterialFiles, id);
         found = materialIndexOf.emplace(id, static_cast<int>(scene.Materials.size())).first;
         scene.Materials.push_back(material);
       }

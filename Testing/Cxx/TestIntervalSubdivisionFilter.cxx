@@ -108,6 +108,13 @@ int TestIntervalSubdivisionFilter(int argc, char* argv[])
     bare->GetCellData()->RemoveArray("Diffuse");
     filter->SetInputData(bare);
     failures += ExpectFailure(filter, "lacks the material cell arrays");
+
+    // A material kind the method does not know (vtkMaterialArrays names the cell).
+    vtkNew<vtkUnstructuredGrid> unknownKind;
+    unknownKind->DeepCopy(reader->GetOutput());
+    unknownKind->GetCellData()->GetArray("MaterialType")->SetComponent(0, 0, 7.0);
+    filter->SetInputData(unknownKind);
+    failures += ExpectFailure(filter, "cell 0 has the unknown MaterialType 7");
   }
 
   // The Fig. 9 dome with the scene's settings, coloured by SplitReason.
