@@ -129,11 +129,6 @@ TEST(NonDiffuseRendering, WhiteFurnacesOfMirrorPhongAndTabulatedWallsRenderUnifo
 
 TEST(NonDiffuseRendering, FlatMirrorShowsTheViewOfTheMirroredCamera)
 {
-#ifdef SPHCOVER_SANITIZED
-  // Known open problem: the unoptimised sanitizer build gives the same mean (2.7%) but a block
-  // RMS of 0.26 instead of 0.095; to be investigated (the image must not depend on the build).
-  GTEST_SKIP() << "block RMS differs in the sanitizer build (open problem, see the issue notes)";
-#endif
   // The Cornell box closed by a white front wall (z = 0), its back wall (z = 559.2) an ideal
   // mirror of k_s = 0.9. A camera inside looking at the mirror sees k_s times what the camera
   // mirrored through the plane z = 559.2 sees of the room (rendered with the mirror's patches
@@ -164,7 +159,7 @@ TEST(NonDiffuseRendering, FlatMirrorShowsTheViewOfTheMirroredCamera)
   std::vector<Patch> patches;
   for (size_t s = 0; s < scene.Surfaces.size(); ++s)
   {
-    const int split = static_cast<int>(s) == back ? (Sanitized ? 6 : 12) : (Sanitized ? 2 : 4);
+    const int split = static_cast<int>(s) == back ? 12 : 4;
     AppendSplit(patches, scene.Surfaces[s].Patch, static_cast<int>(s), split, split);
   }
   std::vector<Material> materials = LightPropagation::MaterialsOfPatches(scene, patches);
