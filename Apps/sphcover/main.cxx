@@ -6,7 +6,8 @@
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
- *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH] [--spp N]
+ *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH] [--spp
+ * N]
  *                   [--exposure E] [--solution solution.vtm] [--report report.json] [--set k=v]
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
@@ -37,14 +38,17 @@
 #include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
+#include <vtkLogger.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
 #include <vtkOpenEXRWriter.h>
+#include <vtkOutputWindow.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
 #include <vtkStringArray.h>
+#include <vtkStringOutputWindow.h>
 #include <vtkTrivialProducer.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLMultiBlockDataReader.h>
@@ -779,7 +783,9 @@ int main(int argc, char** argv)
   render
     ->add_option("SCENE", options.Scene, "A .scene file (its cameras; solved unless --solution)")
     ->required();
-  render->add_option("-o,--output", options.Output, "Image file: .exr (HDR Radiance and Depth, float) or .png (tone-mapped sRGB)");
+  render->add_option("-o,--output",
+    options.Output,
+    "Image file: .exr (HDR Radiance and Depth, float) or .png (tone-mapped sRGB)");
   render->add_option("--png", options.Png, "PNG file (tone-mapped sRGB)");
   render->add_option("--camera", options.Camera, "Camera of the scene (default: the first)");
   render->add_option("--size", options.Size, "Image size WIDTHxHEIGHT (default: the camera's)");
@@ -810,29 +816,42 @@ int main(int argc, char** argv)
   vtkSMPTools::SetBackend("STDThread");
   vtkSMPTools::Initialize(options.Threads);
 
+  // Errors of VTK objects nobody observes (the XML parser inside a reader) would print
+  // VTK's multi-line blocks next to the one error the command gives: keep their text, and show
+  // it only when the command succeeds (then it is a warning worth seeing).
+  vtkNew<vtkStringOutputWindow> vtkMessages;
+  vtkOutputWindow::SetInstance(vtkMessages);
+  vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  int status = 0;
   try
   {
     if (info->parsed())
     {
-      return RunInfo(options);
+      status = RunInfo(options);
     }
-    if (subdivide->parsed())
+    else if (subdivide->parsed())
     {
-      return RunSubdivide(options);
+      status = RunSubdivide(options);
     }
-    if (solve->parsed())
+    else if (solve->parsed())
     {
-      return RunSolve(options);
+      status = RunSolve(options);
     }
-    if (render->parsed())
+    else if (render->parsed())
     {
-      return RunRender(options);
+      status = RunRender(options);
     }
   }
   catch (const std::exception& e)
   {
     std::cerr << "sphcover: error: " << e.what() << std::endl;
-    return 1;
+    status = 1;
   }
-  return 0;
+  const std::string messages = vtkMessages->GetOutput();
+  if (status == 0 && !messages.empty())
+  {
+    std::cerr << messages << std::flush;
+  }
+  vtkOutputWindow::SetInstance(nullptr);
+  return status;
 }

@@ -135,6 +135,8 @@ for arguments, words in [
         (["render", scene, "-o", bad_output, "--size", "0x10"], "--size"),
         (["render", scene, "-o", bad_output, "--solution", os.path.join(folder, "none.vtm")],
          "none.vtm"),
+        # Not XML: the reader's XML parser complains too, but only the command's error shows.
+        (["render", scene, "-o", bad_output, "--solution", scene], "not a solution"),
         (["render", scene], "no output"),
         (["render", f"{data}/scenes/missing.scene", "-o", bad_output], "missing.scene")]:
     result = run(*arguments, "--quiet")
