@@ -53,7 +53,8 @@ void RBuffer::Reset(std::size_t receiver)
 }
 
 void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t source)>& depthOf,
-  const std::vector<int32_t>* groupOfSource)
+  const std::vector<int32_t>* groupOfSource,
+  bool diffuseRounding)
 {
   const HemisphereGrid& grid = *this->GridPointer;
   const int kt = grid.SamplesTheta();
@@ -78,6 +79,7 @@ void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t sou
   // group and per source, what it covered minus what it was given (perCell per cell won).
   std::unordered_map<int64_t, int> groupCarry;
   std::unordered_map<int64_t, int> sourceCarry;
+  constexpr int64_t NoGroup = std::numeric_limits<int64_t>::min();
   // Counts the samples of the cell per `key` over all its samples (`distinct` keys).
   auto count = [&](auto&& key) -> int
   {
@@ -157,12 +159,18 @@ void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t sou
     }
     for (int index = 0; index < distinct; ++index)
     {
+      // "No source" carries nothing: it is no measure to keep, and in a closed scene a few
+      // empty samples (gaps between tessellated patches) must not add up to empty cells.
+      if (!diffuseRounding || keys[static_cast<size_t>(index)] == NoGroup ||
+        keys[static_cast<size_t>(index)] == NoSource)
+      {
+        continue;
+      }
       carry[keys[static_cast<size_t>(index)]] += counts[static_cast<size_t>(index)] -
         (any && keys[static_cast<size_t>(index)] == winner ? perCell : 0);
     }
     return winner;
   };
-  constexpr int64_t NoGroup = std::numeric_limits<int64_t>::min();
   for (int row = 0; row < grid.ThetaBins(); ++row)
   {
     groupCarry.clear();

@@ -4,7 +4,8 @@
 // factor times pi) wherever rays show the lamp unoccluded. This located the ~2 % dark bias of
 // the walls against the Cycles reference (issue 6): the sample rays were unbiased (+-0.15 %),
 // the cells the plurality vote made of them were not (back wall -2.15 %, floor -1.3 %, green
-// wall -1.2 %); RBuffer::Classify's error diffusion along the rows brought them within 0.5 %.
+// wall -1.2 %); RBuffer::Classify's error diffusion along the rows (RBufferFillOptions::
+// DiffuseRounding) brings them within 0.6 %. Both are printed; the diffused one is asserted.
 #include "CoverTestUtilities.h"
 #include "RayCastFill.h"
 #include "SphericalCover.h"
@@ -69,7 +70,7 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
     lampPatch.Evaluate(1, 1),
     lampPatch.Evaluate(0, 1) };
 
-  for (RBufferFill fill : { RBufferFill::Projection })
+  for (const bool diffuse : { false, true })
   {
     for (int split : { Sanitized ? 9 : 15 })
     {
@@ -82,7 +83,7 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
       SphericalCoverOptions options;
       options.ThetaBins = scene.Settings.ThetaBins;
       options.PhiBins = scene.Settings.PhiBins;
-      options.Fill = fill;
+      options.FillOptions.DiffuseRounding = diffuse;
       SphericalCover cover;
       ASSERT_TRUE(cover.Build(patches, options, ThreadedFor(2)));
       const HemisphereGrid& grid = cover.Grid();
@@ -163,9 +164,9 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
         exactSum[s] += p.Area * exact;
         ++used[s];
       }
-      std::printf("split %d, fill %s: %zu patches, %zu lamp patches\n",
+      std::printf("split %d, %s: %zu patches, %zu lamp patches\n",
         split,
-        RBufferFillName(fill),
+        diffuse ? "error diffusion" : "plain plurality vote",
         patches.size(),
         lampPatches);
       double allCover = 0.0;
@@ -189,13 +190,16 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
       // estimates of the coverage and the cells keep what the samples say.
       for (size_t s = 0; s < scene.Surfaces.size(); ++s)
       {
-        if (used[s] >= 20)
+        if (diffuse && used[s] >= 20)
         {
           EXPECT_LT(std::fabs(sampleSum[s] / exactSum[s] - 1.0), 0.003) << "samples, surface " << s;
           EXPECT_LT(std::fabs(coverSum[s] / exactSum[s] - 1.0), 0.008) << "cells, surface " << s;
         }
       }
-      EXPECT_LT(std::fabs(allCover / allExact - 1.0), 0.005);
+      if (diffuse)
+      {
+        EXPECT_LT(std::fabs(allCover / allExact - 1.0), 0.005);
+      }
       EXPECT_GE(used[2] + used[3] + used[4], 100u);
     }
   }

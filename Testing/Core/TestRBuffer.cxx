@@ -147,7 +147,7 @@ TEST(RBuffer, ErrorDiffusionAlongARowKeepsEachSourcesCoverage)
       }
     }
     const std::vector<int32_t> surfaces{ 0, 1, 2, 2 };
-    buffer.Classify(nullptr, &surfaces);
+    buffer.Classify(nullptr, &surfaces, true);
     std::vector<int> cells(4, 0);
     for (int cell = 0; cell < 9; ++cell)
     {
