@@ -18,19 +18,19 @@
  *    two-ninths patch j2 of the same surface and four-ninths empty would go empty although the
  *    surface covers five ninths: a bias against finely split surfaces that grows with the
  *    number of patches meeting in a cell.
- *    Each round is a plurality vote, with RBufferFillOptions::DiffuseRounding with error
- *    diffusion along the theta row (as
- *    Floyd-Steinberg dithering rounds grey levels): walking the row in phi, every group (and
- *    every patch) carries the samples it covered minus perCell for every cell it won, and the
- *    candidate of largest count + carry among those present in the cell wins. A plain
- *    plurality vote rounds every cell on its own, which is biased wherever a source's boundary
- *    is not straight: at a convex corner the source covers less than half of the cell far more
- *    often than more, so a small convex source (the Cornell lamp seen from a wall, a few
- *    hundred cells) lost 1-2 % of its projected solid angle (measured against Lambert's contour
- *    integral: -2.15 % on the back wall), and everything it lit was as much darker. With the
- *    carry each source's cells in a row sum to its covered samples within the rounding of the
- *    last carry (-0.3 % on the back wall). The carries restart at each row (rows are classified
- *    independently of each other, so a one-sample difference between two fills changes at
+ *    Each round is a plurality vote; with RBufferFillOptions::DiffuseRounding the vote diffuses
+ *    its rounding error along the theta row (as Floyd-Steinberg dithering rounds grey
+ *    levels): walking the row in phi, every group and every patch carries the samples it
+ *    covered minus perCell for every cell it won, and the candidate of largest count + carry
+ *    among those present in the cell wins ("no source" carries nothing). The plain vote rounds
+ *    every cell on its own, which is biased wherever a source's boundary is not straight: at a
+ *    convex corner the source covers less than half of the cell far more often than more, so
+ *    a small convex source (the Cornell lamp seen from a wall, a few hundred cells) loses 1-2 %
+ *    of its projected solid angle (against Lambert's contour integral: -2.15 % on the back
+ *    wall at 27 x 27 wall patches), and everything it lights is as much darker. With the carry
+ *    each source's cells in a row sum to its covered samples within the rounding of the last
+ *    carry (-0.3 % on the back wall). The carries restart at each row (a one-sample difference
+ *    between two fills changes at
  *    most the rest of its row). A tie between the top scores goes to the tied candidate met
  *    first in HemisphereGrid::SamplesFromCentre() order (the one covering the sample nearest
  *    the cell's centre), so ties need no depth and favour neither side of a boundary. The
