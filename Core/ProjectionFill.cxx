@@ -142,7 +142,8 @@ public:
         }
         return static_cast<float>(depth);
       },
-      &this->SurfaceOfPatch);
+      &this->SurfaceOfPatch,
+      this->Options.DiffuseRounding);
     buffer.SetUnoccludedProjectedSolidAngles(this->MeasureUnoccluded());
   }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <unordered_map>
 
 namespace sphcover
 {
@@ -52,7 +53,8 @@ void RBuffer::Reset(std::size_t receiver)
 }
 
 void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t source)>& depthOf,
-  const std::vector<int32_t>* groupOfSource)
+  const std::vector<int32_t>* groupOfSource,
+  bool diffuseRounding)
 {
   const HemisphereGrid& grid = *this->GridPointer;
   const int kt = grid.SamplesTheta();
@@ -71,19 +73,20 @@ void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t sou
   // Distinct keys (groups, then sources) of one cell and their counts.
   std::vector<int64_t> keys(static_cast<size_t>(perCell));
   std::vector<int> counts(static_cast<size_t>(perCell));
+  std::vector<int> scores(static_cast<size_t>(perCell));
   std::vector<std::size_t> sampleOf(static_cast<size_t>(perCell));
-  // Plurality vote over the samples for which `eligible` holds, by `key`; the tie rule picks
-  // the tied key met first in centre order. Returns the winning key; sets tie.
-  auto vote = [&](auto&& key, auto&& eligible, bool& tie) -> int64_t
+  // The coverage carried along the row (error diffusion, see the header), in samples: per
+  // group and per source, what it covered minus what it was given (perCell per cell won).
+  std::unordered_map<int64_t, int> groupCarry;
+  std::unordered_map<int64_t, int> sourceCarry;
+  constexpr int64_t NoGroup = std::numeric_limits<int64_t>::min();
+  // Counts the samples of the cell per `key` over all its samples (`distinct` keys).
+  auto count = [&](auto&& key) -> int
   {
     int distinct = 0;
     for (int k = 0; k < perCell; ++k)
     {
       const int32_t source = this->SampleSources[sampleOf[static_cast<size_t>(k)]];
-      if (!eligible(source))
-      {
-        continue;
-      }
       const int64_t value = key(source);
       int index = 0;
       while (index < distinct && keys[static_cast<size_t>(index)] != value)
@@ -98,43 +101,80 @@ void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t sou
       }
       ++counts[static_cast<size_t>(index)];
     }
+    return distinct;
+  };
+  // Among the `distinct` keys counted for which `eligible` holds, the one of largest score =
+  // count + carry; the tie rule picks the tied key met first in centre order. Then every
+  // counted key's carry grows by its count and the winner's shrinks by perCell. Returns the
+  // winner (-1 when none is eligible); sets tie.
+  auto vote = [&](int distinct,
+                auto&& key,
+                auto&& eligible,
+                std::unordered_map<int64_t, int>& carry,
+                bool& tie) -> int64_t
+  {
+    bool any = false;
     int top = 0;
     int tied = 0;
     for (int index = 0; index < distinct; ++index)
     {
-      if (counts[static_cast<size_t>(index)] > top)
+      const int64_t value = keys[static_cast<size_t>(index)];
+      const auto found = carry.find(value);
+      const int score =
+        counts[static_cast<size_t>(index)] + (found == carry.end() ? 0 : found->second);
+      scores[static_cast<size_t>(index)] = score;
+      if (!eligible(value))
       {
-        top = counts[static_cast<size_t>(index)];
-        tied = 1;
+        continue;
       }
-      else if (counts[static_cast<size_t>(index)] == top)
+      if (!any || score > top)
+      {
+        top = score;
+        tied = 1;
+        any = true;
+      }
+      else if (score == top)
       {
         ++tied;
       }
     }
     tie = tied > 1;
-    for (const int k : order)
+    int64_t winner = -1;
+    if (any)
     {
-      const int32_t source = this->SampleSources[sampleOf[static_cast<size_t>(k)]];
-      if (!eligible(source))
+      for (const int k : order)
+      {
+        const int64_t value = key(this->SampleSources[sampleOf[static_cast<size_t>(k)]]);
+        int index = 0;
+        while (keys[static_cast<size_t>(index)] != value)
+        {
+          ++index;
+        }
+        if (eligible(value) && scores[static_cast<size_t>(index)] == top)
+        {
+          winner = value;
+          break;
+        }
+      }
+    }
+    for (int index = 0; index < distinct; ++index)
+    {
+      // "No source" carries nothing: it is no measure to keep, and in a closed scene a few
+      // empty samples (gaps between tessellated patches) must not add up to empty cells.
+      if (!diffuseRounding || keys[static_cast<size_t>(index)] == NoGroup ||
+        keys[static_cast<size_t>(index)] == NoSource)
       {
         continue;
       }
-      const int64_t value = key(source);
-      int index = 0;
-      while (keys[static_cast<size_t>(index)] != value)
-      {
-        ++index;
-      }
-      if (counts[static_cast<size_t>(index)] == top)
-      {
-        return value;
-      }
+      carry[keys[static_cast<size_t>(index)]] += counts[static_cast<size_t>(index)] -
+        (any && keys[static_cast<size_t>(index)] == winner ? perCell : 0);
     }
-    return -1;
+    return winner;
   };
   for (int row = 0; row < grid.ThetaBins(); ++row)
   {
+    groupCarry.clear();
+    sourceCarry.clear();
     for (int column = 0; column < grid.PhiBins(); ++column)
     {
       bool grazing = false;
@@ -147,19 +187,32 @@ void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t sou
           grazing = grazing || this->SampleGrazings[s] != 0;
         }
       }
-      // First the group (surface) covering most samples, then its patch covering most.
+      // First the group (surface), then its patch (see the header). "No source" is a group of
+      // its own (key NoGroup) that can win a cell.
       bool groupTie = false;
       bool sourceTie = false;
-      const int64_t group = vote(
-        groupOf, [](int32_t) { return true; }, groupTie);
-      int32_t winner = NoSource;
-      int votes = 0;
-      if (group >= 0)
+      auto groupKey = [&groupOf, NoGroup](int32_t source) -> int64_t
       {
-        winner = static_cast<int32_t>(vote([](int32_t source) -> int64_t { return source; },
-          [&groupOf, group](int32_t source) { return groupOf(source) == group; },
-          sourceTie));
+        const int64_t group = groupOf(source);
+        return source == NoSource ? NoGroup : group;
+      };
+      const int64_t group = vote(
+        count(groupKey), groupKey, [](int64_t) { return true; }, groupCarry, groupTie);
+      // The sources of the winning group compete; the carries of all sources counted grow.
+      auto sourceKey = [](int32_t source) -> int64_t { return source; };
+      int32_t winner = static_cast<int32_t>(vote(
+        count(sourceKey),
+        sourceKey,
+        [&groupKey, group](int64_t source)
+        { return source != NoSource && groupKey(static_cast<int32_t>(source)) == group; },
+        sourceCarry,
+        sourceTie));
+      if (group == NoGroup)
+      {
+        winner = NoSource;
+        sourceTie = false;
       }
+      int votes = 0;
       std::size_t representative = sampleOf[static_cast<size_t>(order[0])];
       bool found = false;
       for (const int k : order)

@@ -502,7 +502,8 @@ void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistic
       }
       return static_cast<float>(scratch.T[sample]);
     },
-    &impl.SurfaceOfPatch);
+    &impl.SurfaceOfPatch,
+    impl.Options.DiffuseRounding);
 }
 
 bool RayCastFiller::FirstHit(const glm::dvec3& origin,

@@ -77,16 +77,18 @@ struct FillCase
 
 TEST(RBuffer, ClassifiesByCoverageOfSurfacesThenPatches)
 {
-  const HemisphereGrid grid(1, 4, 3, 3);
+  // One cell per theta row: the carries of the error diffusion restart at every row, so each
+  // cell is a plain plurality vote.
+  const HemisphereGrid grid(4, 1, 3, 3);
   RBuffer buffer(grid);
   buffer.Reset(0);
   // Patches 0 and 1 belong to surface 0, patch 2 to surface 1.
   const std::vector<int32_t> surfaces{ 0, 0, 1 };
-  auto set = [&](int column, const std::vector<int32_t>& sources)
+  auto set = [&](int cell, const std::vector<int32_t>& sources)
   {
     for (int k = 0; k < 9; ++k)
     {
-      buffer.SetSample(grid.SampleIndex(k / 3, column * 3 + k % 3),
+      buffer.SetSample(grid.SampleIndex(cell * 3 + k / 3, k % 3),
         sources[static_cast<size_t>(k)],
         1.0f + k,
         false);
@@ -119,7 +121,50 @@ TEST(RBuffer, ClassifiesByCoverageOfSurfacesThenPatches)
   // Without surfaces, every patch votes alone: cell 1 goes empty (4 > 3 > 2).
   buffer.Classify(nullptr);
   EXPECT_EQ(buffer.CellSource(1), none);
-  EXPECT_NEAR(buffer.CoveredProjectedSolidAngle(), 2 * grid.CellMeasure(0), 1e-15);
+  EXPECT_NEAR(
+    buffer.CoveredProjectedSolidAngle(), grid.CellMeasure(0) + grid.CellMeasure(2), 1e-15);
+}
+
+TEST(RBuffer, ErrorDiffusionAlongARowKeepsEachSourcesCoverage)
+{
+  // A row of 9 cells, each a third covered by patch 0 (3 of its 9 samples) and two thirds by
+  // patch 1 (another surface): a cell-by-cell plurality vote gives every cell to patch 1 and
+  // patch 0 nothing (a bias of -100 %); the carry gives patch 0 one cell in three, exactly its
+  // coverage. The same with a third surface split into two patches (2 and 3) that cover the
+  // third between them (2 + 1 samples): the surface gets three cells and its patches their
+  // shares, 2 and 1.
+  const HemisphereGrid grid(1, 9, 3, 3);
+  RBuffer buffer(grid);
+  for (const bool split : { false, true })
+  {
+    buffer.Reset(0);
+    for (int column = 0; column < 9; ++column)
+    {
+      for (int k = 0; k < 9; ++k)
+      {
+        const int32_t source = k < 3 ? (split ? (k < 2 ? 2 : 3) : 0) : 1;
+        buffer.SetSample(grid.SampleIndex(k / 3, column * 3 + k % 3), source, 1.0f, false);
+      }
+    }
+    const std::vector<int32_t> surfaces{ 0, 1, 2, 2 };
+    buffer.Classify(nullptr, &surfaces, true);
+    std::vector<int> cells(4, 0);
+    for (int cell = 0; cell < 9; ++cell)
+    {
+      ASSERT_GE(buffer.CellSource(cell), 0);
+      ++cells[static_cast<size_t>(buffer.CellSource(cell))];
+    }
+    EXPECT_EQ(cells[1], 6);
+    if (split)
+    {
+      EXPECT_EQ(cells[2], 2);
+      EXPECT_EQ(cells[3], 1);
+    }
+    else
+    {
+      EXPECT_EQ(cells[0], 3);
+    }
+  }
 }
 
 TEST(RBuffer, FillsMatchLambertAtPoleSeamAndHorizon)

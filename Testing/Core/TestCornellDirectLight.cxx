@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// Direct light in the Cornell box: the projected solid angle through which the spherical cover
+// lets a point see the lamp agrees with Lambert's contour integral (the point-to-polygon form
+// factor times pi) wherever rays show the lamp unoccluded. This located the ~2 % dark bias of
+// the walls against the Cycles reference (issue 6): the sample rays were unbiased (+-0.15 %),
+// the cells the plurality vote made of them were not (back wall -2.15 %, floor -1.3 %, green
+// wall -1.2 %); RBuffer::Classify's error diffusion along the rows (RBufferFillOptions::
+// DiffuseRounding) brings them within 0.6 %. Both are printed; the diffused one is asserted.
+#include "CoverTestUtilities.h"
+#include "RayCastFill.h"
+#include "SphericalCover.h"
+
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+using namespace sphcover;
+using namespace sphcover_test;
+
+namespace
+{
+constexpr double Pi = 3.14159265358979323846;
+
+/// Lambert's contour formula: the form factor from a point with unit normal n to a planar
+/// polygon (either orientation), F = |1/(2 pi) sum_k gamma_k n . (R_k x R_k+1) / |R_k x R_k+1||.
+double PointToPolygonFormFactor(const glm::dvec3& point,
+  const glm::dvec3& normal,
+  const std::vector<glm::dvec3>& polygon)
+{
+  double sum = 0.0;
+  for (size_t k = 0; k < polygon.size(); ++k)
+  {
+    const glm::dvec3 a = glm::normalize(polygon[k] - point);
+    const glm::dvec3 b = glm::normalize(polygon[(k + 1) % polygon.size()] - point);
+    const glm::dvec3 c = glm::cross(a, b);
+    const double length = glm::length(c);
+    if (length <= 0.0)
+    {
+      continue;
+    }
+    const double gamma = std::atan2(length, glm::dot(a, b));
+    sum += gamma * glm::dot(normal, c) / length;
+  }
+  return std::fabs(sum) / (2.0 * Pi);
+}
+
+}
+
+TEST(CornellDirectLight, LampProjectedSolidAngle)
+{
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  int lamp = -1;
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    if (scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[s].NameIndex)] == "light")
+    {
+      lamp = static_cast<int>(s);
+    }
+  }
+  ASSERT_GE(lamp, 0);
+  const BezierPatch& lampPatch = scene.Surfaces[static_cast<size_t>(lamp)].Patch;
+  const std::vector<glm::dvec3> polygon = { lampPatch.Evaluate(0, 0),
+    lampPatch.Evaluate(1, 0),
+    lampPatch.Evaluate(1, 1),
+    lampPatch.Evaluate(0, 1) };
+
+  for (const bool diffuse : { false, true })
+  {
+    for (int split : { Sanitized ? 9 : 15 })
+    {
+      std::vector<Patch> patches;
+      for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+      {
+        const int n = static_cast<int>(s) == lamp ? 1 : (s <= 4 ? split : 3);
+        AppendSplit(patches, scene.Surfaces[s].Patch, static_cast<int>(s), n, n);
+      }
+      SphericalCoverOptions options;
+      options.ThetaBins = scene.Settings.ThetaBins;
+      options.PhiBins = scene.Settings.PhiBins;
+      options.FillOptions.DiffuseRounding = diffuse;
+      SphericalCover cover;
+      ASSERT_TRUE(cover.Build(patches, options, ThreadedFor(2)));
+      const HemisphereGrid& grid = cover.Grid();
+      const std::unique_ptr<RBufferFiller> filler =
+        RBufferFiller::Create(RBufferFill::RayCasting, patches, grid);
+      RBuffer buffer(grid);
+      const RayCastFiller rays(patches, grid, RBufferFillOptions());
+      size_t lampPatches = 0;
+      for (const Patch& p : patches)
+      {
+        lampPatches += p.SurfaceIndex == lamp ? 1 : 0;
+      }
+      std::vector<double> coverSum(scene.Surfaces.size(), 0.0);
+      std::vector<double> exactSum(scene.Surfaces.size(), 0.0);
+      std::vector<double> sampleSum(scene.Surfaces.size(), 0.0);
+      std::vector<size_t> used(scene.Surfaces.size(), 0);
+      for (size_t i = 0; i < patches.size(); ++i)
+      {
+        const Patch& p = patches[i];
+        if (p.SurfaceIndex == lamp)
+        {
+          continue;
+        }
+        bool above = true;
+        for (const glm::dvec3& corner : polygon)
+        {
+          above = above && glm::dot(corner - p.Point, p.Normal) > 1e-9;
+        }
+        if (!above)
+        {
+          continue;
+        }
+        bool visible = true;
+        for (int a = 0; a <= 8 && visible; ++a)
+        {
+          for (int b = 0; b <= 8 && visible; ++b)
+          {
+            const glm::dvec3 target =
+              lampPatch.Evaluate(0.01 + 0.98 * a / 8.0, 0.01 + 0.98 * b / 8.0);
+            const glm::dvec3 direction = glm::normalize(target - p.Point);
+            size_t hit = 0;
+            double distance = 0.0;
+            bool front = false;
+            visible = rays.FirstHit(p.Point, direction, 1e-3, hit, distance, front) &&
+              patches[hit].SurfaceIndex == lamp && front;
+          }
+        }
+        if (!visible)
+        {
+          continue;
+        }
+        double omega = 0.0;
+        for (size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+        {
+          if (patches[cover.EntryAt(e).Source].SurfaceIndex == lamp)
+          {
+            omega += cover.ProjectedSolidAngle(e);
+          }
+        }
+        buffer.Reset(i);
+        filler->Fill(i, buffer, nullptr);
+        double sampleOmega = 0.0;
+        for (int r = 0; r < grid.SampleRows(); ++r)
+        {
+          for (int c = 0; c < grid.SampleColumns(); ++c)
+          {
+            const int32_t src = buffer.SampleSource(grid.SampleIndex(r, c));
+            if (src >= 0 && patches[static_cast<size_t>(src)].SurfaceIndex == lamp)
+            {
+              sampleOmega += grid.CellMeasure(r / grid.SamplesTheta()) / grid.SamplesPerCell();
+            }
+          }
+        }
+        const double exact = Pi * PointToPolygonFormFactor(p.Point, p.Normal, polygon);
+        const size_t s = static_cast<size_t>(p.SurfaceIndex);
+        coverSum[s] += p.Area * omega;
+        sampleSum[s] += p.Area * sampleOmega;
+        exactSum[s] += p.Area * exact;
+        ++used[s];
+      }
+      std::printf("split %d, %s: %zu patches, %zu lamp patches\n",
+        split,
+        diffuse ? "error diffusion" : "plain plurality vote",
+        patches.size(),
+        lampPatches);
+      double allCover = 0.0;
+      double allExact = 0.0;
+      for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+      {
+        if (used[s] == 0)
+        {
+          continue;
+        }
+        allCover += coverSum[s];
+        allExact += exactSum[s];
+        std::printf("  %-18s %5zu points: cover/exact - 1 = %+.4f, samples/exact - 1 = %+.4f\n",
+          scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[s].NameIndex)].c_str(),
+          used[s],
+          coverSum[s] / exactSum[s] - 1.0,
+          sampleSum[s] / exactSum[s] - 1.0);
+      }
+      std::printf("  all: %+.4f\n", allCover / allExact - 1.0);
+      // Per surface with enough points (the walls and the floor): the samples are unbiased
+      // estimates of the coverage and the cells keep what the samples say.
+      for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+      {
+        if (diffuse && used[s] >= 20)
+        {
+          EXPECT_LT(std::fabs(sampleSum[s] / exactSum[s] - 1.0), 0.003) << "samples, surface " << s;
+          EXPECT_LT(std::fabs(coverSum[s] / exactSum[s] - 1.0), 0.008) << "cells, surface " << s;
+        }
+      }
+      if (diffuse)
+      {
+        EXPECT_LT(std::fabs(allCover / allExact - 1.0), 0.005);
+      }
+      EXPECT_GE(used[2] + used[3] + used[4], 100u);
+    }
+  }
+}
