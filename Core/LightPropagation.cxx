@@ -174,12 +174,17 @@ void LightPropagation::Reset()
   this->UnshotIncident.assign(
     this->Reflectances.Empty() ? 0 : this->Cover.EntryCount(), glm::dvec3(0.0));
   this->DirectionalUnshot.assign(this->PatchCount(), 0.0);
+  this->Power.resize(this->PatchCount());
+  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  {
+    this->Power[i] = this->PowerOf(i);
+  }
   this->Shots.clear();
   this->ElapsedSeconds = 0.0;
   this->NextInOrder = 0;
 }
 
-glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& pairs)
+glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
 {
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
@@ -189,8 +194,9 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
 
   // The in-strips that hold unshot incident radiance, taken out of the shooter's row, by row.
   const int rows = grid.ThetaBins();
+  const std::size_t rowCount = static_cast<std::size_t>(rows);
   std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
-  in.assign(static_cast<std::size_t>(rows), {});
+  in.assign(rowCount, {});
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
     const glm::dvec3 radiance = this->UnshotIncident[e];
@@ -206,9 +212,11 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
     }
   }
   this->DirectionalUnshot[shooter] = 0.0;
-  // For every out row, the in rows the table couples it with that hold unshot light.
+  // For every out row, the in rows the table couples it with that hold unshot light, and the
+  // number of their strips.
   std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
-  coupled.assign(static_cast<std::size_t>(rows), {});
+  coupled.assign(rowCount, {});
+  std::vector<std::size_t> coupledStrips(rowCount, 0);
   for (int rowOut = 0; rowOut < rows; ++rowOut)
   {
     for (int rowIn = 0; rowIn < rows; ++rowIn)
@@ -216,13 +224,41 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
       if (!in[static_cast<std::size_t>(rowIn)].empty() && table.RowsCoupled(rowOut, rowIn))
       {
         coupled[static_cast<std::size_t>(rowOut)].push_back(rowIn);
+        coupledStrips[static_cast<std::size_t>(rowOut)] +=
+          in[static_cast<std::size_t>(rowIn)].size();
       }
     }
   }
+  // The strip pairs of the strip-pair sum: its cost, against the grid's (file comment).
+  std::size_t pairs = 0;
+  if (rowEnd > rowBegin)
+  {
+    for (std::size_t k = cover.StripBegin(rowBegin); k < cover.StripEnd(rowEnd - 1); ++k)
+    {
+      pairs += coupledStrips[cover.StripAt(k).Row];
+    }
+  }
+  this->GridShot = this->Method == DirectionalMethod::Grid ||
+    (this->Method == DirectionalMethod::Automatic &&
+      static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount()));
+  this->DirectionalOut.assign(rowEnd - rowBegin, glm::dvec3(0.0));
+  return this->GridShot ? this->ShotByGrid(shooter, table)
+                        : this->ShotByStripPairs(shooter, table, pairs);
+}
 
+glm::dvec3 LightPropagation::ShotByStripPairs(std::size_t shooter,
+  const ReflectanceWeights& table,
+  std::size_t pairs)
+{
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
+  const std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
+  const std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
   // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
   glm::dvec3 meanFlux(0.0);
-  for (int rowOut = 0; rowOut < rows; ++rowOut)
+  for (int rowOut = 0; rowOut < grid.ThetaBins(); ++rowOut)
   {
     glm::dvec3 rowFlux(0.0);
     for (int rowIn : coupled[static_cast<std::size_t>(rowOut)])
@@ -237,8 +273,6 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
   }
 
   // The exitant radiance averaged over every region h_ji of the shooter's row.
-  this->DirectionalOut.assign(rowEnd - rowBegin, glm::dvec3(0.0));
-  pairs = 0;
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
     glm::dvec3 flux(0.0);
@@ -254,7 +288,6 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
                          out.Row, out.PhiBegin, out.PhiEnd, rowIn, strip.Begin, strip.End) *
             strip.Radiance;
         }
-        pairs += in[static_cast<std::size_t>(rowIn)].size();
       }
       flux += grid.CellMeasure(out.Row) * stripFlux;
     }
@@ -263,6 +296,60 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
       this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
     }
   }
+  this->LastWeightEvaluations = pairs;
+  return meanFlux / grid.TotalMeasure();
+}
+
+glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWeights& table)
+{
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  const std::size_t rows = static_cast<std::size_t>(grid.ThetaBins());
+  const std::size_t columns = static_cast<std::size_t>(grid.PhiBins());
+  // The unshot incident radiance per cell (each cell of the row belongs to one entry).
+  this->GridIn.assign(rows * columns, glm::dvec3(0.0));
+  for (std::size_t row = 0; row < rows; ++row)
+  {
+    for (const InStrip& strip : this->DirectionalIn[row])
+    {
+      for (int c = strip.Begin; c < strip.End; ++c)
+      {
+        this->GridIn[row * columns + static_cast<std::size_t>(c)] += strip.Radiance;
+      }
+    }
+  }
+  // I(o) toward every cell, then per out row the prefix sums of I over the columns, so that
+  // a strip of out cells costs O(1).
+  table.Reflect(this->GridIn, this->GridOut);
+  this->GridPrefix.resize(rows * (columns + 1));
+  glm::dvec3 meanFlux(0.0);
+  for (std::size_t row = 0; row < rows; ++row)
+  {
+    glm::dvec3* prefix = this->GridPrefix.data() + row * (columns + 1);
+    prefix[0] = glm::dvec3(0.0);
+    for (std::size_t c = 0; c < columns; ++c)
+    {
+      prefix[c + 1] = prefix[c] + this->GridOut[row * columns + c];
+    }
+    meanFlux += grid.CellMeasure(static_cast<int>(row)) * prefix[columns];
+  }
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
+  for (std::size_t e = rowBegin; e < rowEnd; ++e)
+  {
+    glm::dvec3 flux(0.0);
+    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
+    {
+      const SphericalCover::Strip& out = cover.StripAt(k);
+      const glm::dvec3* prefix = this->GridPrefix.data() + out.Row * (columns + 1);
+      flux += grid.CellMeasure(out.Row) * (prefix[out.PhiEnd] - prefix[out.PhiBegin]);
+    }
+    if (this->EntryOmega[e] > 0.0)
+    {
+      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
+    }
+  }
+  this->LastWeightEvaluations = 0;
   return meanFlux / grid.TotalMeasure();
 }
 
@@ -296,6 +383,10 @@ glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
     ++this->LastMeanFallbacks;
     return mean;
   }
+  if (this->GridShot)
+  {
+    return this->GridOut[static_cast<std::size_t>(cell)];
+  }
   const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
   const int rowOut = grid.RowOfCell(cell);
   const int columnOut = grid.ColumnOfCell(cell);
@@ -321,9 +412,11 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   // The directional part of a non-diffuse shooter (see the file comment).
   const bool directional =
     this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
-  std::size_t pairs = 0;
   this->LastMeanFallbacks = 0;
-  const glm::dvec3 mean = directional ? this->DirectionalShot(shooter, pairs) : glm::dvec3(0.0);
+  this->LastWeightEvaluations = 0;
+  this->GridShot = false;
+  const glm::dvec3 mean = directional ? this->DirectionalShot(shooter) : glm::dvec3(0.0);
+  this->Power[shooter] = this->PowerOf(shooter);
   const std::size_t rowBegin = this->Cover.EntryBegin(shooter);
   const std::size_t begin = this->Cover.ColumnBegin(shooter);
   const std::size_t end = this->Cover.ColumnEnd(shooter);
@@ -355,13 +448,13 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
       this->DirectionalUnshot[item.Receiver] += this->Cover.PatchArea(item.Receiver) *
         BandSum(value * this->EntryAlbedoMeasure[item.EntryIndex]);
     }
+    this->Power[item.Receiver] = this->PowerOf(item.Receiver);
   }
-  this->LastWeightEvaluations = pairs;
   this->LastFallbacks = fallbacks;
   return end - begin;
 }
 
-double LightPropagation::UnshotPower(std::size_t patch) const
+double LightPropagation::PowerOf(std::size_t patch) const
 {
   return Pi * this->Cover.PatchArea(patch) * BandSum(this->Unshot[patch]) +
     this->DirectionalUnshot[patch];
@@ -370,20 +463,23 @@ double LightPropagation::UnshotPower(std::size_t patch) const
 double LightPropagation::UnshotEnergy() const
 {
   double sum = 0.0;
-  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  for (const double power : this->Power)
   {
-    sum += this->UnshotPower(i);
+    sum += power;
   }
   return sum;
 }
 
-std::size_t LightPropagation::Brightest(double& power) const
+std::size_t LightPropagation::Brightest(double& power, double& total) const
 {
+  // One pass for both: this scan is the O(N) part of every shot (file comment).
   std::size_t best = 0;
   power = -1.0;
-  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  total = 0.0;
+  for (std::size_t i = 0; i < this->Power.size(); ++i)
   {
-    const double p = this->UnshotPower(i);
+    const double p = this->Power[i];
+    total += p;
     // Strictly greater: ties go to the lowest index.
     if (p > power)
     {
@@ -414,12 +510,19 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   const double secondsBefore = this->ElapsedSeconds;
-  const double initialUnshot = this->UnshotEnergy();
+  double largest = 0.0;
+  double unshot = 0.0;
+  std::size_t brightest = this->Brightest(largest, unshot);
+  const double initialUnshot = unshot;
   double reported = 0.0;
   std::size_t shots = 0;
-  double largest = 0.0;
-  std::size_t brightest = this->Brightest(largest);
-  while (!this->Converged(settings.ConvergenceTolerance))
+  // Converged(), from the scan's sum.
+  const auto converged = [&]
+  {
+    return this->TotalEmitted <= 0.0 || this->PatchCount() == 0 ||
+      unshot / this->TotalEmitted < settings.ConvergenceTolerance;
+  };
+  while (!converged())
   {
     if (settings.MaximumShots > 0 && shots >= settings.MaximumShots)
     {
@@ -446,9 +549,10 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     record.WeightEvaluations = this->LastWeightEvaluations;
     record.Fallbacks = this->LastFallbacks;
     record.MeanFallbacks = this->LastMeanFallbacks;
-    brightest = this->Brightest(largest);
+    record.GridShot = this->GridShot;
+    brightest = this->Brightest(largest, unshot);
     record.MaxUnshotRelative = largest / this->TotalEmitted;
-    record.UnshotEnergy = this->UnshotEnergy();
+    record.UnshotEnergy = unshot;
     this->ElapsedSeconds =
       secondsBefore + std::chrono::duration<double>(Clock::now() - start).count();
     record.Seconds = this->ElapsedSeconds;

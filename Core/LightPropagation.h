@@ -128,6 +128,19 @@ enum class ShootingOrder
   FixedOrder = 1
 };
 
+/// How a non-diffuse shot sums its weight table (the results agree up to rounding; see the file
+/// comment).
+enum class DirectionalMethod
+{
+  /// Per shot the cheaper of the two by the estimated cost.
+  Automatic = 0,
+  /// Strip pairs: O(out strips of the shooter's row x in strips with unshot light).
+  StripPairs = 1,
+  /// The whole hemisphere: the unshot light as a dense grid of cells, reflected by
+  /// ReflectanceWeights::Reflect, then O(1) per out strip by prefix sums.
+  Grid = 2
+};
+
 struct PropagationSettings
 {
   /// Stop when the unshot power (summed over all points) relative to the emitted power falls
@@ -155,8 +168,11 @@ struct ShotRecord
   /// Entries updated by the shot (the size of the shooter's column, §5.2).
   std::size_t ReceiverUpdates = 0;
   /// Strip pairs (out strip, in strip) the weight table was summed over (0 for a Lambertian
-  /// shooter): the O(D)-like part of a non-diffuse shot.
+  /// shooter and for a grid shot): the O(D)-like part of a non-diffuse shot.
   std::size_t WeightEvaluations = 0;
+  /// Whether the shot reflected its unshot light through the whole-hemisphere grid
+  /// (DirectionalMethod::Grid) rather than strip pairs.
+  bool GridShot = false;
   /// Receivers i served without the region h_ji, which is null (see the file comment).
   std::size_t Fallbacks = 0;
   /// Of those, the ones served by the mean exitant radiance (no frames, or the direction
@@ -213,6 +229,14 @@ public:
   /// Back to the start: E = 0, unshot radiance = emission, no history.
   void Reset();
 
+  /// How non-diffuse shots sum their weight tables (default Automatic). The methods agree up
+  /// to rounding; forcing one is for measuring and testing them.
+  void SetDirectionalMethod(DirectionalMethod method) { this->Method = method; }
+  DirectionalMethod GetDirectionalMethod() const { return this->Method; }
+  /// Automatic takes the grid when the strip pairs exceed this many per cell of the grid (the
+  /// grid's cost in strip pairs, measured by BenchmarkLightPropagation; see the file comment).
+  static constexpr double GridCostInPairs = 1.0;
+
   /**
    * Shoots until converged (true), MaximumShots shots were made in this call (false) or
    * `progress` returned false (false; the state is consistent, a later Run continues).
@@ -261,7 +285,7 @@ public:
   }
   const glm::dvec3& UnshotRadiance(std::size_t patch) const { return this->Unshot[patch]; }
   /// U_j of the file comment.
-  double UnshotPower(std::size_t patch) const;
+  double UnshotPower(std::size_t patch) const { return this->Power[patch]; }
   /// sum_j U_j.
   double UnshotEnergy() const;
   /// Emitted power summed over the bands, W.
@@ -274,13 +298,21 @@ public:
   const glm::dvec3& Emission(std::size_t patch) const { return this->Le[patch]; }
 
 private:
-  /// The patch of largest unshot power (lowest index on ties), and that power.
-  std::size_t Brightest(double& power) const;
+  /// The patch of largest unshot power (lowest index on ties), that power, and the sum of all
+  /// (UnshotEnergy), in one scan.
+  std::size_t Brightest(double& power, double& total) const;
+  /// U_j from Unshot and DirectionalUnshot (what Power holds).
+  double PowerOf(std::size_t patch) const;
   /// Sets up the non-diffuse machinery (models, weight tables, transposed entries).
   void SetUpModels(const std::vector<Material>& materialOfPatch);
   /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
-  /// row j, into DirectionalOut; returns the mean over the hemisphere and counts strip pairs.
-  glm::dvec3 DirectionalShot(std::size_t shooter, std::size_t& pairs);
+  /// row j, into DirectionalOut, by the cheaper method; returns the mean over the hemisphere.
+  glm::dvec3 DirectionalShot(std::size_t shooter);
+  /// The two methods of DirectionalShot, on the in-strips it collected.
+  glm::dvec3 ShotByStripPairs(std::size_t shooter,
+    const ReflectanceWeights& table,
+    std::size_t pairs);
+  glm::dvec3 ShotByGrid(std::size_t shooter, const ReflectanceWeights& table);
   /// The exitant radiance of the current directional shot toward a receiver without h_ji.
   glm::dvec3 TowardReceiver(std::size_t shooter, std::size_t receiver, const glm::dvec3& mean);
   /// sum_e E_e a_e Omega_e over row i (non-diffuse) or rho_i E_i (diffuse).
@@ -311,6 +343,9 @@ private:
   std::vector<glm::dvec3> UnshotIncident;
   /// The directional part of U_j (W, summed over the bands), kept up to date by the shots.
   std::vector<double> DirectionalUnshot;
+  /// U_j of every patch, updated with Unshot and DirectionalUnshot: the scan for the brightest
+  /// reads one array.
+  std::vector<double> Power;
   /// Scratch of DirectionalShot: radiance toward each entry of the shooter's row, the in-strips
   /// with unshot radiance by row, and per out row the coupled in rows that hold some.
   std::vector<glm::dvec3> DirectionalOut;
@@ -322,6 +357,14 @@ private:
   };
   std::vector<std::vector<InStrip>> DirectionalIn;
   std::vector<std::vector<int>> DirectionalCoupled;
+  /// Scratch of ShotByGrid: unshot incident radiance per cell, exitant radiance per cell, and
+  /// per row the prefix sums of the exitant radiance over the columns.
+  std::vector<glm::dvec3> GridIn;
+  std::vector<glm::dvec3> GridOut;
+  std::vector<glm::dvec3> GridPrefix;
+  DirectionalMethod Method = DirectionalMethod::Automatic;
+  /// Whether the current (last) directional shot went through the grid.
+  bool GridShot = false;
   std::vector<HemisphereFrame> Frames;
   /// Statistics of the last Shoot, for its ShotRecord.
   std::size_t LastWeightEvaluations = 0;

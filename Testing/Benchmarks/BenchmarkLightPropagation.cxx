@@ -4,7 +4,16 @@
  * @brief Progressive light propagation (paper §5.1, §5.2) with all reflectance kinds (SPEC §7:
  * speed is measured by a benchmark, never by timed tests).
  *
- *   BenchmarkLightPropagation [--threads N] [--tolerance T] [--scene name.scene]...
+ *   BenchmarkLightPropagation [--threads N] [--tolerance T] [--refine K] [--max-shots N]
+ *                             [--no-costs] [--scene name.scene]...
+ *
+ * --refine K first refines the patches as the cover filter does by default (receiver side,
+ * enclosure boundaries, CoverRefinement; K = 3 is the filter's RefinementLevels default) and
+ * propagates over the cover of the refined patches: the patch set of `sphcover solve`.
+ * --max-shots stops each propagation early (for profiles); --no-costs skips parts 2 and 3.
+ * --cache DIR keeps each scene's cover, materials and frames in DIR/<scene>.refine<K>.cover
+ * and reads them from there on later runs (repeated measurements skip subdivision and cover;
+ * delete the file when the scene or the cover code changes).
  *
  * 1. For each scene (default: the Cornell box and the teapot room, whose mirror wall and phong
  *    teapot shoot through weight tables) at the scene's settings: interval subdivision, cover,
@@ -21,6 +30,7 @@
  *    walls, grids 8 x 32 to 64 x 256; per grid the mean column size, strip pairs per shot and
  *    microseconds per shot over the first 300 shots.
  */
+#include "CoverRefinement.h"
 #include "IntervalSubdivision.h"
 #include "LightPropagation.h"
 #include "ParallelFor.h"
@@ -32,6 +42,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -65,44 +76,202 @@ std::vector<Patch> Subdivide(const Scene& scene, const ParallelFor& parallelFor)
   return subdivision.Patches();
 }
 
-void Converge(const std::string& name, double tolerance, const ParallelFor& parallelFor)
+/// The receiver-side refinement of the cover filter's default (REFINEMENT_ENCLOSURES):
+/// enclosure boundaries split up to `levels` below the deepest patch.
+std::vector<Patch> Refine(const Scene& scene,
+  std::vector<Patch> patches,
+  const SphericalCoverOptions& options,
+  int levels,
+  const ParallelFor& parallelFor)
 {
-  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
-  const std::vector<Patch> patches = Subdivide(scene, parallelFor);
+  int deepest = 0;
+  for (const Patch& patch : patches)
+  {
+    deepest = std::max(deepest, patch.Level);
+  }
+  RefinementSettings settings;
+  settings.Cover = options;
+  settings.MaxLevel = deepest + levels;
+  settings.AnalyseHemispheres = false;
+  CoverRefinement refinement(scene, std::move(patches), settings);
+  refinement.Run(nullptr, parallelFor);
+  return refinement.Patches();
+}
+
+/// What the propagation needs of the patches: the cover, each patch's material and frame.
+struct Prepared
+{
+  SphericalCover Cover;
+  std::vector<Material> Materials;
+  std::vector<HemisphereFrame> Frames;
+  double CoverSeconds = 0.0;
+};
+
+template<typename T>
+void WriteVector(std::FILE* file, const std::vector<T>& values)
+{
+  const uint64_t size = values.size();
+  std::fwrite(&size, sizeof(size), 1, file);
+  std::fwrite(values.data(), sizeof(T), values.size(), file);
+}
+
+template<typename T>
+bool ReadVector(std::FILE* file, std::vector<T>& values)
+{
+  uint64_t size = 0;
+  if (std::fread(&size, sizeof(size), 1, file) != 1 || size > (uint64_t(1) << 34))
+  {
+    return false;
+  }
+  values.resize(size);
+  return std::fread(values.data(), sizeof(T), values.size(), file) == values.size();
+}
+
+/// The cover, surfaces and frames of a previous run (--cache), or false. A cache is only a
+/// time saver for repeated measurements: it is keyed by the scene's name and the refinement.
+bool ReadCache(const std::string& path, const Scene& scene, Prepared& prepared)
+{
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file)
+  {
+    return false;
+  }
+  SphericalCover::Arrays arrays;
+  int header[5] = {};
+  std::vector<int> surfaces;
+  bool ok = std::fread(header, sizeof(header), 1, file) == 1 &&
+    ReadVector(file, arrays.RowOffsets) && ReadVector(file, arrays.Entries) &&
+    ReadVector(file, arrays.Unoccluded) && ReadVector(file, arrays.Strips) &&
+    ReadVector(file, arrays.StripDepths) && ReadVector(file, arrays.Areas) &&
+    ReadVector(file, surfaces) && ReadVector(file, prepared.Frames);
+  std::fclose(file);
+  arrays.ThetaBins = header[0];
+  arrays.PhiBins = header[1];
+  arrays.SamplesTheta = header[2];
+  arrays.SamplesPhi = header[3];
+  arrays.Fill = header[4];
+  arrays.UnoccludedKnown = !arrays.Unoccluded.empty();
+  ok = ok && prepared.Cover.ImportArrays(std::move(arrays)).empty() &&
+    surfaces.size() == prepared.Cover.PatchCount();
+  for (std::size_t i = 0; ok && i < surfaces.size(); ++i)
+  {
+    const Surface& surface = scene.Surfaces.at(static_cast<std::size_t>(surfaces[i]));
+    prepared.Materials.push_back(
+      scene.Materials.at(static_cast<std::size_t>(surface.MaterialIndex)));
+  }
+  return ok;
+}
+
+void WriteCache(const std::string& path,
+  const Prepared& prepared,
+  const std::vector<Patch>& patches)
+{
+  std::FILE* file = std::fopen((path + ".part").c_str(), "wb");
+  if (!file)
+  {
+    return;
+  }
+  const SphericalCover::Arrays arrays = prepared.Cover.ExportArrays();
+  const int header[5] = {
+    arrays.ThetaBins, arrays.PhiBins, arrays.SamplesTheta, arrays.SamplesPhi, arrays.Fill
+  };
+  std::fwrite(header, sizeof(header), 1, file);
+  WriteVector(file, arrays.RowOffsets);
+  WriteVector(file, arrays.Entries);
+  WriteVector(file, arrays.UnoccludedKnown ? arrays.Unoccluded : std::vector<float>());
+  WriteVector(file, arrays.Strips);
+  WriteVector(file, arrays.StripDepths);
+  WriteVector(file, arrays.Areas);
+  std::vector<int> surfaces;
+  for (const Patch& patch : patches)
+  {
+    surfaces.push_back(patch.SurfaceIndex);
+  }
+  WriteVector(file, surfaces);
+  WriteVector(file, prepared.Frames);
+  const bool ok = std::fclose(file) == 0;
+  if (ok)
+  {
+    std::rename((path + ".part").c_str(), path.c_str());
+  }
+}
+
+void Prepare(const Scene& scene,
+  int refineLevels,
+  const std::string& cache,
+  const ParallelFor& parallelFor,
+  Prepared& prepared)
+{
+  if (!cache.empty() && ReadCache(cache, scene, prepared))
+  {
+    std::printf("  (cover, materials and frames read from %s)\n", cache.c_str());
+    return;
+  }
+  prepared = Prepared();
   SphericalCoverOptions options;
   options.ThetaBins = scene.Settings.ThetaBins;
   options.PhiBins = scene.Settings.PhiBins;
-  SphericalCover cover;
-  Clock::time_point start = Clock::now();
-  cover.Build(patches, options, parallelFor);
-  const double coverSeconds = Seconds(start);
-
-  start = Clock::now();
-  LightPropagation propagation(cover, LightPropagation::MaterialsOfPatches(scene, patches));
-  std::vector<HemisphereFrame> frames;
+  std::vector<Patch> patches = Subdivide(scene, parallelFor);
+  if (refineLevels > 0)
+  {
+    patches = Refine(scene, std::move(patches), options, refineLevels, parallelFor);
+  }
+  const Clock::time_point start = Clock::now();
+  prepared.Cover.Build(patches, options, parallelFor);
+  prepared.CoverSeconds = Seconds(start);
+  prepared.Materials = LightPropagation::MaterialsOfPatches(scene, patches);
   for (const Patch& patch : patches)
   {
-    frames.push_back(HemisphereFrame::OfPatch(patch));
+    prepared.Frames.push_back(HemisphereFrame::OfPatch(patch));
   }
-  propagation.SetFrames(frames);
+  if (!cache.empty())
+  {
+    WriteCache(cache, prepared, patches);
+  }
+}
+
+void Converge(const std::string& name,
+  double tolerance,
+  int refineLevels,
+  std::size_t maximumShots,
+  const std::string& cacheDirectory,
+  const ParallelFor& parallelFor)
+{
+  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
+  Prepared prepared;
+  Prepare(scene,
+    refineLevels,
+    cacheDirectory.empty()
+      ? std::string()
+      : cacheDirectory + "/" + name + ".refine" + std::to_string(refineLevels) + ".cover",
+    parallelFor,
+    prepared);
+  const SphericalCover& cover = prepared.Cover;
+  const double coverSeconds = prepared.CoverSeconds;
+
+  Clock::time_point start = Clock::now();
+  LightPropagation propagation(cover, prepared.Materials);
+  propagation.SetFrames(prepared.Frames);
   const double setUpSeconds = Seconds(start);
   std::size_t nonDiffuse = 0;
-  for (std::size_t i = 0; i < patches.size(); ++i)
+  for (std::size_t i = 0; i < cover.PatchCount(); ++i)
   {
     nonDiffuse += propagation.IsLambertian(i) ? 0 : 1;
   }
-  std::printf("%s: %zu patches (%zu non-diffuse), %zu entries, grid %d x %d; cover %.2f s; "
-              "weight tables %.3f s\n",
+  std::printf("%s: %zu patches (%zu non-diffuse, refinement %d levels), %zu entries, grid %d x "
+              "%d; cover %.2f s; weight tables %.3f s\n",
     name.c_str(),
-    patches.size(),
+    cover.PatchCount(),
     nonDiffuse,
+    refineLevels,
     cover.EntryCount(),
-    options.ThetaBins,
-    options.PhiBins,
+    cover.Grid().ThetaBins(),
+    cover.Grid().PhiBins(),
     coverSeconds,
     setUpSeconds);
   PropagationSettings settings;
   settings.ConvergenceTolerance = tolerance;
+  settings.MaximumShots = maximumShots;
   int reported = 0;
   const bool converged = propagation.Run(settings,
     [&](double fraction)
@@ -267,6 +436,10 @@ int main(int argc, char* argv[])
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   int threads = 0;
   double tolerance = 1e-5;
+  int refineLevels = 0;
+  std::size_t maximumShots = 0;
+  bool costs = true;
+  std::string cacheDirectory;
   std::vector<std::string> scenes;
   for (int k = 1; k < argc; ++k)
   {
@@ -282,10 +455,28 @@ int main(int argc, char* argv[])
     {
       scenes.emplace_back(argv[++k]);
     }
+    else if (!std::strcmp(argv[k], "--refine") && k + 1 < argc)
+    {
+      refineLevels = std::atoi(argv[++k]);
+    }
+    else if (!std::strcmp(argv[k], "--max-shots") && k + 1 < argc)
+    {
+      maximumShots = static_cast<std::size_t>(std::atoll(argv[++k]));
+    }
+    else if (!std::strcmp(argv[k], "--cache") && k + 1 < argc)
+    {
+      cacheDirectory = argv[++k];
+    }
+    else if (!std::strcmp(argv[k], "--no-costs"))
+    {
+      costs = false;
+    }
     else
     {
-      std::fprintf(
-        stderr, "usage: %s [--threads N] [--tolerance T] [--scene name.scene]...\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--threads N] [--tolerance T] [--refine K] [--max-shots N] [--no-costs] "
+        "[--cache DIR] [--scene name.scene]...\n",
+        argv[0]);
       return 2;
     }
   }
@@ -296,9 +487,12 @@ int main(int argc, char* argv[])
   const ParallelFor parallelFor = threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   for (const std::string& scene : scenes)
   {
-    Converge(scene, tolerance, parallelFor);
+    Converge(scene, tolerance, refineLevels, maximumShots, cacheDirectory, parallelFor);
   }
-  CostAgainstColumn(parallelFor);
-  CostAgainstCells(parallelFor);
+  if (costs)
+  {
+    CostAgainstColumn(parallelFor);
+    CostAgainstCells(parallelFor);
+  }
   return 0;
 }
