@@ -91,6 +91,19 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
   {
     this->EntryOmega[e] = cover.ProjectedSolidAngle(e);
   }
+  // The state of the entries is kept in column order (see the file comment): a shot walks
+  // column j, whose entries lie all over the rows, and so reads and writes them in one sweep.
+  if (cover.EntryCount() >= NoEntry)
+  {
+    throw std::invalid_argument("LightPropagation: too many cover entries for 32-bit positions");
+  }
+  this->EntryPosition.resize(cover.EntryCount());
+  this->ColumnOmega.resize(cover.EntryCount());
+  for (std::size_t k = 0; k < cover.EntryCount(); ++k)
+  {
+    this->EntryPosition[cover.ColumnAt(k).EntryIndex] = static_cast<uint32_t>(k);
+    this->ColumnOmega[k] = this->EntryOmega[cover.ColumnAt(k).EntryIndex];
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
     this->TotalEmitted += Pi * cover.PatchArea(i) * BandSum(this->Le[i]);
@@ -119,24 +132,50 @@ void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
   }
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
-  this->Transposed.assign(cover.EntryCount(), -1);
-  this->EntryAlbedoMeasure.assign(cover.EntryCount(), glm::dvec3(0.0));
+  const std::size_t entries = cover.EntryCount();
+  // The transposed entries: row j is sorted by source, column j by receiver, so one merge of
+  // the two finds, for every receiver i of column j, the entry (j, i) of row j.
+  this->ColumnBack.assign(entries, NoEntry);
+  for (std::size_t j = 0; j < this->PatchCount(); ++j)
+  {
+    std::size_t e = cover.EntryBegin(j);
+    std::size_t k = cover.ColumnBegin(j);
+    while (e < cover.EntryEnd(j) && k < cover.ColumnEnd(j))
+    {
+      const uint32_t source = cover.EntryAt(e).Source;
+      const uint32_t receiver = cover.ColumnAt(k).Receiver;
+      if (source < receiver)
+      {
+        ++e;
+      }
+      else if (receiver < source)
+      {
+        ++k;
+      }
+      else
+      {
+        this->ColumnBack[k++] = static_cast<uint32_t>(e++ - cover.EntryBegin(j));
+      }
+    }
+  }
+  this->ColumnAlbedoMeasure.assign(entries, glm::dvec3(0.0));
   for (std::size_t i = 0; i < this->PatchCount(); ++i)
   {
+    if (this->ModelOfPatch[i] < 0)
+    {
+      continue;
+    }
+    const ReflectanceWeights& table = *this->Reflectances.Table(i);
     for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
     {
-      this->Transposed[e] = cover.FindEntry(cover.EntryAt(e).Source, i);
-      if (this->ModelOfPatch[i] < 0)
-      {
-        continue;
-      }
-      const ReflectanceWeights& table = *this->Reflectances.Table(i);
+      glm::dvec3 measure(0.0);
       for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
       {
         const SphericalCover::Strip& strip = cover.StripAt(k);
-        this->EntryAlbedoMeasure[e] += static_cast<double>(strip.PhiEnd - strip.PhiBegin) *
+        measure += static_cast<double>(strip.PhiEnd - strip.PhiBegin) *
           grid.CellMeasure(strip.Row) * table.RowAlbedo(strip.Row);
       }
+      this->ColumnAlbedoMeasure[this->EntryPosition[e]] = measure;
     }
   }
   this->Reset();
@@ -168,6 +207,8 @@ std::vector<Material> LightPropagation::MaterialsOfPatches(const Scene& scene,
 void LightPropagation::Reset()
 {
   this->Incident.assign(this->Cover.EntryCount(), glm::dvec3(0.0));
+  this->IncidentByEntry.clear();
+  this->IncidentByEntryValid = false;
   // Before any shot every patch holds its own emission, unshot.
   this->Unshot = this->Le;
   // Per-entry unshot incident radiance only when some patch is non-diffuse (24 bytes/entry).
@@ -199,12 +240,13 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
   in.assign(rowCount, {});
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
-    const glm::dvec3 radiance = this->UnshotIncident[e];
+    glm::dvec3& unshot = this->UnshotIncident[this->EntryPosition[e]];
+    const glm::dvec3 radiance = unshot;
     if (radiance == glm::dvec3(0.0))
     {
       continue;
     }
-    this->UnshotIncident[e] = glm::dvec3(0.0);
+    unshot = glm::dvec3(0.0);
     for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
     {
       const SphericalCover::Strip& strip = cover.StripAt(k);
@@ -417,20 +459,20 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   this->GridShot = false;
   const glm::dvec3 mean = directional ? this->DirectionalShot(shooter) : glm::dvec3(0.0);
   this->Power[shooter] = this->PowerOf(shooter);
-  const std::size_t rowBegin = this->Cover.EntryBegin(shooter);
   const std::size_t begin = this->Cover.ColumnBegin(shooter);
   const std::size_t end = this->Cover.ColumnEnd(shooter);
   std::size_t fallbacks = 0;
+  this->IncidentByEntryValid = false;
   for (std::size_t k = begin; k < end; ++k)
   {
     const SphericalCover::ColumnEntry& item = this->Cover.ColumnAt(k);
     glm::dvec3 value = increment;
     if (directional)
     {
-      const int64_t back = this->Transposed[item.EntryIndex];
-      if (back >= 0)
+      const uint32_t back = this->ColumnBack[k];
+      if (back != NoEntry)
       {
-        value += this->DirectionalOut[static_cast<std::size_t>(back) - rowBegin];
+        value += this->DirectionalOut[back];
       }
       else
       {
@@ -438,15 +480,14 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
         ++fallbacks;
       }
     }
-    this->Incident[item.EntryIndex] += value;
+    this->Incident[k] += value;
     // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form.
-    this->Unshot[item.Receiver] +=
-      this->Rho[item.Receiver] * (this->EntryOmega[item.EntryIndex] / Pi) * value;
+    this->Unshot[item.Receiver] += this->Rho[item.Receiver] * (this->ColumnOmega[k] / Pi) * value;
     if (this->ModelOfPatch[item.Receiver] >= 0)
     {
-      this->UnshotIncident[item.EntryIndex] += value;
-      this->DirectionalUnshot[item.Receiver] += this->Cover.PatchArea(item.Receiver) *
-        BandSum(value * this->EntryAlbedoMeasure[item.EntryIndex]);
+      this->UnshotIncident[k] += value;
+      this->DirectionalUnshot[item.Receiver] +=
+        this->Cover.PatchArea(item.Receiver) * BandSum(value * this->ColumnAlbedoMeasure[k]);
     }
     this->Power[item.Receiver] = this->PowerOf(item.Receiver);
   }
@@ -578,12 +619,26 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   return true;
 }
 
+const std::vector<glm::dvec3>& LightPropagation::IncidentRadiances() const
+{
+  if (!this->IncidentByEntryValid)
+  {
+    this->IncidentByEntry.resize(this->Incident.size());
+    for (std::size_t e = 0; e < this->Incident.size(); ++e)
+    {
+      this->IncidentByEntry[e] = this->Incident[this->EntryPosition[e]];
+    }
+    this->IncidentByEntryValid = true;
+  }
+  return this->IncidentByEntry;
+}
+
 glm::dvec3 LightPropagation::Irradiance(std::size_t patch) const
 {
   glm::dvec3 sum(0.0);
   for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
   {
-    sum += this->Incident[e] * this->EntryOmega[e];
+    sum += this->Incident[this->EntryPosition[e]] * this->EntryOmega[e];
   }
   return sum;
 }
@@ -602,7 +657,8 @@ glm::dvec3 LightPropagation::Reflected(std::size_t patch) const
   glm::dvec3 sum = this->Rho[patch] * this->Irradiance(patch);
   for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
   {
-    sum += this->Incident[e] * this->EntryAlbedoMeasure[e];
+    const uint32_t k = this->EntryPosition[e];
+    sum += this->Incident[k] * this->ColumnAlbedoMeasure[k];
   }
   return sum;
 }
@@ -621,7 +677,8 @@ glm::dvec3 LightPropagation::ExitantRadianceToward(std::size_t patch,
   }
   const ReflectanceWeights* table = this->Reflectances.Table(patch);
   return table ? this->ExitantRadiance(patch) +
-      DirectionalExitantRadiance(this->Cover, *table, patch, this->Incident, localDirection)
+      DirectionalExitantRadiance(
+        this->Cover, *table, patch, this->IncidentRadiances(), localDirection)
                : this->ExitantRadiance(patch);
 }
 
@@ -638,7 +695,8 @@ EnergyBalance LightPropagation::Energy() const
     {
       for (std::size_t e = this->Cover.EntryBegin(i); e < this->Cover.EntryEnd(i); ++e)
       {
-        balance.Unshot += area * this->UnshotIncident[e] * this->EntryAlbedoMeasure[e];
+        const uint32_t k = this->EntryPosition[e];
+        balance.Unshot += area * this->UnshotIncident[k] * this->ColumnAlbedoMeasure[k];
       }
     }
   }

@@ -256,8 +256,14 @@ public:
   // --- results ---------------------------------------------------------------------------------
   std::size_t PatchCount() const { return this->Rho.size(); }
   /// Incident radiance E_e of entry e of the cover (RGB, W m^-2 sr^-1).
-  const glm::dvec3& IncidentRadiance(std::size_t entry) const { return this->Incident[entry]; }
-  const std::vector<glm::dvec3>& IncidentRadiances() const { return this->Incident; }
+  const glm::dvec3& IncidentRadiance(std::size_t entry) const
+  {
+    return this->Incident[this->EntryPosition[entry]];
+  }
+  /// E_e of every entry, by entry index. Copied from the column-ordered state on the first call
+  /// after a shot (O(entries)); not to be called concurrently with itself or
+  /// ExitantRadianceToward before that copy exists.
+  const std::vector<glm::dvec3>& IncidentRadiances() const;
   /// sum over row i of E_e Omega_e (W m^-2 per band).
   glm::dvec3 Irradiance(std::size_t patch) const;
   /// Le_i + k_d / pi * Irradiance(i): the Lambertian exitant radiance (all of it for a diffuse
@@ -281,7 +287,8 @@ public:
   /// Unshot incident radiance dE_e of entry e (non-diffuse receivers only; 0 otherwise).
   glm::dvec3 UnshotIncidentRadiance(std::size_t entry) const
   {
-    return this->UnshotIncident.empty() ? glm::dvec3(0.0) : this->UnshotIncident[entry];
+    return this->UnshotIncident.empty() ? glm::dvec3(0.0)
+                                        : this->UnshotIncident[this->EntryPosition[entry]];
   }
   const glm::dvec3& UnshotRadiance(std::size_t patch) const { return this->Unshot[patch]; }
   /// U_j of the file comment.
@@ -321,9 +328,15 @@ private:
   const SphericalCover& Cover;
   std::vector<glm::dvec3> Rho;
   std::vector<glm::dvec3> Le;
-  /// Omega_e of every entry, computed once from the strips.
+  /// Omega_e of every entry, computed once from the strips, by entry and in column order (the
+  /// k-th element of the cover's columns: a shot walks column j, and reads its entries'
+  /// data in one sweep instead of all over the rows).
   std::vector<double> EntryOmega;
+  std::vector<double> ColumnOmega;
+  /// E_e in column order (EntryPosition), and by entry for IncidentRadiances.
   std::vector<glm::dvec3> Incident;
+  mutable std::vector<glm::dvec3> IncidentByEntry;
+  mutable bool IncidentByEntryValid = false;
   std::vector<glm::dvec3> Unshot;
   double TotalEmitted = 0.0;
   std::vector<ShotRecord> Shots;
@@ -335,11 +348,16 @@ private:
   /// Index into Reflectances, -1 for a Lambertian patch.
   std::vector<int> ModelOfPatch;
   PointReflectances Reflectances;
-  /// For entry e = (i, j): the entry (j, i), or -1 when h_ji is null (only when some patch
-  /// is non-diffuse).
-  std::vector<int64_t> Transposed;
+  static constexpr uint32_t NoEntry = 0xffffffffu;
+  /// Position in column order of every entry.
+  std::vector<uint32_t> EntryPosition;
+  // Only when some patch is non-diffuse, all in column order (see ColumnOmega):
+  /// For the entry (i, j) at column position k: the position of the entry (j, i) within row j
+  /// (an index of DirectionalOut), or NoEntry when h_ji is null.
+  std::vector<uint32_t> ColumnBack;
   /// a_e Omega_e per band for entries of non-diffuse rows (0 otherwise).
-  std::vector<glm::dvec3> EntryAlbedoMeasure;
+  std::vector<glm::dvec3> ColumnAlbedoMeasure;
+  /// dE_e of the file comment.
   std::vector<glm::dvec3> UnshotIncident;
   /// The directional part of U_j (W, summed over the bands), kept up to date by the shots.
   std::vector<double> DirectionalUnshot;
