@@ -26,6 +26,16 @@ double BandSum(const glm::dvec3& v)
   return v.x + v.y + v.z;
 }
 
+/// A hint to the processor to fetch `address` into the cache (a gather's later reads).
+inline void Prefetch(const void* address)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
+
 /// The Lambertian reflectance k_d of every material (0 for mirror and tabulated).
 std::vector<glm::dvec3> ReflectanceOf(const std::vector<Material>& materials)
 {
@@ -93,7 +103,7 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
   }
   // The state of the entries is kept in column order (see the file comment): a shot walks
   // column j, whose entries lie all over the rows, and so reads and writes them in one sweep.
-  if (cover.EntryCount() >= NoEntry)
+  if (cover.EntryCount() >= FallbackFlag)
   {
     throw std::invalid_argument("LightPropagation: too many cover entries for 32-bit positions");
   }
@@ -237,9 +247,19 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
   const int rows = grid.ThetaBins();
   const std::size_t rowCount = static_cast<std::size_t>(rows);
   std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
-  in.assign(rowCount, {});
+  in.resize(rowCount);
+  for (std::vector<InStrip>& strips : in)
+  {
+    strips.clear();
+  }
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
+    // The row's entries lie all over the column-ordered state: ask for the ones ahead early.
+    constexpr std::size_t Ahead = 16;
+    if (e + Ahead < rowEnd)
+    {
+      Prefetch(&this->UnshotIncident[this->EntryPosition[e + Ahead]]);
+    }
     glm::dvec3& unshot = this->UnshotIncident[this->EntryPosition[e]];
     const glm::dvec3 radiance = unshot;
     if (radiance == glm::dvec3(0.0))
@@ -257,7 +277,11 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
   // For every out row, the in rows the table couples it with that hold unshot light, and the
   // number of their strips.
   std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
-  coupled.assign(rowCount, {});
+  coupled.resize(rowCount);
+  for (std::vector<int>& rowsIn : coupled)
+  {
+    rowsIn.clear();
+  }
   std::vector<std::size_t> coupledStrips(rowCount, 0);
   for (int rowOut = 0; rowOut < rows; ++rowOut)
   {
@@ -403,28 +427,56 @@ void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
       " frames for " + std::to_string(this->PatchCount()) + " patches");
   }
   this->Frames = std::move(frames);
+  this->EncodeFallbacks();
+}
+
+void LightPropagation::EncodeFallbacks()
+{
+  // The receivers without h_ji are fixed by the cover, and so is the cell of the direction
+  // P_i - P_j in the shooter's hemisphere: found once here rather than in every shot.
+  const SphericalCover& cover = this->Cover;
+  if (this->ColumnBack.empty())
+  {
+    return;
+  }
+  for (std::size_t j = 0; j < this->PatchCount(); ++j)
+  {
+    for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
+    {
+      uint32_t& code = this->ColumnBack[k];
+      if (code < FallbackFlag)
+      {
+        continue;
+      }
+      code = NoEntry;
+      if (this->Frames.empty())
+      {
+        continue;
+      }
+      const HemisphereFrame& from = this->Frames[j];
+      const int cell = cover.Grid().CellOfLocalDirection(
+        from.ToLocal(this->Frames[cover.ColumnAt(k).Receiver].Origin - from.Origin));
+      if (cell >= 0)
+      {
+        code = FallbackFlag | static_cast<uint32_t>(cell);
+      }
+    }
+  }
 }
 
 glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
-  std::size_t receiver,
+  uint32_t code,
   const glm::dvec3& mean)
 {
-  if (this->Frames.empty())
+  if (code == NoEntry)
   {
     ++this->LastMeanFallbacks;
     return mean;
   }
   // The exitant radiance toward the cell of the direction P_i - P_j (paper §5.1) in the
   // shooter's hemisphere, from the in-strips DirectionalShot kept.
-  const HemisphereFrame& from = this->Frames[shooter];
   const HemisphereGrid& grid = this->Cover.Grid();
-  const int cell =
-    grid.CellOfLocalDirection(from.ToLocal(this->Frames[receiver].Origin - from.Origin));
-  if (cell < 0)
-  {
-    ++this->LastMeanFallbacks;
-    return mean;
-  }
+  const int cell = static_cast<int>(code & ~FallbackFlag);
   if (this->GridShot)
   {
     return this->GridOut[static_cast<std::size_t>(cell)];
@@ -470,13 +522,13 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
     if (directional)
     {
       const uint32_t back = this->ColumnBack[k];
-      if (back != NoEntry)
+      if (back < FallbackFlag)
       {
         value += this->DirectionalOut[back];
       }
       else
       {
-        value += this->TowardReceiver(shooter, item.Receiver, mean);
+        value += this->TowardReceiver(shooter, back, mean);
         ++fallbacks;
       }
     }

@@ -320,8 +320,11 @@ private:
     const ReflectanceWeights& table,
     std::size_t pairs);
   glm::dvec3 ShotByGrid(std::size_t shooter, const ReflectanceWeights& table);
-  /// The exitant radiance of the current directional shot toward a receiver without h_ji.
-  glm::dvec3 TowardReceiver(std::size_t shooter, std::size_t receiver, const glm::dvec3& mean);
+  /// The exitant radiance of the current directional shot toward a receiver without h_ji, whose
+  /// ColumnBack code is `code`.
+  glm::dvec3 TowardReceiver(std::size_t shooter, uint32_t code, const glm::dvec3& mean);
+  /// Sets the ColumnBack codes of the receivers without h_ji from the frames.
+  void EncodeFallbacks();
   /// sum_e E_e a_e Omega_e over row i (non-diffuse) or rho_i E_i (diffuse).
   glm::dvec3 Reflected(std::size_t patch) const;
 
@@ -349,11 +352,13 @@ private:
   std::vector<int> ModelOfPatch;
   PointReflectances Reflectances;
   static constexpr uint32_t NoEntry = 0xffffffffu;
+  static constexpr uint32_t FallbackFlag = 0x80000000u;
   /// Position in column order of every entry.
   std::vector<uint32_t> EntryPosition;
   // Only when some patch is non-diffuse, all in column order (see ColumnOmega):
   /// For the entry (i, j) at column position k: the position of the entry (j, i) within row j
-  /// (an index of DirectionalOut), or NoEntry when h_ji is null.
+  /// (an index of DirectionalOut); when h_ji is null, FallbackFlag | the cell of the direction
+  /// P_i - P_j in H_j (frames known, EncodeFallbacks), or NoEntry (the mean).
   std::vector<uint32_t> ColumnBack;
   /// a_e Omega_e per band for entries of non-diffuse rows (0 otherwise).
   std::vector<glm::dvec3> ColumnAlbedoMeasure;

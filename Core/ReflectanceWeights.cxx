@@ -138,6 +138,22 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
         }
       }
     }
+    // Evenness in the column difference: the models are f(delta_phi) = f(-delta_phi)
+    // (Reflectance, BrdfTable), and the samples of the column differences d and -d are mirror
+    // images, so w(d) = w(-d) up to rounding; made exact, it makes the table's Fourier
+    // transform real (Reflect).
+    for (std::size_t ro = 0; ro < rows; ++ro)
+    {
+      for (std::size_t ri = 0; ri < rows; ++ri)
+      {
+        for (std::size_t d = 1; 2 * d < columns; ++d)
+        {
+          const glm::dvec3 mean = 0.5 * (at(ro, ri, d) + at(ro, ri, columns - d));
+          at(ro, ri, d) = mean;
+          at(ro, ri, columns - d) = mean;
+        }
+      }
+    }
     // Weights below Cutoff of the largest are dropped (paper §5.2 (ii): "there may be large
     // number of grid cells with 0 weights in the reflectance map table"): whole row pairs then
     // drop out of the shots. They carry a negligible share; the scaling below restores the
@@ -284,7 +300,8 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
       }
       else
       {
-        // I(co) = sum_d w(d) e(co + d) is a correlation: its DFT is conj(W(k)) E(k).
+        // I(co) = sum_d w(d) e(co + d) is a correlation: its DFT is conj(W(k)) E(k), and W is
+        // real because w is even in d (above; the mirror's delta is even as well).
         this->SpectrumOf[pair] = static_cast<int>(this->Spectra.size() / (3 * length));
         this->InRowSpectral[ri] = 1;
         for (int b = 0; b < 3; ++b)
@@ -296,7 +313,7 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
           fft.fwd(spectrum.data(), line.data(), static_cast<Eigen::Index>(columns));
           for (const std::complex<double>& value : spectrum)
           {
-            this->Spectra.push_back(std::conj(value));
+            this->Spectra.push_back(value.real());
           }
         }
       }
@@ -360,8 +377,7 @@ void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
       if (index >= 0)
       {
         spectral = true;
-        const std::complex<double>* w =
-          &this->Spectra[static_cast<std::size_t>(index) * 3 * length];
+        const double* w = &this->Spectra[static_cast<std::size_t>(index) * 3 * length];
         const std::complex<double>* e = &in[ri * 3 * length];
         for (std::size_t k = 0; k < 3 * length; ++k)
         {

@@ -21,7 +21,8 @@
  *  - otherwise f - k_d / pi is averaged over Samples x Samples in-directions of c times
  *    Samples x Samples out-directions of o (strata of equal projected solid angle, as
  *    HemisphereGrid's samples), made symmetric (w(o, c) / Omega_c = w(c, o) / Omega_o, the
- *    discrete reciprocity), cleared below Cutoff times its largest value (paper §5.2 (ii):
+ *    discrete reciprocity) and even in the column difference (as the models are in delta_phi),
+ *    cleared below Cutoff times its largest value (paper §5.2 (ii):
  *    "there may be large number of grid cells with 0 weights in the reflectance map table";
  *    row pairs left without weight drop out of the shots: a phong lobe of exponent 40 couples
  *    a row with the rows within about 37 degrees of it) and then scaled per row and band,
@@ -45,10 +46,12 @@
  * over the columns, I(ro, co) = sum_d w(ro, ri, d) e(ri, co + d); a row pair with at most
  * DirectTerms non-zero weights (the mirror's one or two cells) is summed directly, the others
  * as products of discrete Fourier transforms (Eigen's FFT): per band, one transform per lit in
- * row and one inverse per out row, and PhiBins/2 + 1 complex products per coupled row pair.
- * That is O(ThetaBins^2 PhiBins) for a full table instead of the O(D^2) of paper §5.2, D the
- * cells (ThetaBins PhiBins): about 0.2 million complex products for the default 32 x 128 grid,
- * against 16.8 million products of the plain sum. The transforms round at ~1e-16 of the
+ * row and one inverse per out row, and PhiBins/2 + 1 products per coupled row pair and band
+ * (real ones: w is even in the column difference, as the models are in delta_phi, so its
+ * transform is real; see the construction). That is O(ThetaBins^2 PhiBins) for a full table
+ * instead of the O(D^2) of paper §5.2, D the cells (ThetaBins PhiBins): at most 0.2 million
+ * products for the default 32 x 128 grid, against 50 million of the plain sum, and the
+ * spectra take 1.6 MB (8 bytes per product). The transforms round at ~1e-16 of the
  * row's largest value, so values that should be 0 can come out as tiny negatives; they are set
  * to 0 (w >= 0 and e >= 0 make I >= 0).
  */
@@ -57,7 +60,6 @@
 
 #include <glm/vec3.hpp>
 
-#include <complex>
 #include <cstddef>
 #include <vector>
 
@@ -127,8 +129,9 @@ private:
   std::vector<char> Coupled;
   /// For Reflect, per row pair (rowOut * Rows + rowIn): its non-zero weights when they are at
   /// most DirectTerms (column difference, weight), DirectOffsets[pair] to DirectOffsets[pair +
-  /// 1]; otherwise the index of its spectrum, conj(DFT of w over the column difference) per
-  /// band, SpectrumLength complex values each, in Spectra (-1: summed directly or uncoupled).
+  /// 1]; otherwise the index of its spectrum, the DFT of w over the column difference per band
+  /// (real: w is even in the column difference), SpectrumLength values each, in Spectra (-1:
+  /// summed directly or uncoupled).
   struct DirectTerm
   {
     int Delta;
@@ -137,7 +140,7 @@ private:
   std::vector<std::size_t> DirectOffsets;
   std::vector<DirectTerm> Directs;
   std::vector<int> SpectrumOf;
-  std::vector<std::complex<double>> Spectra;
+  std::vector<double> Spectra;
   int SpectrumLength = 0;
   /// Whether some out row needs the spectrum of this in row.
   std::vector<char> InRowSpectral;

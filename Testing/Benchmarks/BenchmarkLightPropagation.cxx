@@ -46,6 +46,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <map>
 #include <string>
 #include <vector>
@@ -273,6 +274,9 @@ void Converge(const std::string& name,
   settings.ConvergenceTolerance = tolerance;
   settings.MaximumShots = maximumShots;
   int reported = 0;
+  // Processor time of all threads as well as wall-clock time: on a loaded machine the wall
+  // clock also counts the time the process waited for a core.
+  const std::clock_t cpuStart = std::clock();
   const bool converged = propagation.Run(settings,
     [&](double fraction)
     {
@@ -287,39 +291,69 @@ void Converge(const std::string& name,
       }
       return true;
     });
+  const double cpuSeconds = static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC;
   const std::vector<ShotRecord>& history = propagation.History();
   const double seconds = history.empty() ? 0.0 : history.back().Seconds;
   std::size_t updates = 0;
   std::size_t pairs = 0;
-  std::size_t directionalShots = 0;
+  std::size_t pairShots = 0;
+  std::size_t gridShots = 0;
   std::size_t fallbacks = 0;
   std::size_t meanFallbacks = 0;
+  // Wall seconds and column sizes of the shots by kind.
+  double diffuseSeconds = 0.0;
+  double directionalSeconds = 0.0;
+  std::size_t diffuseShots = 0;
+  std::size_t diffuseUpdates = 0;
+  double previous = 0.0;
   for (const ShotRecord& record : history)
   {
     updates += record.ReceiverUpdates;
     pairs += record.WeightEvaluations;
-    directionalShots += record.WeightEvaluations > 0 ? 1 : 0;
+    pairShots += record.WeightEvaluations > 0 ? 1 : 0;
+    gridShots += record.GridShot ? 1 : 0;
     fallbacks += record.Fallbacks;
     meanFallbacks += record.MeanFallbacks;
+    const double shotSeconds = record.Seconds - previous;
+    previous = record.Seconds;
+    if (record.GridShot || record.WeightEvaluations > 0)
+    {
+      directionalSeconds += shotSeconds;
+    }
+    else
+    {
+      diffuseSeconds += shotSeconds;
+      diffuseUpdates += record.ReceiverUpdates;
+      ++diffuseShots;
+    }
   }
+  const std::size_t directionalShots = pairShots + gridShots;
   const EnergyBalance energy = propagation.Energy();
-  std::printf(
-    "  %s after %zu shots (tolerance %g): %.3f s, %.3g entry updates/s, %.1f us/shot; "
-    "%zu directional shots, %zu strip pairs (%.3g pairs/s), %zu updates without h_ji (%zu "
-    "by the mean); energy "
-    "imbalance %.2e\n",
+  std::printf("  %s after %zu shots (tolerance %g): %.3f s wall, %.3f s processor; %.3g entry "
+              "updates/s, %.1f us/shot; energy imbalance %.2e\n",
     converged ? "converged" : "NOT converged",
     history.size(),
     tolerance,
     seconds,
+    cpuSeconds,
     seconds > 0 ? static_cast<double>(updates) / seconds : 0.0,
     history.empty() ? 0.0 : 1e6 * seconds / static_cast<double>(history.size()),
-    directionalShots,
-    pairs,
-    seconds > 0 ? static_cast<double>(pairs) / seconds : 0.0,
-    fallbacks,
-    meanFallbacks,
     energy.RelativeImbalance);
+  std::printf("  %zu uniform shots (diffuse, or emission only): %.1f us/shot, mean column %.0f; "
+              "%zu directional shots: %.1f us/shot, %zu by strip pairs (%zu pairs, %.0f per "
+              "shot), %zu by the grid; %zu updates without h_ji (%zu by the mean)\n",
+    diffuseShots,
+    diffuseShots > 0 ? 1e6 * diffuseSeconds / static_cast<double>(diffuseShots) : 0.0,
+    diffuseShots > 0 ? static_cast<double>(diffuseUpdates) / static_cast<double>(diffuseShots)
+                     : 0.0,
+    directionalShots,
+    directionalShots > 0 ? 1e6 * directionalSeconds / static_cast<double>(directionalShots) : 0.0,
+    pairShots,
+    pairs,
+    pairShots > 0 ? static_cast<double>(pairs) / static_cast<double>(pairShots) : 0.0,
+    gridShots,
+    fallbacks,
+    meanFallbacks);
 }
 
 void CostAgainstColumn(const ParallelFor& parallelFor)
