@@ -386,7 +386,7 @@ glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWe
   }
   // I(o) toward every cell, then per out row the prefix sums of I over the columns, so that
   // a strip of out cells costs O(1).
-  table.Reflect(this->GridIn, this->GridOut);
+  table.Reflect(this->GridIn, this->GridOut, this->ReflectScratch);
   this->GridPrefix.resize(rows * (columns + 1));
   glm::dvec3 meanFlux(0.0);
   for (std::size_t row = 0; row < rows; ++row)
@@ -555,31 +555,47 @@ double LightPropagation::PowerOf(std::size_t patch) const
 
 double LightPropagation::UnshotEnergy() const
 {
-  double sum = 0.0;
-  for (const double power : this->Power)
-  {
-    sum += power;
-  }
-  return sum;
+  double largest = 0.0;
+  double total = 0.0;
+  this->Brightest(largest, total);
+  return total;
 }
 
 std::size_t LightPropagation::Brightest(double& power, double& total) const
 {
-  // One pass for both: this scan is the O(N) part of every shot (file comment).
+  // One pass for both: this scan is the O(N) part of every shot (file comment). The sum runs
+  // in four interleaved partial sums (a fixed order, so deterministic), which keeps the adds
+  // from waiting on each other.
   std::size_t best = 0;
   power = -1.0;
-  total = 0.0;
-  for (std::size_t i = 0; i < this->Power.size(); ++i)
+  double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
+  const std::size_t n = this->Power.size();
+  const double* values = this->Power.data();
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
   {
-    const double p = this->Power[i];
-    total += p;
-    // Strictly greater: ties go to the lowest index.
-    if (p > power)
+    for (std::size_t lane = 0; lane < 4; ++lane)
     {
-      power = p;
+      const double p = values[i + lane];
+      partial[lane] += p;
+      // Strictly greater, in index order: ties go to the lowest index.
+      if (p > power)
+      {
+        power = p;
+        best = i + lane;
+      }
+    }
+  }
+  for (; i < n; ++i)
+  {
+    partial[0] += values[i];
+    if (values[i] > power)
+    {
+      power = values[i];
       best = i;
     }
   }
+  total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
   return best;
 }
 

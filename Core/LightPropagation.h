@@ -38,7 +38,7 @@
  * to the lowest index; the paper's "brightest characteristic point", measured by its unshot
  * change, which is what SPEC §4.4 allows); FixedOrder cycles through the patches in index
  * order and shoots whatever each has (a patch with nothing unshot is passed over). Both stop
- * when max_j U_j / W_e < ConvergenceTolerance, W_e = sum_j pi A_j (Le_j,r + Le_j,g + Le_j,b)
+ * when sum_j U_j / W_e < ConvergenceTolerance, W_e = sum_j pi A_j (Le_j,r + Le_j,g + Le_j,b)
  * the emitted power (the paper's "appreciable change" of §5.1, made relative), or after
  * MaximumShots shots. Everything runs in the calling thread in a fixed order: the results are
  * deterministic.
@@ -62,20 +62,34 @@
  * average that out: the split mixed box balances to ~0.6% only. Scaling each shot's delivered
  * power to the sent power was tried and rejected: it balances the energy but breaks the white
  * furnace (21% with mirrors) and the order independence; reciprocity belongs to the cover
- * (CoverRefinement). Each strip pair
- * (out strip of row j, in strip with unshot radiance) costs O(1) (cumulative sums of the
- * table), so a shot costs O(strips of row j x strips with unshot light + column j), the O(D)
- * per receiver of §5.2 reduced by the strips' run-length structure. Where the cover has h_ij
+ * (CoverRefinement).
+ *
+ * The sum over the table is taken in one of two ways (DirectionalMethod), the same sum in another
+ * order (the test GridAndStripPairShotsAgree: 7e-15; the teapot room to 1e-3: incident radiance
+ * within 1.1e-14, brightness 9e-14, shot for shot, BenchmarkLightPropagation --compare):
+ *  - strip pairs: each (out strip of row j, in strip with unshot radiance) costs O(1)
+ *    (cumulative sums of the table), so a shot costs O(strips of row j x strips with unshot
+ *    light + column j), the O(D) per receiver of §5.2 reduced by the strips' run-length
+ *    structure. Cheap while little of the hemisphere holds unshot light, but it grows with the
+ *    product: ~1.2 million pairs per shot in the refined teapot room, where one propagation did
+ *    not end in 10 minutes;
+ *  - the grid: the unshot light is laid out over the D cells of the hemisphere, reflected
+ *    toward every cell at once by ReflectanceWeights::Reflect (the mirror's delta cell by cell,
+ *    other tables as circular correlations over phi by FFT, O(ThetaBins^2 PhiBins)), and
+ *    averaged over every region h_ji from prefix sums along the rows, O(D log PhiBins +
+ *    strips of row j + column j) whatever the strips. A receiver without h_ji reads its cell.
+ * Automatic (the default) takes the grid when the strip pairs exceed GridCostInPairs per cell.
+ * Where the cover has h_ij
  * but not h_ji (the two hemispheres are discretised independently: a small patch wins no cell
  * of a far shooter's hemisphere; 16% of the updates in the teapot room), the exitant radiance
  * toward the cell of the direction P_i - P_j is used when the frames of the characteristic
- * points are known (SetFrames), else the hemisphere's mean exitant radiance (sum over all
- * cells of Omega_o I(o), over pi); ShotRecord counts those updates. A receiver i updates its entry
- * h_ij as before, adds rho_i Omega_e / pi of the increment to dL_i (rho_i = k_d, the Lambertian
- * part, 0 for mirror and tabulated) and, when non-diffuse, the increment to dE_e. The Lambertian
- * part of a phong surface thus travels in closed form with dL, and the weight tables hold the rest
- * of the BRDF (ReflectanceWeights). A Lambertian shooter keeps the closed-form O(column) shot above
- * (§5.2), even among non-diffuse patches.
+ * points are known (SetFrames; the cells are found once, EncodeFallbacks), else the hemisphere's
+ * mean exitant radiance (sum over all cells of Omega_o I(o), over pi); ShotRecord counts those
+ * updates. A receiver i updates its entry h_ij as before, adds rho_i Omega_e / pi of the increment
+ * to dL_i (rho_i = k_d, the Lambertian part, 0 for mirror and tabulated) and, when non-diffuse, the
+ * increment to dE_e. The Lambertian part of a phong surface thus travels in closed form with dL,
+ * and the weight tables hold the rest of the BRDF (ReflectanceWeights). A Lambertian shooter keeps
+ * the closed-form O(column) shot above (§5.2), even among non-diffuse patches.
  *
  * For a non-diffuse patch:
  *  - the unshot power is U_j = pi A_j sum_b dL_j + A_j sum_e sum_b dE_e,b a_e,b Omega_e, with
@@ -93,9 +107,25 @@
  *    evaluated toward the eye"); the one implementation is DirectionalExitantRadiance, which
  *    the renderer uses too.
  *
+ * Memory layout. The state of the entries (E, dE and the per-entry constants a shot reads) is
+ * kept in column order, the order in which a shot walks column j: its entries lie all over the
+ * rows, and in row order every update was a cache miss (91% of the column walk's time in the
+ * teapot room). The rows are then gathered instead, only by a directional shooter (its own row,
+ * prefetched) and for results (Irradiance, IncidentRadiances).
+ *
+ * Measured (BenchmarkLightPropagation, 2 threads, on a machine shared with other jobs, so wall
+ * times are high and vary): the teapot room refined as the cover filter does (13461 patches,
+ * 11369 non-diffuse, 9.1 million entries) converges to 1e-5 in 83959 shots, 15.8 s wall and
+ * 12.1 s of processor time: uniform shots 54 us (mean column 4004), grid shots 337 us. Before,
+ * the strip pairs alone did not converge in 10 minutes; without the refinement (9195 patches)
+ * to 1e-3, 248 s before and 6.1 s after (35397 shots either way).
+ *
  * Limitations: the shooter is found by a scan of the N patches per shot (O(N), the same order
- * as a worst-case column), not by a priority queue. Two-sided surfaces are handled as the
- * cover handles them (one hemisphere per point).
+ * as a worst-case column; one pass with the unshot sum), not by a priority queue: a heap would
+ * pay O(log N) for each of a column's updates, more than the scan. A shot runs in the calling
+ * thread: it takes 50 to 350 us, about what handing work to other threads costs, so threads
+ * would gain little and, on a shared machine, wait for cores. Two-sided surfaces are handled as
+ * the cover handles them (one hemisphere per point).
  */
 #ifndef SPHCOVER_LIGHTPROPAGATION_H
 #define SPHCOVER_LIGHTPROPAGATION_H
@@ -233,9 +263,11 @@ public:
   /// to rounding; forcing one is for measuring and testing them.
   void SetDirectionalMethod(DirectionalMethod method) { this->Method = method; }
   DirectionalMethod GetDirectionalMethod() const { return this->Method; }
-  /// Automatic takes the grid when the strip pairs exceed this many per cell of the grid (the
-  /// grid's cost in strip pairs, measured by BenchmarkLightPropagation; see the file comment).
-  static constexpr double GridCostInPairs = 1.0;
+  /// Automatic takes the grid when the strip pairs exceed this many per cell of the grid: the
+  /// grid's cost in strip pairs (BenchmarkLightPropagation --compare on the refined teapot room:
+  /// 200 to 300 us per grid shot, 5 ns per strip pair in large shots and more in small ones,
+  /// D = 4096 cells).
+  static constexpr double GridCostInPairs = 5.0;
 
   /**
    * Shoots until converged (true), MaximumShots shots were made in this call (false) or
@@ -385,6 +417,7 @@ private:
   std::vector<glm::dvec3> GridIn;
   std::vector<glm::dvec3> GridOut;
   std::vector<glm::dvec3> GridPrefix;
+  ReflectanceWeights::Scratch ReflectScratch;
   DirectionalMethod Method = DirectionalMethod::Automatic;
   /// Whether the current (last) directional shot went through the grid.
   bool GridShot = false;

@@ -325,11 +325,20 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
 void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
   std::vector<glm::dvec3>& exitant) const
 {
+  Scratch scratch;
+  this->Reflect(incident, exitant, scratch);
+}
+
+void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
+  std::vector<glm::dvec3>& exitant,
+  Scratch& scratch) const
+{
   const std::size_t rows = static_cast<std::size_t>(this->Rows);
   const std::size_t columns = static_cast<std::size_t>(this->Columns);
   const std::size_t length = static_cast<std::size_t>(this->SpectrumLength);
   exitant.assign(rows * columns, glm::dvec3(0.0));
-  std::vector<std::size_t> lit;
+  std::vector<std::size_t>& lit = scratch.Lit;
+  lit.clear();
   for (std::size_t r = 0; r < rows; ++r)
   {
     const glm::dvec3* row = incident.data() + r * columns;
@@ -344,9 +353,11 @@ void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
   }
   Eigen::FFT<double> fft;
   fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
-  std::vector<double> line(columns);
+  std::vector<double>& line = scratch.Line;
+  line.resize(columns);
   // The transforms of the lit in rows, per band.
-  std::vector<std::complex<double>> in(rows * 3 * length);
+  std::vector<std::complex<double>>& in = scratch.In;
+  in.resize(rows * 3 * length);
   for (std::size_t ri : lit)
   {
     if (!this->InRowSpectral[ri])
@@ -364,7 +375,8 @@ void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
         static_cast<Eigen::Index>(columns));
     }
   }
-  std::vector<std::complex<double>> sum(3 * length);
+  std::vector<std::complex<double>>& sum = scratch.Sum;
+  sum.resize(3 * length);
   for (std::size_t ro = 0; ro < rows; ++ro)
   {
     glm::dvec3* out = exitant.data() + ro * columns;

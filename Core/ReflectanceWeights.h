@@ -60,6 +60,7 @@
 
 #include <glm/vec3.hpp>
 
+#include <complex>
 #include <cstddef>
 #include <vector>
 
@@ -99,6 +100,17 @@ public:
    * rows that are all zero skipped. Thread-safe (the transforms' plans are local).
    */
   void Reflect(const std::vector<glm::dvec3>& incident, std::vector<glm::dvec3>& exitant) const;
+  /// Reflect's working memory, kept by a caller that reflects often (one per thread).
+  struct Scratch
+  {
+    std::vector<std::size_t> Lit;
+    std::vector<double> Line;
+    std::vector<std::complex<double>> In;
+    std::vector<std::complex<double>> Sum;
+  };
+  void Reflect(const std::vector<glm::dvec3>& incident,
+    std::vector<glm::dvec3>& exitant,
+    Scratch& scratch) const;
   /// False when w vanishes between the two rows (the mirror's off-diagonal rows).
   bool RowsCoupled(int rowOut, int rowIn) const
   {

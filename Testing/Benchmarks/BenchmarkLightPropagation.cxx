@@ -14,6 +14,9 @@
  * --cache DIR keeps each scene's cover, materials and frames in DIR/<scene>.refine<K>.cover
  * and reads them from there on later runs (repeated measurements skip subdivision and cover;
  * delete the file when the scene or the cover code changes).
+ * --compare propagates each scene a second time with every directional shot summed by strip
+ * pairs (DirectionalMethod::StripPairs, the method before the whole-hemisphere grid) and prints
+ * the largest differences of the incident radiance and the brightness.
  *
  * 1. For each scene (default: the Cornell box and the teapot room, whose mirror wall and phong
  *    teapot shoot through weight tables) at the scene's settings: interval subdivision, cover,
@@ -97,6 +100,50 @@ std::vector<Patch> Refine(const Scene& scene,
   CoverRefinement refinement(scene, std::move(patches), settings);
   refinement.Run(nullptr, parallelFor);
   return refinement.Patches();
+}
+
+/// The shots by kind: uniform (diffuse or emission only, O(column)), directional by strip pairs
+/// and by the grid, with their wall-clock cost.
+void PrintShotKinds(const std::vector<ShotRecord>& history)
+{
+  std::size_t pairs = 0;
+  std::size_t fallbacks = 0;
+  std::size_t meanFallbacks = 0;
+  std::size_t shots[3] = {};
+  double seconds[3] = {};
+  std::size_t uniformUpdates = 0;
+  std::size_t directionalUpdates = 0;
+  double previous = 0.0;
+  for (const ShotRecord& record : history)
+  {
+    const int kind = record.GridShot ? 2 : (record.WeightEvaluations > 0 ? 1 : 0);
+    ++shots[kind];
+    seconds[kind] += record.Seconds - previous;
+    previous = record.Seconds;
+    pairs += record.WeightEvaluations;
+    fallbacks += record.Fallbacks;
+    meanFallbacks += record.MeanFallbacks;
+    (kind == 0 ? uniformUpdates : directionalUpdates) += record.ReceiverUpdates;
+  }
+  const auto per = [](double value, std::size_t count)
+  { return count > 0 ? value / static_cast<double>(count) : 0.0; };
+  std::printf("  %zu uniform shots (diffuse, or emission only): %.1f us/shot, mean column %.0f\n",
+    shots[0],
+    1e6 * per(seconds[0], shots[0]),
+    per(static_cast<double>(uniformUpdates), shots[0]));
+  std::printf("  %zu directional shots (mean column %.0f): %zu by strip pairs, %.1f us/shot, "
+              "%.0f pairs/shot, %.1f ns/pair; %zu by the grid, %.1f us/shot; %zu updates "
+              "without h_ji (%zu by the mean)\n",
+    shots[1] + shots[2],
+    per(static_cast<double>(directionalUpdates), shots[1] + shots[2]),
+    shots[1],
+    1e6 * per(seconds[1], shots[1]),
+    per(static_cast<double>(pairs), shots[1]),
+    1e9 * per(seconds[1], pairs),
+    shots[2],
+    1e6 * per(seconds[2], shots[2]),
+    fallbacks,
+    meanFallbacks);
 }
 
 /// What the propagation needs of the patches: the cover, each patch's material and frame.
@@ -236,6 +283,7 @@ void Converge(const std::string& name,
   int refineLevels,
   std::size_t maximumShots,
   const std::string& cacheDirectory,
+  bool compare,
   const ParallelFor& parallelFor)
 {
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -295,39 +343,10 @@ void Converge(const std::string& name,
   const std::vector<ShotRecord>& history = propagation.History();
   const double seconds = history.empty() ? 0.0 : history.back().Seconds;
   std::size_t updates = 0;
-  std::size_t pairs = 0;
-  std::size_t pairShots = 0;
-  std::size_t gridShots = 0;
-  std::size_t fallbacks = 0;
-  std::size_t meanFallbacks = 0;
-  // Wall seconds and column sizes of the shots by kind.
-  double diffuseSeconds = 0.0;
-  double directionalSeconds = 0.0;
-  std::size_t diffuseShots = 0;
-  std::size_t diffuseUpdates = 0;
-  double previous = 0.0;
   for (const ShotRecord& record : history)
   {
     updates += record.ReceiverUpdates;
-    pairs += record.WeightEvaluations;
-    pairShots += record.WeightEvaluations > 0 ? 1 : 0;
-    gridShots += record.GridShot ? 1 : 0;
-    fallbacks += record.Fallbacks;
-    meanFallbacks += record.MeanFallbacks;
-    const double shotSeconds = record.Seconds - previous;
-    previous = record.Seconds;
-    if (record.GridShot || record.WeightEvaluations > 0)
-    {
-      directionalSeconds += shotSeconds;
-    }
-    else
-    {
-      diffuseSeconds += shotSeconds;
-      diffuseUpdates += record.ReceiverUpdates;
-      ++diffuseShots;
-    }
   }
-  const std::size_t directionalShots = pairShots + gridShots;
   const EnergyBalance energy = propagation.Energy();
   std::printf("  %s after %zu shots (tolerance %g): %.3f s wall, %.3f s processor; %.3g entry "
               "updates/s, %.1f us/shot; energy imbalance %.2e\n",
@@ -339,21 +358,48 @@ void Converge(const std::string& name,
     seconds > 0 ? static_cast<double>(updates) / seconds : 0.0,
     history.empty() ? 0.0 : 1e6 * seconds / static_cast<double>(history.size()),
     energy.RelativeImbalance);
-  std::printf("  %zu uniform shots (diffuse, or emission only): %.1f us/shot, mean column %.0f; "
-              "%zu directional shots: %.1f us/shot, %zu by strip pairs (%zu pairs, %.0f per "
-              "shot), %zu by the grid; %zu updates without h_ji (%zu by the mean)\n",
-    diffuseShots,
-    diffuseShots > 0 ? 1e6 * diffuseSeconds / static_cast<double>(diffuseShots) : 0.0,
-    diffuseShots > 0 ? static_cast<double>(diffuseUpdates) / static_cast<double>(diffuseShots)
-                     : 0.0,
-    directionalShots,
-    directionalShots > 0 ? 1e6 * directionalSeconds / static_cast<double>(directionalShots) : 0.0,
-    pairShots,
-    pairs,
-    pairShots > 0 ? static_cast<double>(pairs) / static_cast<double>(pairShots) : 0.0,
-    gridShots,
-    fallbacks,
-    meanFallbacks);
+  PrintShotKinds(history);
+
+  if (compare)
+  {
+    // The same propagation with every directional shot summed by strip pairs (the method
+    // before the grid): the two must agree up to rounding, shot for shot.
+    LightPropagation reference(cover, prepared.Materials);
+    reference.SetFrames(prepared.Frames);
+    reference.SetDirectionalMethod(DirectionalMethod::StripPairs);
+    reference.Run(settings);
+    double largestIncident = 0.0;
+    double incidentDifference = 0.0;
+    for (std::size_t e = 0; e < cover.EntryCount(); ++e)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        largestIncident = std::max(largestIncident, reference.IncidentRadiance(e)[b]);
+        incidentDifference = std::max(incidentDifference,
+          std::fabs(reference.IncidentRadiance(e)[b] - propagation.IncidentRadiance(e)[b]));
+      }
+    }
+    double brightnessDifference = 0.0;
+    for (std::size_t i = 0; i < cover.PatchCount(); ++i)
+    {
+      const glm::dvec3 a = reference.Brightness(i);
+      const glm::dvec3 b = propagation.Brightness(i);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (a[k] > 0.0)
+        {
+          brightnessDifference = std::max(brightnessDifference, std::fabs(b[k] / a[k] - 1.0));
+        }
+      }
+    }
+    std::printf("  strip pairs only: %zu shots, %.3f s wall; largest difference: incident "
+                "radiance %.1e of the largest, brightness %.1e relative\n",
+      reference.History().size(),
+      reference.History().empty() ? 0.0 : reference.History().back().Seconds,
+      largestIncident > 0.0 ? incidentDifference / largestIncident : 0.0,
+      brightnessDifference);
+    PrintShotKinds(reference.History());
+  }
 }
 
 void CostAgainstColumn(const ParallelFor& parallelFor)
@@ -474,6 +520,7 @@ int main(int argc, char* argv[])
   std::size_t maximumShots = 0;
   bool costs = true;
   std::string cacheDirectory;
+  bool compare = false;
   std::vector<std::string> scenes;
   for (int k = 1; k < argc; ++k)
   {
@@ -501,6 +548,10 @@ int main(int argc, char* argv[])
     {
       cacheDirectory = argv[++k];
     }
+    else if (!std::strcmp(argv[k], "--compare"))
+    {
+      compare = true;
+    }
     else if (!std::strcmp(argv[k], "--no-costs"))
     {
       costs = false;
@@ -509,7 +560,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: %s [--threads N] [--tolerance T] [--refine K] [--max-shots N] [--no-costs] "
-        "[--cache DIR] [--scene name.scene]...\n",
+        "[--cache DIR] [--compare] [--scene name.scene]...\n",
         argv[0]);
       return 2;
     }
@@ -521,7 +572,7 @@ int main(int argc, char* argv[])
   const ParallelFor parallelFor = threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   for (const std::string& scene : scenes)
   {
-    Converge(scene, tolerance, refineLevels, maximumShots, cacheDirectory, parallelFor);
+    Converge(scene, tolerance, refineLevels, maximumShots, cacheDirectory, compare, parallelFor);
   }
   if (costs)
   {
