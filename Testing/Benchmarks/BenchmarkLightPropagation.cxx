@@ -30,8 +30,9 @@
  *    cost per update.
  * 3. Per-shot cost against D, the cells of the hemisphere, for a general BRDF (§5.2:
  *    "The cost of propagation, eta is O(ND)"): the furnace box split 4 x 4 per face with phong
- *    walls, grids 8 x 32 to 64 x 256; per grid the mean column size, strip pairs per shot and
- *    microseconds per shot over the first 300 shots.
+ *    walls, grids 8 x 32 to 64 x 256; per grid the mean column size, and over the first 300
+ *    shots the strip pairs per shot and microseconds per shot summing by strip pairs, and the
+ *    microseconds per shot by the whole-hemisphere grid (DirectionalMethod).
  */
 #include "CoverRefinement.h"
 #include "IntervalSubdivision.h"
@@ -463,16 +464,18 @@ void CostAgainstCells(const ParallelFor& parallelFor)
   phong.PhongExponent = 20.0;
   phong.Emission = glm::dvec3(1.0);
   const std::vector<Material> materials(patches.size(), phong);
-  std::printf("general-BRDF shot cost vs D (furnace box, %zu phong patches, first 300 shots):\n",
+  std::printf("general-BRDF shot cost vs D (furnace box, %zu phong patches, first 300 shots; "
+              "strip pairs and grid, DirectionalMethod):\n",
     patches.size());
-  std::printf("  %6s %8s %12s %10s %16s %14s %14s\n",
+  std::printf("  %6s %8s %12s %10s %16s %14s %14s %14s\n",
     "grid",
     "D",
     "table s",
     "column",
     "pairs per shot",
     "us per shot",
-    "ns per pair");
+    "ns per pair",
+    "grid us/shot");
   for (int theta : { 8, 16, 32, 64 })
   {
     SphericalCoverOptions options;
@@ -480,32 +483,44 @@ void CostAgainstCells(const ParallelFor& parallelFor)
     options.PhiBins = 4 * theta;
     SphericalCover cover;
     cover.Build(patches, options, parallelFor);
-    Clock::time_point start = Clock::now();
-    LightPropagation propagation(cover, materials);
-    const double tableSeconds = Seconds(start);
-    PropagationSettings settings;
-    settings.MaximumShots = 300;
-    settings.ConvergenceTolerance = 0.0;
-    propagation.Run(settings);
-    const std::vector<ShotRecord>& history = propagation.History();
+    double tableSeconds = 0.0;
+    double perShot[2] = {};
     std::size_t pairs = 0;
     std::size_t updates = 0;
-    for (const ShotRecord& record : history)
+    double shots = 0.0;
+    for (int method = 0; method < 2; ++method)
     {
-      pairs += record.WeightEvaluations;
-      updates += record.ReceiverUpdates;
+      Clock::time_point start = Clock::now();
+      LightPropagation propagation(cover, materials);
+      tableSeconds = Seconds(start);
+      propagation.SetDirectionalMethod(
+        method == 0 ? DirectionalMethod::StripPairs : DirectionalMethod::Grid);
+      PropagationSettings settings;
+      settings.MaximumShots = 300;
+      settings.ConvergenceTolerance = 0.0;
+      propagation.Run(settings);
+      const std::vector<ShotRecord>& history = propagation.History();
+      shots = static_cast<double>(history.size());
+      perShot[method] = history.back().Seconds / shots;
+      if (method == 0)
+      {
+        for (const ShotRecord& record : history)
+        {
+          pairs += record.WeightEvaluations;
+          updates += record.ReceiverUpdates;
+        }
+      }
     }
-    const double seconds = history.back().Seconds;
-    const double shots = static_cast<double>(history.size());
-    std::printf("  %3dx%-4d %8d %12.3f %10.1f %16.0f %14.2f %14.2f\n",
+    std::printf("  %3dx%-4d %8d %12.3f %10.1f %16.0f %14.2f %14.2f %14.2f\n",
       theta,
       4 * theta,
       theta * 4 * theta,
       tableSeconds,
       static_cast<double>(updates) / shots,
       static_cast<double>(pairs) / shots,
-      1e6 * seconds / shots,
-      pairs > 0 ? 1e9 * seconds / static_cast<double>(pairs) : 0.0);
+      1e6 * perShot[0],
+      pairs > 0 ? 1e9 * perShot[0] * shots / static_cast<double>(pairs) : 0.0,
+      1e6 * perShot[1]);
   }
 }
 }
