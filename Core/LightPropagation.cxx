@@ -26,6 +26,16 @@ double BandSum(const glm::dvec3& v)
   return v.x + v.y + v.z;
 }
 
+/// A hint to the processor to fetch `address` into the cache (a gather's later reads).
+inline void Prefetch(const void* address)
+{
+#if defined(__GNUC__)
+  __builtin_prefetch(address);
+#else
+  (void)address;
+#endif
+}
+
 /// The Lambertian reflectance k_d of every material (0 for mirror and tabulated).
 std::vector<glm::dvec3> ReflectanceOf(const std::vector<Material>& materials)
 {
@@ -91,6 +101,19 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
   {
     this->EntryOmega[e] = cover.ProjectedSolidAngle(e);
   }
+  // The state of the entries is kept in column order (see the file comment): a shot walks
+  // column j, whose entries lie all over the rows, and so reads and writes them in one sweep.
+  if (cover.EntryCount() >= FallbackFlag)
+  {
+    throw std::invalid_argument("LightPropagation: too many cover entries for 32-bit positions");
+  }
+  this->EntryPosition.resize(cover.EntryCount());
+  this->ColumnOmega.resize(cover.EntryCount());
+  for (std::size_t k = 0; k < cover.EntryCount(); ++k)
+  {
+    this->EntryPosition[cover.ColumnAt(k).EntryIndex] = static_cast<uint32_t>(k);
+    this->ColumnOmega[k] = this->EntryOmega[cover.ColumnAt(k).EntryIndex];
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
     this->TotalEmitted += Pi * cover.PatchArea(i) * BandSum(this->Le[i]);
@@ -119,24 +142,50 @@ void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
   }
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
-  this->Transposed.assign(cover.EntryCount(), -1);
-  this->EntryAlbedoMeasure.assign(cover.EntryCount(), glm::dvec3(0.0));
+  const std::size_t entries = cover.EntryCount();
+  // The transposed entries: row j is sorted by source, column j by receiver, so one merge of
+  // the two finds, for every receiver i of column j, the entry (j, i) of row j.
+  this->ColumnBack.assign(entries, NoEntry);
+  for (std::size_t j = 0; j < this->PatchCount(); ++j)
+  {
+    std::size_t e = cover.EntryBegin(j);
+    std::size_t k = cover.ColumnBegin(j);
+    while (e < cover.EntryEnd(j) && k < cover.ColumnEnd(j))
+    {
+      const uint32_t source = cover.EntryAt(e).Source;
+      const uint32_t receiver = cover.ColumnAt(k).Receiver;
+      if (source < receiver)
+      {
+        ++e;
+      }
+      else if (receiver < source)
+      {
+        ++k;
+      }
+      else
+      {
+        this->ColumnBack[k++] = static_cast<uint32_t>(e++ - cover.EntryBegin(j));
+      }
+    }
+  }
+  this->ColumnAlbedoMeasure.assign(entries, glm::dvec3(0.0));
   for (std::size_t i = 0; i < this->PatchCount(); ++i)
   {
+    if (this->ModelOfPatch[i] < 0)
+    {
+      continue;
+    }
+    const ReflectanceWeights& table = *this->Reflectances.Table(i);
     for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
     {
-      this->Transposed[e] = cover.FindEntry(cover.EntryAt(e).Source, i);
-      if (this->ModelOfPatch[i] < 0)
-      {
-        continue;
-      }
-      const ReflectanceWeights& table = *this->Reflectances.Table(i);
+      glm::dvec3 measure(0.0);
       for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
       {
         const SphericalCover::Strip& strip = cover.StripAt(k);
-        this->EntryAlbedoMeasure[e] += static_cast<double>(strip.PhiEnd - strip.PhiBegin) *
+        measure += static_cast<double>(strip.PhiEnd - strip.PhiBegin) *
           grid.CellMeasure(strip.Row) * table.RowAlbedo(strip.Row);
       }
+      this->ColumnAlbedoMeasure[this->EntryPosition[e]] = measure;
     }
   }
   this->Reset();
@@ -168,18 +217,25 @@ std::vector<Material> LightPropagation::MaterialsOfPatches(const Scene& scene,
 void LightPropagation::Reset()
 {
   this->Incident.assign(this->Cover.EntryCount(), glm::dvec3(0.0));
+  this->IncidentByEntry.clear();
+  this->IncidentByEntryValid = false;
   // Before any shot every patch holds its own emission, unshot.
   this->Unshot = this->Le;
   // Per-entry unshot incident radiance only when some patch is non-diffuse (24 bytes/entry).
   this->UnshotIncident.assign(
     this->Reflectances.Empty() ? 0 : this->Cover.EntryCount(), glm::dvec3(0.0));
   this->DirectionalUnshot.assign(this->PatchCount(), 0.0);
+  this->Power.resize(this->PatchCount());
+  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  {
+    this->Power[i] = this->PowerOf(i);
+  }
   this->Shots.clear();
   this->ElapsedSeconds = 0.0;
   this->NextInOrder = 0;
 }
 
-glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& pairs)
+glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
 {
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
@@ -189,16 +245,28 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
 
   // The in-strips that hold unshot incident radiance, taken out of the shooter's row, by row.
   const int rows = grid.ThetaBins();
+  const std::size_t rowCount = static_cast<std::size_t>(rows);
   std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
-  in.assign(static_cast<std::size_t>(rows), {});
+  in.resize(rowCount);
+  for (std::vector<InStrip>& strips : in)
+  {
+    strips.clear();
+  }
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
-    const glm::dvec3 radiance = this->UnshotIncident[e];
+    // The row's entries lie all over the column-ordered state: ask for the ones ahead early.
+    constexpr std::size_t Ahead = 16;
+    if (e + Ahead < rowEnd)
+    {
+      Prefetch(&this->UnshotIncident[this->EntryPosition[e + Ahead]]);
+    }
+    glm::dvec3& unshot = this->UnshotIncident[this->EntryPosition[e]];
+    const glm::dvec3 radiance = unshot;
     if (radiance == glm::dvec3(0.0))
     {
       continue;
     }
-    this->UnshotIncident[e] = glm::dvec3(0.0);
+    unshot = glm::dvec3(0.0);
     for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
     {
       const SphericalCover::Strip& strip = cover.StripAt(k);
@@ -206,9 +274,15 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
     }
   }
   this->DirectionalUnshot[shooter] = 0.0;
-  // For every out row, the in rows the table couples it with that hold unshot light.
+  // For every out row, the in rows the table couples it with that hold unshot light, and the
+  // number of their strips.
   std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
-  coupled.assign(static_cast<std::size_t>(rows), {});
+  coupled.resize(rowCount);
+  for (std::vector<int>& rowsIn : coupled)
+  {
+    rowsIn.clear();
+  }
+  std::vector<std::size_t> coupledStrips(rowCount, 0);
   for (int rowOut = 0; rowOut < rows; ++rowOut)
   {
     for (int rowIn = 0; rowIn < rows; ++rowIn)
@@ -216,13 +290,41 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
       if (!in[static_cast<std::size_t>(rowIn)].empty() && table.RowsCoupled(rowOut, rowIn))
       {
         coupled[static_cast<std::size_t>(rowOut)].push_back(rowIn);
+        coupledStrips[static_cast<std::size_t>(rowOut)] +=
+          in[static_cast<std::size_t>(rowIn)].size();
       }
     }
   }
+  // The strip pairs of the strip-pair sum: its cost, against the grid's (file comment).
+  std::size_t pairs = 0;
+  if (rowEnd > rowBegin)
+  {
+    for (std::size_t k = cover.StripBegin(rowBegin); k < cover.StripEnd(rowEnd - 1); ++k)
+    {
+      pairs += coupledStrips[cover.StripAt(k).Row];
+    }
+  }
+  this->GridShot = this->Method == DirectionalMethod::Grid ||
+    (this->Method == DirectionalMethod::Automatic &&
+      static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount()));
+  this->DirectionalOut.assign(rowEnd - rowBegin, glm::dvec3(0.0));
+  return this->GridShot ? this->ShotByGrid(shooter, table)
+                        : this->ShotByStripPairs(shooter, table, pairs);
+}
 
+glm::dvec3 LightPropagation::ShotByStripPairs(std::size_t shooter,
+  const ReflectanceWeights& table,
+  std::size_t pairs)
+{
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
+  const std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
+  const std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
   // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
   glm::dvec3 meanFlux(0.0);
-  for (int rowOut = 0; rowOut < rows; ++rowOut)
+  for (int rowOut = 0; rowOut < grid.ThetaBins(); ++rowOut)
   {
     glm::dvec3 rowFlux(0.0);
     for (int rowIn : coupled[static_cast<std::size_t>(rowOut)])
@@ -237,8 +339,6 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
   }
 
   // The exitant radiance averaged over every region h_ji of the shooter's row.
-  this->DirectionalOut.assign(rowEnd - rowBegin, glm::dvec3(0.0));
-  pairs = 0;
   for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
     glm::dvec3 flux(0.0);
@@ -254,7 +354,6 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
                          out.Row, out.PhiBegin, out.PhiEnd, rowIn, strip.Begin, strip.End) *
             strip.Radiance;
         }
-        pairs += in[static_cast<std::size_t>(rowIn)].size();
       }
       flux += grid.CellMeasure(out.Row) * stripFlux;
     }
@@ -263,6 +362,60 @@ glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter, std::size_t& p
       this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
     }
   }
+  this->LastWeightEvaluations = pairs;
+  return meanFlux / grid.TotalMeasure();
+}
+
+glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWeights& table)
+{
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  const std::size_t rows = static_cast<std::size_t>(grid.ThetaBins());
+  const std::size_t columns = static_cast<std::size_t>(grid.PhiBins());
+  // The unshot incident radiance per cell (each cell of the row belongs to one entry).
+  this->GridIn.assign(rows * columns, glm::dvec3(0.0));
+  for (std::size_t row = 0; row < rows; ++row)
+  {
+    for (const InStrip& strip : this->DirectionalIn[row])
+    {
+      for (int c = strip.Begin; c < strip.End; ++c)
+      {
+        this->GridIn[row * columns + static_cast<std::size_t>(c)] += strip.Radiance;
+      }
+    }
+  }
+  // I(o) toward every cell, then per out row the prefix sums of I over the columns, so that
+  // a strip of out cells costs O(1).
+  table.Reflect(this->GridIn, this->GridOut, this->ReflectScratch);
+  this->GridPrefix.resize(rows * (columns + 1));
+  glm::dvec3 meanFlux(0.0);
+  for (std::size_t row = 0; row < rows; ++row)
+  {
+    glm::dvec3* prefix = this->GridPrefix.data() + row * (columns + 1);
+    prefix[0] = glm::dvec3(0.0);
+    for (std::size_t c = 0; c < columns; ++c)
+    {
+      prefix[c + 1] = prefix[c] + this->GridOut[row * columns + c];
+    }
+    meanFlux += grid.CellMeasure(static_cast<int>(row)) * prefix[columns];
+  }
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
+  for (std::size_t e = rowBegin; e < rowEnd; ++e)
+  {
+    glm::dvec3 flux(0.0);
+    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
+    {
+      const SphericalCover::Strip& out = cover.StripAt(k);
+      const glm::dvec3* prefix = this->GridPrefix.data() + out.Row * (columns + 1);
+      flux += grid.CellMeasure(out.Row) * (prefix[out.PhiEnd] - prefix[out.PhiBegin]);
+    }
+    if (this->EntryOmega[e] > 0.0)
+    {
+      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
+    }
+  }
+  this->LastWeightEvaluations = 0;
   return meanFlux / grid.TotalMeasure();
 }
 
@@ -274,27 +427,59 @@ void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
       " frames for " + std::to_string(this->PatchCount()) + " patches");
   }
   this->Frames = std::move(frames);
+  this->EncodeFallbacks();
+}
+
+void LightPropagation::EncodeFallbacks()
+{
+  // The receivers without h_ji are fixed by the cover, and so is the cell of the direction
+  // P_i - P_j in the shooter's hemisphere: found once here rather than in every shot.
+  const SphericalCover& cover = this->Cover;
+  if (this->ColumnBack.empty())
+  {
+    return;
+  }
+  for (std::size_t j = 0; j < this->PatchCount(); ++j)
+  {
+    for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
+    {
+      uint32_t& code = this->ColumnBack[k];
+      if (code < FallbackFlag)
+      {
+        continue;
+      }
+      code = NoEntry;
+      if (this->Frames.empty())
+      {
+        continue;
+      }
+      const HemisphereFrame& from = this->Frames[j];
+      const int cell = cover.Grid().CellOfLocalDirection(
+        from.ToLocal(this->Frames[cover.ColumnAt(k).Receiver].Origin - from.Origin));
+      if (cell >= 0)
+      {
+        code = FallbackFlag | static_cast<uint32_t>(cell);
+      }
+    }
+  }
 }
 
 glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
-  std::size_t receiver,
+  uint32_t code,
   const glm::dvec3& mean)
 {
-  if (this->Frames.empty())
+  if (code == NoEntry)
   {
     ++this->LastMeanFallbacks;
     return mean;
   }
   // The exitant radiance toward the cell of the direction P_i - P_j (paper §5.1) in the
   // shooter's hemisphere, from the in-strips DirectionalShot kept.
-  const HemisphereFrame& from = this->Frames[shooter];
   const HemisphereGrid& grid = this->Cover.Grid();
-  const int cell =
-    grid.CellOfLocalDirection(from.ToLocal(this->Frames[receiver].Origin - from.Origin));
-  if (cell < 0)
+  const int cell = static_cast<int>(code & ~FallbackFlag);
+  if (this->GridShot)
   {
-    ++this->LastMeanFallbacks;
-    return mean;
+    return this->GridOut[static_cast<std::size_t>(cell)];
   }
   const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
   const int rowOut = grid.RowOfCell(cell);
@@ -321,47 +506,48 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   // The directional part of a non-diffuse shooter (see the file comment).
   const bool directional =
     this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
-  std::size_t pairs = 0;
   this->LastMeanFallbacks = 0;
-  const glm::dvec3 mean = directional ? this->DirectionalShot(shooter, pairs) : glm::dvec3(0.0);
-  const std::size_t rowBegin = this->Cover.EntryBegin(shooter);
+  this->LastWeightEvaluations = 0;
+  this->GridShot = false;
+  const glm::dvec3 mean = directional ? this->DirectionalShot(shooter) : glm::dvec3(0.0);
+  this->Power[shooter] = this->PowerOf(shooter);
   const std::size_t begin = this->Cover.ColumnBegin(shooter);
   const std::size_t end = this->Cover.ColumnEnd(shooter);
   std::size_t fallbacks = 0;
+  this->IncidentByEntryValid = false;
   for (std::size_t k = begin; k < end; ++k)
   {
     const SphericalCover::ColumnEntry& item = this->Cover.ColumnAt(k);
     glm::dvec3 value = increment;
     if (directional)
     {
-      const int64_t back = this->Transposed[item.EntryIndex];
-      if (back >= 0)
+      const uint32_t back = this->ColumnBack[k];
+      if (back < FallbackFlag)
       {
-        value += this->DirectionalOut[static_cast<std::size_t>(back) - rowBegin];
+        value += this->DirectionalOut[back];
       }
       else
       {
-        value += this->TowardReceiver(shooter, item.Receiver, mean);
+        value += this->TowardReceiver(shooter, back, mean);
         ++fallbacks;
       }
     }
-    this->Incident[item.EntryIndex] += value;
+    this->Incident[k] += value;
     // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form.
-    this->Unshot[item.Receiver] +=
-      this->Rho[item.Receiver] * (this->EntryOmega[item.EntryIndex] / Pi) * value;
+    this->Unshot[item.Receiver] += this->Rho[item.Receiver] * (this->ColumnOmega[k] / Pi) * value;
     if (this->ModelOfPatch[item.Receiver] >= 0)
     {
-      this->UnshotIncident[item.EntryIndex] += value;
-      this->DirectionalUnshot[item.Receiver] += this->Cover.PatchArea(item.Receiver) *
-        BandSum(value * this->EntryAlbedoMeasure[item.EntryIndex]);
+      this->UnshotIncident[k] += value;
+      this->DirectionalUnshot[item.Receiver] +=
+        this->Cover.PatchArea(item.Receiver) * BandSum(value * this->ColumnAlbedoMeasure[k]);
     }
+    this->Power[item.Receiver] = this->PowerOf(item.Receiver);
   }
-  this->LastWeightEvaluations = pairs;
   this->LastFallbacks = fallbacks;
   return end - begin;
 }
 
-double LightPropagation::UnshotPower(std::size_t patch) const
+double LightPropagation::PowerOf(std::size_t patch) const
 {
   return Pi * this->Cover.PatchArea(patch) * BandSum(this->Unshot[patch]) +
     this->DirectionalUnshot[patch];
@@ -369,28 +555,47 @@ double LightPropagation::UnshotPower(std::size_t patch) const
 
 double LightPropagation::UnshotEnergy() const
 {
-  double sum = 0.0;
-  for (std::size_t i = 0; i < this->PatchCount(); ++i)
-  {
-    sum += this->UnshotPower(i);
-  }
-  return sum;
+  double largest = 0.0;
+  double total = 0.0;
+  this->Brightest(largest, total);
+  return total;
 }
 
-std::size_t LightPropagation::Brightest(double& power) const
+std::size_t LightPropagation::Brightest(double& power, double& total) const
 {
+  // One pass for both: this scan is the O(N) part of every shot (file comment). The sum runs
+  // in four interleaved partial sums (a fixed order, so deterministic), which keeps the adds
+  // from waiting on each other.
   std::size_t best = 0;
   power = -1.0;
-  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
+  const std::size_t n = this->Power.size();
+  const double* values = this->Power.data();
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
   {
-    const double p = this->UnshotPower(i);
-    // Strictly greater: ties go to the lowest index.
-    if (p > power)
+    for (std::size_t lane = 0; lane < 4; ++lane)
     {
-      power = p;
+      const double p = values[i + lane];
+      partial[lane] += p;
+      // Strictly greater, in index order: ties go to the lowest index.
+      if (p > power)
+      {
+        power = p;
+        best = i + lane;
+      }
+    }
+  }
+  for (; i < n; ++i)
+  {
+    partial[0] += values[i];
+    if (values[i] > power)
+    {
+      power = values[i];
       best = i;
     }
   }
+  total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
   return best;
 }
 
@@ -414,12 +619,19 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   const double secondsBefore = this->ElapsedSeconds;
-  const double initialUnshot = this->UnshotEnergy();
+  double largest = 0.0;
+  double unshot = 0.0;
+  std::size_t brightest = this->Brightest(largest, unshot);
+  const double initialUnshot = unshot;
   double reported = 0.0;
   std::size_t shots = 0;
-  double largest = 0.0;
-  std::size_t brightest = this->Brightest(largest);
-  while (!this->Converged(settings.ConvergenceTolerance))
+  // Converged(), from the scan's sum.
+  const auto converged = [&]
+  {
+    return this->TotalEmitted <= 0.0 || this->PatchCount() == 0 ||
+      unshot / this->TotalEmitted < settings.ConvergenceTolerance;
+  };
+  while (!converged())
   {
     if (settings.MaximumShots > 0 && shots >= settings.MaximumShots)
     {
@@ -446,9 +658,10 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     record.WeightEvaluations = this->LastWeightEvaluations;
     record.Fallbacks = this->LastFallbacks;
     record.MeanFallbacks = this->LastMeanFallbacks;
-    brightest = this->Brightest(largest);
+    record.GridShot = this->GridShot;
+    brightest = this->Brightest(largest, unshot);
     record.MaxUnshotRelative = largest / this->TotalEmitted;
-    record.UnshotEnergy = this->UnshotEnergy();
+    record.UnshotEnergy = unshot;
     this->ElapsedSeconds =
       secondsBefore + std::chrono::duration<double>(Clock::now() - start).count();
     record.Seconds = this->ElapsedSeconds;
@@ -474,12 +687,26 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   return true;
 }
 
+const std::vector<glm::dvec3>& LightPropagation::IncidentRadiances() const
+{
+  if (!this->IncidentByEntryValid)
+  {
+    this->IncidentByEntry.resize(this->Incident.size());
+    for (std::size_t e = 0; e < this->Incident.size(); ++e)
+    {
+      this->IncidentByEntry[e] = this->Incident[this->EntryPosition[e]];
+    }
+    this->IncidentByEntryValid = true;
+  }
+  return this->IncidentByEntry;
+}
+
 glm::dvec3 LightPropagation::Irradiance(std::size_t patch) const
 {
   glm::dvec3 sum(0.0);
   for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
   {
-    sum += this->Incident[e] * this->EntryOmega[e];
+    sum += this->Incident[this->EntryPosition[e]] * this->EntryOmega[e];
   }
   return sum;
 }
@@ -498,7 +725,8 @@ glm::dvec3 LightPropagation::Reflected(std::size_t patch) const
   glm::dvec3 sum = this->Rho[patch] * this->Irradiance(patch);
   for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
   {
-    sum += this->Incident[e] * this->EntryAlbedoMeasure[e];
+    const uint32_t k = this->EntryPosition[e];
+    sum += this->Incident[k] * this->ColumnAlbedoMeasure[k];
   }
   return sum;
 }
@@ -517,7 +745,8 @@ glm::dvec3 LightPropagation::ExitantRadianceToward(std::size_t patch,
   }
   const ReflectanceWeights* table = this->Reflectances.Table(patch);
   return table ? this->ExitantRadiance(patch) +
-      DirectionalExitantRadiance(this->Cover, *table, patch, this->Incident, localDirection)
+      DirectionalExitantRadiance(
+        this->Cover, *table, patch, this->IncidentRadiances(), localDirection)
                : this->ExitantRadiance(patch);
 }
 
@@ -534,7 +763,8 @@ EnergyBalance LightPropagation::Energy() const
     {
       for (std::size_t e = this->Cover.EntryBegin(i); e < this->Cover.EntryEnd(i); ++e)
       {
-        balance.Unshot += area * this->UnshotIncident[e] * this->EntryAlbedoMeasure[e];
+        const uint32_t k = this->EntryPosition[e];
+        balance.Unshot += area * this->UnshotIncident[k] * this->ColumnAlbedoMeasure[k];
       }
     }
   }

@@ -38,7 +38,7 @@
  * to the lowest index; the paper's "brightest characteristic point", measured by its unshot
  * change, which is what SPEC §4.4 allows); FixedOrder cycles through the patches in index
  * order and shoots whatever each has (a patch with nothing unshot is passed over). Both stop
- * when max_j U_j / W_e < ConvergenceTolerance, W_e = sum_j pi A_j (Le_j,r + Le_j,g + Le_j,b)
+ * when sum_j U_j / W_e < ConvergenceTolerance, W_e = sum_j pi A_j (Le_j,r + Le_j,g + Le_j,b)
  * the emitted power (the paper's "appreciable change" of §5.1, made relative), or after
  * MaximumShots shots. Everything runs in the calling thread in a fixed order: the results are
  * deterministic.
@@ -62,20 +62,34 @@
  * average that out: the split mixed box balances to ~0.6% only. Scaling each shot's delivered
  * power to the sent power was tried and rejected: it balances the energy but breaks the white
  * furnace (21% with mirrors) and the order independence; reciprocity belongs to the cover
- * (CoverRefinement). Each strip pair
- * (out strip of row j, in strip with unshot radiance) costs O(1) (cumulative sums of the
- * table), so a shot costs O(strips of row j x strips with unshot light + column j), the O(D)
- * per receiver of §5.2 reduced by the strips' run-length structure. Where the cover has h_ij
+ * (CoverRefinement).
+ *
+ * The sum over the table is taken in one of two ways (DirectionalMethod), the same sum in another
+ * order (the test GridAndStripPairShotsAgree: 7e-15; the teapot room to 1e-3: incident radiance
+ * within 1.1e-14, brightness 9e-14, shot for shot, BenchmarkLightPropagation --compare):
+ *  - strip pairs: each (out strip of row j, in strip with unshot radiance) costs O(1)
+ *    (cumulative sums of the table), so a shot costs O(strips of row j x strips with unshot
+ *    light + column j), the O(D) per receiver of §5.2 reduced by the strips' run-length
+ *    structure. Cheap while little of the hemisphere holds unshot light, but it grows with the
+ *    product: ~1.2 million pairs per shot in the refined teapot room, where one propagation did
+ *    not end in 10 minutes;
+ *  - the grid: the unshot light is laid out over the D cells of the hemisphere, reflected
+ *    toward every cell at once by ReflectanceWeights::Reflect (the mirror's delta cell by cell,
+ *    other tables as circular correlations over phi by FFT, O(ThetaBins^2 PhiBins)), and
+ *    averaged over every region h_ji from prefix sums along the rows, O(D log PhiBins +
+ *    strips of row j + column j) whatever the strips. A receiver without h_ji reads its cell.
+ * Automatic (the default) takes the grid when the strip pairs exceed GridCostInPairs per cell.
+ * Where the cover has h_ij
  * but not h_ji (the two hemispheres are discretised independently: a small patch wins no cell
  * of a far shooter's hemisphere; 16% of the updates in the teapot room), the exitant radiance
  * toward the cell of the direction P_i - P_j is used when the frames of the characteristic
- * points are known (SetFrames), else the hemisphere's mean exitant radiance (sum over all
- * cells of Omega_o I(o), over pi); ShotRecord counts those updates. A receiver i updates its entry
- * h_ij as before, adds rho_i Omega_e / pi of the increment to dL_i (rho_i = k_d, the Lambertian
- * part, 0 for mirror and tabulated) and, when non-diffuse, the increment to dE_e. The Lambertian
- * part of a phong surface thus travels in closed form with dL, and the weight tables hold the rest
- * of the BRDF (ReflectanceWeights). A Lambertian shooter keeps the closed-form O(column) shot above
- * (§5.2), even among non-diffuse patches.
+ * points are known (SetFrames; the cells are found once, EncodeFallbacks), else the hemisphere's
+ * mean exitant radiance (sum over all cells of Omega_o I(o), over pi); ShotRecord counts those
+ * updates. A receiver i updates its entry h_ij as before, adds rho_i Omega_e / pi of the increment
+ * to dL_i (rho_i = k_d, the Lambertian part, 0 for mirror and tabulated) and, when non-diffuse, the
+ * increment to dE_e. The Lambertian part of a phong surface thus travels in closed form with dL,
+ * and the weight tables hold the rest of the BRDF (ReflectanceWeights). A Lambertian shooter keeps
+ * the closed-form O(column) shot above (§5.2), even among non-diffuse patches.
  *
  * For a non-diffuse patch:
  *  - the unshot power is U_j = pi A_j sum_b dL_j + A_j sum_e sum_b dE_e,b a_e,b Omega_e, with
@@ -93,9 +107,30 @@
  *    evaluated toward the eye"); the one implementation is DirectionalExitantRadiance, which
  *    the renderer uses too.
  *
+ * Memory layout. The state of the entries (E, dE and the per-entry constants a shot reads) is
+ * kept in column order, the order in which a shot walks column j: its entries lie all over the
+ * rows, and in row order every update was a cache miss (91% of the column walk's time in the
+ * teapot room). The rows are then gathered instead, only by a directional shooter (its own row,
+ * prefetched) and for results (Irradiance, IncidentRadiances).
+ *
+ * Measured (BenchmarkLightPropagation, on a machine shared with other jobs, so wall times are
+ * high and vary; processor time is steadier): the teapot room refined as the cover filter does
+ * (--refine 3: 13461 patches, 11369 non-diffuse, 9.1 million entries) converges to 1e-5 in
+ * 83959 shots, 18.0 s wall and 12.0 s of processor time: uniform shots 62 us (mean column
+ * 4004), grid shots 384 us, strip-pair shots 227 us (8021 pairs). Before, `sphcover solve`
+ * did not finish propagating it in 10 minutes; strip pairs alone cost 5.8 ms per directional
+ * shot there (1.1 million pairs, column-ordered state already). Unrefined (9195
+ * patches) to 1e-3: 248 s before (strip pairs, entries in row order), 6.9 s wall / 4.6 s
+ * processor now, the same 35397 shots; to 1e-5: 70046 shots, 14.2 s wall / 9.4 s processor. The
+ * Cornell box (diffuse only) to 1e-5: 5.7 s before, 1.3 s now (35429 shots); a uniform shot
+ * costs 6.9 ns per update (57.7 ns in row order).
+ *
  * Limitations: the shooter is found by a scan of the N patches per shot (O(N), the same order
- * as a worst-case column), not by a priority queue. Two-sided surfaces are handled as the
- * cover handles them (one hemisphere per point).
+ * as a worst-case column; one pass with the unshot sum), not by a priority queue: a heap would
+ * pay O(log N) for each of a column's updates, more than the scan. A shot runs in the calling
+ * thread: it takes 50 to 350 us, about what handing work to other threads costs, so threads
+ * would gain little and, on a shared machine, wait for cores. Two-sided surfaces are handled as
+ * the cover handles them (one hemisphere per point).
  */
 #ifndef SPHCOVER_LIGHTPROPAGATION_H
 #define SPHCOVER_LIGHTPROPAGATION_H
@@ -128,6 +163,19 @@ enum class ShootingOrder
   FixedOrder = 1
 };
 
+/// How a non-diffuse shot sums its weight table (the results agree up to rounding; see the file
+/// comment).
+enum class DirectionalMethod
+{
+  /// Per shot the cheaper of the two by the estimated cost.
+  Automatic = 0,
+  /// Strip pairs: O(out strips of the shooter's row x in strips with unshot light).
+  StripPairs = 1,
+  /// The whole hemisphere: the unshot light as a dense grid of cells, reflected by
+  /// ReflectanceWeights::Reflect, then O(1) per out strip by prefix sums.
+  Grid = 2
+};
+
 struct PropagationSettings
 {
   /// Stop when the unshot power (summed over all points) relative to the emitted power falls
@@ -155,8 +203,11 @@ struct ShotRecord
   /// Entries updated by the shot (the size of the shooter's column, §5.2).
   std::size_t ReceiverUpdates = 0;
   /// Strip pairs (out strip, in strip) the weight table was summed over (0 for a Lambertian
-  /// shooter): the O(D)-like part of a non-diffuse shot.
+  /// shooter and for a grid shot): the O(D)-like part of a non-diffuse shot.
   std::size_t WeightEvaluations = 0;
+  /// Whether the shot reflected its unshot light through the whole-hemisphere grid
+  /// (DirectionalMethod::Grid) rather than strip pairs.
+  bool GridShot = false;
   /// Receivers i served without the region h_ji, which is null (see the file comment).
   std::size_t Fallbacks = 0;
   /// Of those, the ones served by the mean exitant radiance (no frames, or the direction
@@ -213,6 +264,16 @@ public:
   /// Back to the start: E = 0, unshot radiance = emission, no history.
   void Reset();
 
+  /// How non-diffuse shots sum their weight tables (default Automatic). The methods agree up
+  /// to rounding; forcing one is for measuring and testing them.
+  void SetDirectionalMethod(DirectionalMethod method) { this->Method = method; }
+  DirectionalMethod GetDirectionalMethod() const { return this->Method; }
+  /// Automatic takes the grid when the strip pairs exceed this many per cell of the grid: the
+  /// grid's cost in strip pairs (BenchmarkLightPropagation --compare on the refined teapot room:
+  /// 200 to 300 us per grid shot, 5 ns per strip pair in large shots and more in small ones,
+  /// D = 4096 cells).
+  static constexpr double GridCostInPairs = 5.0;
+
   /**
    * Shoots until converged (true), MaximumShots shots were made in this call (false) or
    * `progress` returned false (false; the state is consistent, a later Run continues).
@@ -232,8 +293,14 @@ public:
   // --- results ---------------------------------------------------------------------------------
   std::size_t PatchCount() const { return this->Rho.size(); }
   /// Incident radiance E_e of entry e of the cover (RGB, W m^-2 sr^-1).
-  const glm::dvec3& IncidentRadiance(std::size_t entry) const { return this->Incident[entry]; }
-  const std::vector<glm::dvec3>& IncidentRadiances() const { return this->Incident; }
+  const glm::dvec3& IncidentRadiance(std::size_t entry) const
+  {
+    return this->Incident[this->EntryPosition[entry]];
+  }
+  /// E_e of every entry, by entry index. Copied from the column-ordered state on the first call
+  /// after a shot (O(entries)); not to be called concurrently with itself or
+  /// ExitantRadianceToward before that copy exists.
+  const std::vector<glm::dvec3>& IncidentRadiances() const;
   /// sum over row i of E_e Omega_e (W m^-2 per band).
   glm::dvec3 Irradiance(std::size_t patch) const;
   /// Le_i + k_d / pi * Irradiance(i): the Lambertian exitant radiance (all of it for a diffuse
@@ -257,11 +324,12 @@ public:
   /// Unshot incident radiance dE_e of entry e (non-diffuse receivers only; 0 otherwise).
   glm::dvec3 UnshotIncidentRadiance(std::size_t entry) const
   {
-    return this->UnshotIncident.empty() ? glm::dvec3(0.0) : this->UnshotIncident[entry];
+    return this->UnshotIncident.empty() ? glm::dvec3(0.0)
+                                        : this->UnshotIncident[this->EntryPosition[entry]];
   }
   const glm::dvec3& UnshotRadiance(std::size_t patch) const { return this->Unshot[patch]; }
   /// U_j of the file comment.
-  double UnshotPower(std::size_t patch) const;
+  double UnshotPower(std::size_t patch) const { return this->Power[patch]; }
   /// sum_j U_j.
   double UnshotEnergy() const;
   /// Emitted power summed over the bands, W.
@@ -274,24 +342,41 @@ public:
   const glm::dvec3& Emission(std::size_t patch) const { return this->Le[patch]; }
 
 private:
-  /// The patch of largest unshot power (lowest index on ties), and that power.
-  std::size_t Brightest(double& power) const;
+  /// The patch of largest unshot power (lowest index on ties), that power, and the sum of all
+  /// (UnshotEnergy), in one scan.
+  std::size_t Brightest(double& power, double& total) const;
+  /// U_j from Unshot and DirectionalUnshot (what Power holds).
+  double PowerOf(std::size_t patch) const;
   /// Sets up the non-diffuse machinery (models, weight tables, transposed entries).
   void SetUpModels(const std::vector<Material>& materialOfPatch);
   /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
-  /// row j, into DirectionalOut; returns the mean over the hemisphere and counts strip pairs.
-  glm::dvec3 DirectionalShot(std::size_t shooter, std::size_t& pairs);
-  /// The exitant radiance of the current directional shot toward a receiver without h_ji.
-  glm::dvec3 TowardReceiver(std::size_t shooter, std::size_t receiver, const glm::dvec3& mean);
+  /// row j, into DirectionalOut, by the cheaper method; returns the mean over the hemisphere.
+  glm::dvec3 DirectionalShot(std::size_t shooter);
+  /// The two methods of DirectionalShot, on the in-strips it collected.
+  glm::dvec3 ShotByStripPairs(std::size_t shooter,
+    const ReflectanceWeights& table,
+    std::size_t pairs);
+  glm::dvec3 ShotByGrid(std::size_t shooter, const ReflectanceWeights& table);
+  /// The exitant radiance of the current directional shot toward a receiver without h_ji, whose
+  /// ColumnBack code is `code`.
+  glm::dvec3 TowardReceiver(std::size_t shooter, uint32_t code, const glm::dvec3& mean);
+  /// Sets the ColumnBack codes of the receivers without h_ji from the frames.
+  void EncodeFallbacks();
   /// sum_e E_e a_e Omega_e over row i (non-diffuse) or rho_i E_i (diffuse).
   glm::dvec3 Reflected(std::size_t patch) const;
 
   const SphericalCover& Cover;
   std::vector<glm::dvec3> Rho;
   std::vector<glm::dvec3> Le;
-  /// Omega_e of every entry, computed once from the strips.
+  /// Omega_e of every entry, computed once from the strips, by entry and in column order (the
+  /// k-th element of the cover's columns: a shot walks column j, and reads its entries'
+  /// data in one sweep instead of all over the rows).
   std::vector<double> EntryOmega;
+  std::vector<double> ColumnOmega;
+  /// E_e in column order (EntryPosition), and by entry for IncidentRadiances.
   std::vector<glm::dvec3> Incident;
+  mutable std::vector<glm::dvec3> IncidentByEntry;
+  mutable bool IncidentByEntryValid = false;
   std::vector<glm::dvec3> Unshot;
   double TotalEmitted = 0.0;
   std::vector<ShotRecord> Shots;
@@ -303,14 +388,24 @@ private:
   /// Index into Reflectances, -1 for a Lambertian patch.
   std::vector<int> ModelOfPatch;
   PointReflectances Reflectances;
-  /// For entry e = (i, j): the entry (j, i), or -1 when h_ji is null (only when some patch
-  /// is non-diffuse).
-  std::vector<int64_t> Transposed;
+  static constexpr uint32_t NoEntry = 0xffffffffu;
+  static constexpr uint32_t FallbackFlag = 0x80000000u;
+  /// Position in column order of every entry.
+  std::vector<uint32_t> EntryPosition;
+  // Only when some patch is non-diffuse, all in column order (see ColumnOmega):
+  /// For the entry (i, j) at column position k: the position of the entry (j, i) within row j
+  /// (an index of DirectionalOut); when h_ji is null, FallbackFlag | the cell of the direction
+  /// P_i - P_j in H_j (frames known, EncodeFallbacks), or NoEntry (the mean).
+  std::vector<uint32_t> ColumnBack;
   /// a_e Omega_e per band for entries of non-diffuse rows (0 otherwise).
-  std::vector<glm::dvec3> EntryAlbedoMeasure;
+  std::vector<glm::dvec3> ColumnAlbedoMeasure;
+  /// dE_e of the file comment.
   std::vector<glm::dvec3> UnshotIncident;
   /// The directional part of U_j (W, summed over the bands), kept up to date by the shots.
   std::vector<double> DirectionalUnshot;
+  /// U_j of every patch, updated with Unshot and DirectionalUnshot: the scan for the brightest
+  /// reads one array.
+  std::vector<double> Power;
   /// Scratch of DirectionalShot: radiance toward each entry of the shooter's row, the in-strips
   /// with unshot radiance by row, and per out row the coupled in rows that hold some.
   std::vector<glm::dvec3> DirectionalOut;
@@ -322,6 +417,15 @@ private:
   };
   std::vector<std::vector<InStrip>> DirectionalIn;
   std::vector<std::vector<int>> DirectionalCoupled;
+  /// Scratch of ShotByGrid: unshot incident radiance per cell, exitant radiance per cell, and
+  /// per row the prefix sums of the exitant radiance over the columns.
+  std::vector<glm::dvec3> GridIn;
+  std::vector<glm::dvec3> GridOut;
+  std::vector<glm::dvec3> GridPrefix;
+  ReflectanceWeights::Scratch ReflectScratch;
+  DirectionalMethod Method = DirectionalMethod::Automatic;
+  /// Whether the current (last) directional shot went through the grid.
+  bool GridShot = false;
   std::vector<HemisphereFrame> Frames;
   /// Statistics of the last Shoot, for its ShotRecord.
   std::size_t LastWeightEvaluations = 0;

@@ -5,6 +5,7 @@
 #include "Reflectance.h"
 
 #include <glm/common.hpp>
+#include <unsupported/Eigen/FFT>
 
 #include <algorithm>
 #include <cmath>
@@ -137,6 +138,22 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
         }
       }
     }
+    // Evenness in the column difference: the models are f(delta_phi) = f(-delta_phi)
+    // (Reflectance, BrdfTable), and the samples of the column differences d and -d are mirror
+    // images, so w(d) = w(-d) up to rounding; made exact, it makes the table's Fourier
+    // transform real (Reflect).
+    for (std::size_t ro = 0; ro < rows; ++ro)
+    {
+      for (std::size_t ri = 0; ri < rows; ++ri)
+      {
+        for (std::size_t d = 1; 2 * d < columns; ++d)
+        {
+          const glm::dvec3 mean = 0.5 * (at(ro, ri, d) + at(ro, ri, columns - d));
+          at(ro, ri, d) = mean;
+          at(ro, ri, columns - d) = mean;
+        }
+      }
+    }
     // Weights below Cutoff of the largest are dropped (paper §5.2 (ii): "there may be large
     // number of grid cells with 0 weights in the reflectance map table"): whole row pairs then
     // drop out of the shots. They carry a negligible share; the scaling below restores the
@@ -249,6 +266,170 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
       }
       this->Coupled[ro * rows + ri] = coupled ? 1 : 0;
     }
+  }
+
+  // Reflect's form of the table: a few direct terms or a spectrum per row pair.
+  this->SpectrumLength = this->Columns / 2 + 1;
+  const std::size_t length = static_cast<std::size_t>(this->SpectrumLength);
+  this->DirectOffsets.assign(rows * rows + 1, 0);
+  this->SpectrumOf.assign(rows * rows, -1);
+  this->InRowSpectral.assign(rows, 0);
+  Eigen::FFT<double> fft;
+  fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
+  std::vector<double> line(columns);
+  std::vector<std::complex<double>> spectrum(length);
+  for (std::size_t ro = 0; ro < rows; ++ro)
+  {
+    for (std::size_t ri = 0; ri < rows; ++ri)
+    {
+      const std::size_t pair = ro * rows + ri;
+      std::size_t nonZero = 0;
+      for (std::size_t d = 0; d < columns; ++d)
+      {
+        nonZero += at(ro, ri, d) != glm::dvec3(0.0) ? 1 : 0;
+      }
+      if (nonZero <= static_cast<std::size_t>(DirectTerms))
+      {
+        for (std::size_t d = 0; d < columns; ++d)
+        {
+          if (at(ro, ri, d) != glm::dvec3(0.0))
+          {
+            this->Directs.push_back({ static_cast<int>(d), at(ro, ri, d) });
+          }
+        }
+      }
+      else
+      {
+        // I(co) = sum_d w(d) e(co + d) is a correlation: its DFT is conj(W(k)) E(k), and W is
+        // real because w is even in d (above; the mirror's delta is even as well).
+        this->SpectrumOf[pair] = static_cast<int>(this->Spectra.size() / (3 * length));
+        this->InRowSpectral[ri] = 1;
+        for (int b = 0; b < 3; ++b)
+        {
+          for (std::size_t d = 0; d < columns; ++d)
+          {
+            line[d] = at(ro, ri, d)[b];
+          }
+          fft.fwd(spectrum.data(), line.data(), static_cast<Eigen::Index>(columns));
+          for (const std::complex<double>& value : spectrum)
+          {
+            this->Spectra.push_back(value.real());
+          }
+        }
+      }
+      this->DirectOffsets[pair + 1] = this->Directs.size();
+    }
+  }
+}
+
+void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
+  std::vector<glm::dvec3>& exitant) const
+{
+  Scratch scratch;
+  this->Reflect(incident, exitant, scratch);
+}
+
+void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
+  std::vector<glm::dvec3>& exitant,
+  Scratch& scratch) const
+{
+  const std::size_t rows = static_cast<std::size_t>(this->Rows);
+  const std::size_t columns = static_cast<std::size_t>(this->Columns);
+  const std::size_t length = static_cast<std::size_t>(this->SpectrumLength);
+  exitant.assign(rows * columns, glm::dvec3(0.0));
+  std::vector<std::size_t>& lit = scratch.Lit;
+  lit.clear();
+  for (std::size_t r = 0; r < rows; ++r)
+  {
+    const glm::dvec3* row = incident.data() + r * columns;
+    if (std::any_of(row, row + columns, [](const glm::dvec3& e) { return e != glm::dvec3(0.0); }))
+    {
+      lit.push_back(r);
+    }
+  }
+  if (lit.empty())
+  {
+    return;
+  }
+  Eigen::FFT<double> fft;
+  fft.SetFlag(Eigen::FFT<double>::HalfSpectrum);
+  std::vector<double>& line = scratch.Line;
+  line.resize(columns);
+  // The transforms of the lit in rows, per band.
+  std::vector<std::complex<double>>& in = scratch.In;
+  in.resize(rows * 3 * length);
+  for (std::size_t ri : lit)
+  {
+    if (!this->InRowSpectral[ri])
+    {
+      continue;
+    }
+    for (int b = 0; b < 3; ++b)
+    {
+      for (std::size_t c = 0; c < columns; ++c)
+      {
+        line[c] = incident[ri * columns + c][b];
+      }
+      fft.fwd(&in[(ri * 3 + static_cast<std::size_t>(b)) * length],
+        line.data(),
+        static_cast<Eigen::Index>(columns));
+    }
+  }
+  std::vector<std::complex<double>>& sum = scratch.Sum;
+  sum.resize(3 * length);
+  for (std::size_t ro = 0; ro < rows; ++ro)
+  {
+    glm::dvec3* out = exitant.data() + ro * columns;
+    bool spectral = false;
+    std::fill(sum.begin(), sum.end(), std::complex<double>(0.0));
+    for (std::size_t ri : lit)
+    {
+      const std::size_t pair = ro * rows + ri;
+      const int index = this->SpectrumOf[pair];
+      if (index >= 0)
+      {
+        spectral = true;
+        const double* w = &this->Spectra[static_cast<std::size_t>(index) * 3 * length];
+        const std::complex<double>* e = &in[ri * 3 * length];
+        for (std::size_t k = 0; k < 3 * length; ++k)
+        {
+          sum[k] += w[k] * e[k];
+        }
+        continue;
+      }
+      const glm::dvec3* e = incident.data() + ri * columns;
+      for (std::size_t t = this->DirectOffsets[pair]; t < this->DirectOffsets[pair + 1]; ++t)
+      {
+        // out[co] += w(d) e[(co + d) mod PhiBins], the wrap taken out of the loop.
+        const std::size_t d = static_cast<std::size_t>(this->Directs[t].Delta);
+        const glm::dvec3 w = this->Directs[t].Weight;
+        for (std::size_t co = 0; co + d < columns; ++co)
+        {
+          out[co] += w * e[co + d];
+        }
+        for (std::size_t co = columns - d; co < columns; ++co)
+        {
+          out[co] += w * e[co + d - columns];
+        }
+      }
+    }
+    if (spectral)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        fft.inv(line.data(),
+          &sum[static_cast<std::size_t>(b) * length],
+          static_cast<Eigen::Index>(columns));
+        for (std::size_t co = 0; co < columns; ++co)
+        {
+          out[co][b] += line[co];
+        }
+      }
+    }
+  }
+  for (glm::dvec3& value : exitant)
+  {
+    value = glm::max(value, glm::dvec3(0.0));
   }
 }
 

@@ -18,7 +18,7 @@ packages=(
   paraview paraview-dev python3-paraview python3-dev
   libglew-dev libdouble-conversion-dev mpi-default-dev libx11-dev zlib1g-dev
   libglm-dev nlohmann-json3-dev libcli11-dev libopenexr-dev libembree-dev
-  libgtest-dev libgmp-dev
+  libgtest-dev libgmp-dev libeigen3-dev
   openexr
   xvfb xauth
 )

@@ -4,7 +4,19 @@
  * @brief Progressive light propagation (paper §5.1, §5.2) with all reflectance kinds (SPEC §7:
  * speed is measured by a benchmark, never by timed tests).
  *
- *   BenchmarkLightPropagation [--threads N] [--tolerance T] [--scene name.scene]...
+ *   BenchmarkLightPropagation [--threads N] [--tolerance T] [--refine K] [--max-shots N]
+ *                             [--no-costs] [--scene name.scene]...
+ *
+ * --refine K first refines the patches as the cover filter does by default (receiver side,
+ * enclosure boundaries, CoverRefinement; K = 3 is the filter's RefinementLevels default) and
+ * propagates over the cover of the refined patches: the patch set of `sphcover solve`.
+ * --max-shots stops each propagation early (for profiles); --no-costs skips parts 2 and 3.
+ * --cache DIR keeps each scene's cover, materials and frames in DIR/<scene>.refine<K>.cover
+ * and reads them from there on later runs (repeated measurements skip subdivision and cover;
+ * delete the file when the scene or the cover code changes).
+ * --compare propagates each scene a second time with every directional shot summed by strip
+ * pairs (DirectionalMethod::StripPairs, the method before the whole-hemisphere grid) and prints
+ * the largest differences of the incident radiance and the brightness.
  *
  * 1. For each scene (default: the Cornell box and the teapot room, whose mirror wall and phong
  *    teapot shoot through weight tables) at the scene's settings: interval subdivision, cover,
@@ -18,9 +30,11 @@
  *    cost per update.
  * 3. Per-shot cost against D, the cells of the hemisphere, for a general BRDF (§5.2:
  *    "The cost of propagation, eta is O(ND)"): the furnace box split 4 x 4 per face with phong
- *    walls, grids 8 x 32 to 64 x 256; per grid the mean column size, strip pairs per shot and
- *    microseconds per shot over the first 300 shots.
+ *    walls, grids 8 x 32 to 64 x 256; per grid the mean column size, and over the first 300
+ *    shots the strip pairs per shot and microseconds per shot summing by strip pairs, and the
+ *    microseconds per shot by the whole-hemisphere grid (DirectionalMethod).
  */
+#include "CoverRefinement.h"
 #include "IntervalSubdivision.h"
 #include "LightPropagation.h"
 #include "ParallelFor.h"
@@ -32,9 +46,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <map>
 #include <string>
 #include <vector>
@@ -65,45 +81,251 @@ std::vector<Patch> Subdivide(const Scene& scene, const ParallelFor& parallelFor)
   return subdivision.Patches();
 }
 
-void Converge(const std::string& name, double tolerance, const ParallelFor& parallelFor)
+/// The receiver-side refinement of the cover filter's default (REFINEMENT_ENCLOSURES):
+/// enclosure boundaries split up to `levels` below the deepest patch.
+std::vector<Patch> Refine(const Scene& scene,
+  std::vector<Patch> patches,
+  const SphericalCoverOptions& options,
+  int levels,
+  const ParallelFor& parallelFor)
 {
-  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
-  const std::vector<Patch> patches = Subdivide(scene, parallelFor);
+  int deepest = 0;
+  for (const Patch& patch : patches)
+  {
+    deepest = std::max(deepest, patch.Level);
+  }
+  RefinementSettings settings;
+  settings.Cover = options;
+  settings.MaxLevel = deepest + levels;
+  settings.AnalyseHemispheres = false;
+  CoverRefinement refinement(scene, std::move(patches), settings);
+  refinement.Run(nullptr, parallelFor);
+  return refinement.Patches();
+}
+
+/// The shots by kind: uniform (diffuse or emission only, O(column)), directional by strip pairs
+/// and by the grid, with their wall-clock cost.
+void PrintShotKinds(const std::vector<ShotRecord>& history)
+{
+  std::size_t pairs = 0;
+  std::size_t fallbacks = 0;
+  std::size_t meanFallbacks = 0;
+  std::size_t shots[3] = {};
+  double seconds[3] = {};
+  std::size_t uniformUpdates = 0;
+  std::size_t directionalUpdates = 0;
+  double previous = 0.0;
+  for (const ShotRecord& record : history)
+  {
+    const int kind = record.GridShot ? 2 : (record.WeightEvaluations > 0 ? 1 : 0);
+    ++shots[kind];
+    seconds[kind] += record.Seconds - previous;
+    previous = record.Seconds;
+    pairs += record.WeightEvaluations;
+    fallbacks += record.Fallbacks;
+    meanFallbacks += record.MeanFallbacks;
+    (kind == 0 ? uniformUpdates : directionalUpdates) += record.ReceiverUpdates;
+  }
+  const auto per = [](double value, std::size_t count)
+  { return count > 0 ? value / static_cast<double>(count) : 0.0; };
+  std::printf("  %zu uniform shots (diffuse, or emission only): %.1f us/shot, mean column %.0f\n",
+    shots[0],
+    1e6 * per(seconds[0], shots[0]),
+    per(static_cast<double>(uniformUpdates), shots[0]));
+  std::printf("  %zu directional shots (mean column %.0f): %zu by strip pairs, %.1f us/shot, "
+              "%.0f pairs/shot, %.1f ns/pair; %zu by the grid, %.1f us/shot; %zu updates "
+              "without h_ji (%zu by the mean)\n",
+    shots[1] + shots[2],
+    per(static_cast<double>(directionalUpdates), shots[1] + shots[2]),
+    shots[1],
+    1e6 * per(seconds[1], shots[1]),
+    per(static_cast<double>(pairs), shots[1]),
+    1e9 * per(seconds[1], pairs),
+    shots[2],
+    1e6 * per(seconds[2], shots[2]),
+    fallbacks,
+    meanFallbacks);
+}
+
+/// What the propagation needs of the patches: the cover, each patch's material and frame.
+struct Prepared
+{
+  SphericalCover Cover;
+  std::vector<Material> Materials;
+  std::vector<HemisphereFrame> Frames;
+  double CoverSeconds = 0.0;
+};
+
+template<typename T>
+void WriteVector(std::FILE* file, const std::vector<T>& values)
+{
+  const uint64_t size = values.size();
+  std::fwrite(&size, sizeof(size), 1, file);
+  std::fwrite(values.data(), sizeof(T), values.size(), file);
+}
+
+template<typename T>
+bool ReadVector(std::FILE* file, std::vector<T>& values)
+{
+  uint64_t size = 0;
+  if (std::fread(&size, sizeof(size), 1, file) != 1 || size > (uint64_t(1) << 34))
+  {
+    return false;
+  }
+  values.resize(size);
+  return std::fread(values.data(), sizeof(T), values.size(), file) == values.size();
+}
+
+/// The cover, surfaces and frames of a previous run (--cache), or false. A cache is only a
+/// time saver for repeated measurements: it is keyed by the scene's name and the refinement.
+bool ReadCache(const std::string& path, const Scene& scene, Prepared& prepared)
+{
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file)
+  {
+    return false;
+  }
+  SphericalCover::Arrays arrays;
+  int header[5] = {};
+  std::vector<int> surfaces;
+  bool ok = std::fread(header, sizeof(header), 1, file) == 1 &&
+    ReadVector(file, arrays.RowOffsets) && ReadVector(file, arrays.Entries) &&
+    ReadVector(file, arrays.Unoccluded) && ReadVector(file, arrays.Strips) &&
+    ReadVector(file, arrays.StripDepths) && ReadVector(file, arrays.Areas) &&
+    ReadVector(file, surfaces) && ReadVector(file, prepared.Frames);
+  std::fclose(file);
+  arrays.ThetaBins = header[0];
+  arrays.PhiBins = header[1];
+  arrays.SamplesTheta = header[2];
+  arrays.SamplesPhi = header[3];
+  arrays.Fill = header[4];
+  arrays.UnoccludedKnown = !arrays.Unoccluded.empty();
+  ok = ok && prepared.Cover.ImportArrays(std::move(arrays)).empty() &&
+    surfaces.size() == prepared.Cover.PatchCount();
+  for (std::size_t i = 0; ok && i < surfaces.size(); ++i)
+  {
+    const Surface& surface = scene.Surfaces.at(static_cast<std::size_t>(surfaces[i]));
+    prepared.Materials.push_back(
+      scene.Materials.at(static_cast<std::size_t>(surface.MaterialIndex)));
+  }
+  return ok;
+}
+
+void WriteCache(const std::string& path,
+  const Prepared& prepared,
+  const std::vector<Patch>& patches)
+{
+  std::FILE* file = std::fopen((path + ".part").c_str(), "wb");
+  if (!file)
+  {
+    return;
+  }
+  const SphericalCover::Arrays arrays = prepared.Cover.ExportArrays();
+  const int header[5] = {
+    arrays.ThetaBins, arrays.PhiBins, arrays.SamplesTheta, arrays.SamplesPhi, arrays.Fill
+  };
+  std::fwrite(header, sizeof(header), 1, file);
+  WriteVector(file, arrays.RowOffsets);
+  WriteVector(file, arrays.Entries);
+  WriteVector(file, arrays.UnoccludedKnown ? arrays.Unoccluded : std::vector<float>());
+  WriteVector(file, arrays.Strips);
+  WriteVector(file, arrays.StripDepths);
+  WriteVector(file, arrays.Areas);
+  std::vector<int> surfaces;
+  for (const Patch& patch : patches)
+  {
+    surfaces.push_back(patch.SurfaceIndex);
+  }
+  WriteVector(file, surfaces);
+  WriteVector(file, prepared.Frames);
+  const bool ok = std::fclose(file) == 0;
+  if (ok)
+  {
+    std::rename((path + ".part").c_str(), path.c_str());
+  }
+}
+
+void Prepare(const Scene& scene,
+  int refineLevels,
+  const std::string& cache,
+  const ParallelFor& parallelFor,
+  Prepared& prepared)
+{
+  if (!cache.empty() && ReadCache(cache, scene, prepared))
+  {
+    std::printf("  (cover, materials and frames read from %s)\n", cache.c_str());
+    return;
+  }
+  prepared = Prepared();
   SphericalCoverOptions options;
   options.ThetaBins = scene.Settings.ThetaBins;
   options.PhiBins = scene.Settings.PhiBins;
-  SphericalCover cover;
-  Clock::time_point start = Clock::now();
-  cover.Build(patches, options, parallelFor);
-  const double coverSeconds = Seconds(start);
-
-  start = Clock::now();
-  LightPropagation propagation(cover, LightPropagation::MaterialsOfPatches(scene, patches));
-  std::vector<HemisphereFrame> frames;
+  std::vector<Patch> patches = Subdivide(scene, parallelFor);
+  if (refineLevels > 0)
+  {
+    patches = Refine(scene, std::move(patches), options, refineLevels, parallelFor);
+  }
+  const Clock::time_point start = Clock::now();
+  prepared.Cover.Build(patches, options, parallelFor);
+  prepared.CoverSeconds = Seconds(start);
+  prepared.Materials = LightPropagation::MaterialsOfPatches(scene, patches);
   for (const Patch& patch : patches)
   {
-    frames.push_back(HemisphereFrame::OfPatch(patch));
+    prepared.Frames.push_back(HemisphereFrame::OfPatch(patch));
   }
-  propagation.SetFrames(frames);
+  if (!cache.empty())
+  {
+    WriteCache(cache, prepared, patches);
+  }
+}
+
+void Converge(const std::string& name,
+  double tolerance,
+  int refineLevels,
+  std::size_t maximumShots,
+  const std::string& cacheDirectory,
+  bool compare,
+  const ParallelFor& parallelFor)
+{
+  const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
+  Prepared prepared;
+  Prepare(scene,
+    refineLevels,
+    cacheDirectory.empty()
+      ? std::string()
+      : cacheDirectory + "/" + name + ".refine" + std::to_string(refineLevels) + ".cover",
+    parallelFor,
+    prepared);
+  const SphericalCover& cover = prepared.Cover;
+  const double coverSeconds = prepared.CoverSeconds;
+
+  Clock::time_point start = Clock::now();
+  LightPropagation propagation(cover, prepared.Materials);
+  propagation.SetFrames(prepared.Frames);
   const double setUpSeconds = Seconds(start);
   std::size_t nonDiffuse = 0;
-  for (std::size_t i = 0; i < patches.size(); ++i)
+  for (std::size_t i = 0; i < cover.PatchCount(); ++i)
   {
     nonDiffuse += propagation.IsLambertian(i) ? 0 : 1;
   }
-  std::printf("%s: %zu patches (%zu non-diffuse), %zu entries, grid %d x %d; cover %.2f s; "
-              "weight tables %.3f s\n",
+  std::printf("%s: %zu patches (%zu non-diffuse, refinement %d levels), %zu entries, grid %d x "
+              "%d; cover %.2f s; weight tables %.3f s\n",
     name.c_str(),
-    patches.size(),
+    cover.PatchCount(),
     nonDiffuse,
+    refineLevels,
     cover.EntryCount(),
-    options.ThetaBins,
-    options.PhiBins,
+    cover.Grid().ThetaBins(),
+    cover.Grid().PhiBins(),
     coverSeconds,
     setUpSeconds);
   PropagationSettings settings;
   settings.ConvergenceTolerance = tolerance;
+  settings.MaximumShots = maximumShots;
   int reported = 0;
+  // Processor time of all threads as well as wall-clock time: on a loaded machine the wall
+  // clock also counts the time the process waited for a core.
+  const std::clock_t cpuStart = std::clock();
   const bool converged = propagation.Run(settings,
     [&](double fraction)
     {
@@ -118,39 +340,67 @@ void Converge(const std::string& name, double tolerance, const ParallelFor& para
       }
       return true;
     });
+  const double cpuSeconds = static_cast<double>(std::clock() - cpuStart) / CLOCKS_PER_SEC;
   const std::vector<ShotRecord>& history = propagation.History();
   const double seconds = history.empty() ? 0.0 : history.back().Seconds;
   std::size_t updates = 0;
-  std::size_t pairs = 0;
-  std::size_t directionalShots = 0;
-  std::size_t fallbacks = 0;
-  std::size_t meanFallbacks = 0;
   for (const ShotRecord& record : history)
   {
     updates += record.ReceiverUpdates;
-    pairs += record.WeightEvaluations;
-    directionalShots += record.WeightEvaluations > 0 ? 1 : 0;
-    fallbacks += record.Fallbacks;
-    meanFallbacks += record.MeanFallbacks;
   }
   const EnergyBalance energy = propagation.Energy();
-  std::printf(
-    "  %s after %zu shots (tolerance %g): %.3f s, %.3g entry updates/s, %.1f us/shot; "
-    "%zu directional shots, %zu strip pairs (%.3g pairs/s), %zu updates without h_ji (%zu "
-    "by the mean); energy "
-    "imbalance %.2e\n",
+  std::printf("  %s after %zu shots (tolerance %g): %.3f s wall, %.3f s processor; %.3g entry "
+              "updates/s, %.1f us/shot; energy imbalance %.2e\n",
     converged ? "converged" : "NOT converged",
     history.size(),
     tolerance,
     seconds,
+    cpuSeconds,
     seconds > 0 ? static_cast<double>(updates) / seconds : 0.0,
     history.empty() ? 0.0 : 1e6 * seconds / static_cast<double>(history.size()),
-    directionalShots,
-    pairs,
-    seconds > 0 ? static_cast<double>(pairs) / seconds : 0.0,
-    fallbacks,
-    meanFallbacks,
     energy.RelativeImbalance);
+  PrintShotKinds(history);
+
+  if (compare)
+  {
+    // The same propagation with every directional shot summed by strip pairs (the method
+    // before the grid): the two must agree up to rounding, shot for shot.
+    LightPropagation reference(cover, prepared.Materials);
+    reference.SetFrames(prepared.Frames);
+    reference.SetDirectionalMethod(DirectionalMethod::StripPairs);
+    reference.Run(settings);
+    double largestIncident = 0.0;
+    double incidentDifference = 0.0;
+    for (std::size_t e = 0; e < cover.EntryCount(); ++e)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        largestIncident = std::max(largestIncident, reference.IncidentRadiance(e)[b]);
+        incidentDifference = std::max(incidentDifference,
+          std::fabs(reference.IncidentRadiance(e)[b] - propagation.IncidentRadiance(e)[b]));
+      }
+    }
+    double brightnessDifference = 0.0;
+    for (std::size_t i = 0; i < cover.PatchCount(); ++i)
+    {
+      const glm::dvec3 a = reference.Brightness(i);
+      const glm::dvec3 b = propagation.Brightness(i);
+      for (int k = 0; k < 3; ++k)
+      {
+        if (a[k] > 0.0)
+        {
+          brightnessDifference = std::max(brightnessDifference, std::fabs(b[k] / a[k] - 1.0));
+        }
+      }
+    }
+    std::printf("  strip pairs only: %zu shots, %.3f s wall; largest difference: incident "
+                "radiance %.1e of the largest, brightness %.1e relative\n",
+      reference.History().size(),
+      reference.History().empty() ? 0.0 : reference.History().back().Seconds,
+      largestIncident > 0.0 ? incidentDifference / largestIncident : 0.0,
+      brightnessDifference);
+    PrintShotKinds(reference.History());
+  }
 }
 
 void CostAgainstColumn(const ParallelFor& parallelFor)
@@ -214,16 +464,18 @@ void CostAgainstCells(const ParallelFor& parallelFor)
   phong.PhongExponent = 20.0;
   phong.Emission = glm::dvec3(1.0);
   const std::vector<Material> materials(patches.size(), phong);
-  std::printf("general-BRDF shot cost vs D (furnace box, %zu phong patches, first 300 shots):\n",
+  std::printf("general-BRDF shot cost vs D (furnace box, %zu phong patches, first 300 shots; "
+              "strip pairs and grid, DirectionalMethod):\n",
     patches.size());
-  std::printf("  %6s %8s %12s %10s %16s %14s %14s\n",
+  std::printf("  %6s %8s %12s %10s %16s %14s %14s %14s\n",
     "grid",
     "D",
     "table s",
     "column",
     "pairs per shot",
     "us per shot",
-    "ns per pair");
+    "ns per pair",
+    "grid us/shot");
   for (int theta : { 8, 16, 32, 64 })
   {
     SphericalCoverOptions options;
@@ -231,32 +483,44 @@ void CostAgainstCells(const ParallelFor& parallelFor)
     options.PhiBins = 4 * theta;
     SphericalCover cover;
     cover.Build(patches, options, parallelFor);
-    Clock::time_point start = Clock::now();
-    LightPropagation propagation(cover, materials);
-    const double tableSeconds = Seconds(start);
-    PropagationSettings settings;
-    settings.MaximumShots = 300;
-    settings.ConvergenceTolerance = 0.0;
-    propagation.Run(settings);
-    const std::vector<ShotRecord>& history = propagation.History();
+    double tableSeconds = 0.0;
+    double perShot[2] = {};
     std::size_t pairs = 0;
     std::size_t updates = 0;
-    for (const ShotRecord& record : history)
+    double shots = 0.0;
+    for (int method = 0; method < 2; ++method)
     {
-      pairs += record.WeightEvaluations;
-      updates += record.ReceiverUpdates;
+      Clock::time_point start = Clock::now();
+      LightPropagation propagation(cover, materials);
+      tableSeconds = Seconds(start);
+      propagation.SetDirectionalMethod(
+        method == 0 ? DirectionalMethod::StripPairs : DirectionalMethod::Grid);
+      PropagationSettings settings;
+      settings.MaximumShots = 300;
+      settings.ConvergenceTolerance = 0.0;
+      propagation.Run(settings);
+      const std::vector<ShotRecord>& history = propagation.History();
+      shots = static_cast<double>(history.size());
+      perShot[method] = history.back().Seconds / shots;
+      if (method == 0)
+      {
+        for (const ShotRecord& record : history)
+        {
+          pairs += record.WeightEvaluations;
+          updates += record.ReceiverUpdates;
+        }
+      }
     }
-    const double seconds = history.back().Seconds;
-    const double shots = static_cast<double>(history.size());
-    std::printf("  %3dx%-4d %8d %12.3f %10.1f %16.0f %14.2f %14.2f\n",
+    std::printf("  %3dx%-4d %8d %12.3f %10.1f %16.0f %14.2f %14.2f %14.2f\n",
       theta,
       4 * theta,
       theta * 4 * theta,
       tableSeconds,
       static_cast<double>(updates) / shots,
       static_cast<double>(pairs) / shots,
-      1e6 * seconds / shots,
-      pairs > 0 ? 1e9 * seconds / static_cast<double>(pairs) : 0.0);
+      1e6 * perShot[0],
+      pairs > 0 ? 1e9 * perShot[0] * shots / static_cast<double>(pairs) : 0.0,
+      1e6 * perShot[1]);
   }
 }
 }
@@ -267,6 +531,11 @@ int main(int argc, char* argv[])
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
   int threads = 0;
   double tolerance = 1e-5;
+  int refineLevels = 0;
+  std::size_t maximumShots = 0;
+  bool costs = true;
+  std::string cacheDirectory;
+  bool compare = false;
   std::vector<std::string> scenes;
   for (int k = 1; k < argc; ++k)
   {
@@ -282,10 +551,32 @@ int main(int argc, char* argv[])
     {
       scenes.emplace_back(argv[++k]);
     }
+    else if (!std::strcmp(argv[k], "--refine") && k + 1 < argc)
+    {
+      refineLevels = std::atoi(argv[++k]);
+    }
+    else if (!std::strcmp(argv[k], "--max-shots") && k + 1 < argc)
+    {
+      maximumShots = static_cast<std::size_t>(std::atoll(argv[++k]));
+    }
+    else if (!std::strcmp(argv[k], "--cache") && k + 1 < argc)
+    {
+      cacheDirectory = argv[++k];
+    }
+    else if (!std::strcmp(argv[k], "--compare"))
+    {
+      compare = true;
+    }
+    else if (!std::strcmp(argv[k], "--no-costs"))
+    {
+      costs = false;
+    }
     else
     {
-      std::fprintf(
-        stderr, "usage: %s [--threads N] [--tolerance T] [--scene name.scene]...\n", argv[0]);
+      std::fprintf(stderr,
+        "usage: %s [--threads N] [--tolerance T] [--refine K] [--max-shots N] [--no-costs] "
+        "[--cache DIR] [--compare] [--scene name.scene]...\n",
+        argv[0]);
       return 2;
     }
   }
@@ -296,9 +587,12 @@ int main(int argc, char* argv[])
   const ParallelFor parallelFor = threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   for (const std::string& scene : scenes)
   {
-    Converge(scene, tolerance, parallelFor);
+    Converge(scene, tolerance, refineLevels, maximumShots, cacheDirectory, compare, parallelFor);
   }
-  CostAgainstColumn(parallelFor);
-  CostAgainstCells(parallelFor);
+  if (costs)
+  {
+    CostAgainstColumn(parallelFor);
+    CostAgainstCells(parallelFor);
+  }
   return 0;
 }

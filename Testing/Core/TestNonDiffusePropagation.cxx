@@ -2,7 +2,8 @@
 // Propagation with non-diffuse reflectance (paper §3.5, §5.1): white furnaces of mirror, phong
 // and tabulated walls, flat and curved; the energy balance and the independence of the shooting
 // order in a closed box of mixed materials; and a mirror carrying light to a patch that cannot
-// see the lamp, against the image-source construction.
+// see the lamp, against the image-source construction; the two summations of a directional shot
+// (strip pairs, whole-hemisphere grid) agree.
 #include "LightPropagation.h"
 
 #include "CoverTestUtilities.h"
@@ -183,24 +184,28 @@ TEST(NonDiffusePropagation, WhiteFurnacesOfMirrorPhongAndTabulatedWalls)
     }
     size_t fallbacks = 0;
     size_t weighted = 0;
+    size_t gridShots = 0;
     for (const ShotRecord& record : propagation.History())
     {
       fallbacks += record.MeanFallbacks;
       weighted += record.WeightEvaluations;
+      gridShots += record.GridShot ? 1 : 0;
     }
-    std::printf("[ Furnace  ] %s, %s walls (%zu patches): %zu shots, %zu strip pairs, %zu mean "
-                "fallbacks; largest error: entries %.1e, points %.1e\n",
+    std::printf("[ Furnace  ] %s, %s walls (%zu patches): %zu shots, %zu strip pairs, %zu grid "
+                "shots, %zu mean fallbacks; largest error: entries %.1e, points %.1e\n",
       c.Scene,
       MaterialTypeName(c.Walls.Type),
       setup.Patches.size(),
       propagation.History().size(),
       weighted,
+      gridShots,
       fallbacks,
       worstEntry,
       worstPoint);
     EXPECT_LT(worstEntry, 0.01) << c.Scene << " " << MaterialTypeName(c.Walls.Type);
     EXPECT_LT(worstPoint, 0.01) << c.Scene << " " << MaterialTypeName(c.Walls.Type);
-    EXPECT_GT(weighted, 0u);
+    // The walls' weight tables were used (by strip pairs or the grid).
+    EXPECT_GT(weighted + gridShots, 0u);
   }
 }
 
@@ -259,6 +264,7 @@ TEST(NonDiffusePropagation, ClosedMixedBoxAbsorbsWhatItEmits)
       if (propagation.IsLambertian(record.Shooter))
       {
         ASSERT_EQ(record.WeightEvaluations, 0u);
+        ASSERT_FALSE(record.GridShot);
       }
     }
   }
@@ -294,6 +300,71 @@ TEST(NonDiffusePropagation, ShootingOrderDoesNotChangeTheEquilibrium)
     fixed.History().size(),
     worst / largest);
   EXPECT_LT(worst, 1e-4 * largest);
+}
+
+TEST(NonDiffusePropagation, GridAndStripPairShotsAgree)
+{
+  // The two ways a directional shot sums its weight table (DirectionalMethod): strip pairs
+  // through the table's cumulative sums, and the whole hemisphere as a grid of cells through
+  // ReflectanceWeights::Reflect (direct terms and Fourier transforms). They are the same sum
+  // in another order, so the same shots must give the same equilibrium up to rounding, also
+  // toward receivers without h_ji (frames given: the fallback toward the direction's cell).
+  CoveredPatches setup("furnace_box.scene", 3);
+  const std::vector<Material> materials = setup.PerPatch(MixedBox());
+  PropagationSettings settings;
+  settings.ConvergenceTolerance = 1e-7;
+  settings.Order = ShootingOrder::FixedOrder;
+  std::vector<std::vector<glm::dvec3>> incident;
+  std::size_t gridShots[3] = {};
+  std::size_t pairShots[3] = {};
+  const DirectionalMethod methods[3] = {
+    DirectionalMethod::StripPairs, DirectionalMethod::Grid, DirectionalMethod::Automatic
+  };
+  std::size_t shots = 0;
+  for (int m = 0; m < 3; ++m)
+  {
+    LightPropagation propagation(setup.Cover, materials);
+    propagation.SetFrames(setup.Frames());
+    propagation.SetDirectionalMethod(methods[m]);
+    ASSERT_TRUE(propagation.Run(settings));
+    for (const ShotRecord& record : propagation.History())
+    {
+      gridShots[m] += record.GridShot ? 1 : 0;
+      pairShots[m] += record.WeightEvaluations > 0 ? 1 : 0;
+    }
+    incident.push_back(propagation.IncidentRadiances());
+    if (m == 0)
+    {
+      shots = propagation.History().size();
+    }
+    // The fixed order shoots the same patches whatever the method.
+    EXPECT_EQ(propagation.History().size(), shots);
+  }
+  EXPECT_EQ(gridShots[0], 0u);
+  EXPECT_GT(pairShots[0], 0u);
+  EXPECT_GT(gridShots[1], 0u);
+  EXPECT_EQ(pairShots[1], 0u);
+  for (int m : { 1, 2 })
+  {
+    double worst = 0.0;
+    double largest = 0.0;
+    for (size_t e = 0; e < setup.Cover.EntryCount(); ++e)
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        worst = std::max(worst, std::fabs(incident[0][e][k] - incident[m][e][k]));
+        largest = std::max(largest, incident[0][e][k]);
+      }
+    }
+    std::printf("[ Methods  ] mixed box split 3, %zu shots: strip pairs vs %s (%zu grid shots, "
+                "%zu strip-pair shots): largest difference %.1e of the largest incident radiance\n",
+      shots,
+      m == 1 ? "grid" : "automatic",
+      gridShots[m],
+      pairShots[m],
+      worst / largest);
+    EXPECT_LT(worst, 1e-10 * largest);
+  }
 }
 
 namespace

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The BRDF models (paper §3.5): the tabulated BRDF format and its errors, the phong lobe's
 // energy-conserving normalization, and the weight tables w(out, in-cell): their rows
-// reproduce the albedo, their columns conserve energy, their strip sums agree with cell sums.
+// reproduce the albedo, their columns conserve energy, their strip sums and the whole-hemisphere
+// Reflect agree with cell sums.
 #include "BrdfTable.h"
 #include "HemisphereGrid.h"
 #include "InputError.h"
@@ -10,10 +11,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 using namespace sphcover;
 
@@ -290,4 +294,87 @@ TEST(ReflectanceWeights, PhongTableFollowsTheLobe)
   const double theta = grid.RowTheta(row) + 0.5 * grid.ThetaStep();
   const double f = model.Evaluate(theta, theta, Pi).x;
   EXPECT_NEAR(table.Weight(row, row, grid.PhiBins() / 2).x / grid.CellMeasure(row), f, 0.05 * f);
+}
+
+TEST(ReflectanceWeights, ReflectEqualsTheCellSum)
+{
+  // Reflect (direct terms and Fourier transforms over the column difference) against the plain
+  // sum I(o) = sum_c w(o, c) e_c over all cells, for every kind, on even and odd PhiBins
+  // (the mirror splits k_s over two cells then) and an incident radiance with empty rows.
+  Material phong;
+  phong.Type = MaterialType::Phong;
+  phong.Diffuse = glm::dvec3(0.1, 0.3, 0.5);
+  phong.Specular = glm::dvec3(0.5, 0.3, 0.1);
+  phong.PhongExponent = 40.0;
+  Material wide = phong;
+  wide.PhongExponent = 2.0;
+  Material mirror;
+  mirror.Type = MaterialType::Mirror;
+  mirror.Specular = glm::dvec3(0.9, 0.8, 0.7);
+  Material clay;
+  clay.Type = MaterialType::Tabulated;
+  clay.TableFile = ClayPath();
+  for (const HemisphereGrid& grid : { HemisphereGrid(16, 64), HemisphereGrid(9, 35) })
+  {
+    const std::size_t cells = static_cast<std::size_t>(grid.CellCount());
+    std::vector<glm::dvec3> incident(cells, glm::dvec3(0.0));
+    for (std::size_t c = 0; c < cells; ++c)
+    {
+      const int row = grid.RowOfCell(static_cast<int>(c));
+      if (row % 3 != 1)
+      {
+        // A deterministic, uneven pattern, with a bright spot.
+        incident[c] = glm::dvec3(
+          1.0 + std::sin(0.37 * c), 0.5 + 0.5 * std::cos(0.11 * c), c % 17 == 0 ? 40.0 : 0.25);
+      }
+    }
+    for (const Material& material : { phong, wide, mirror, clay })
+    {
+      const Reflectance model(material);
+      const ReflectanceWeights table(model, grid);
+      // Even in the column difference (what makes the transforms real), up to the rounding of
+      // the cumulative sums Weight reads.
+      for (int ro = 0; ro < grid.ThetaBins(); ro += 4)
+      {
+        const int ri = std::min(ro + 1, grid.ThetaBins() - 1);
+        const glm::dvec3 scale = table.RowWeight(ro, ri);
+        for (int d = 1; d < grid.PhiBins(); ++d)
+        {
+          const glm::dvec3 a = table.Weight(ro, ri, d);
+          const glm::dvec3 b = table.Weight(ro, ri, grid.PhiBins() - d);
+          for (int k = 0; k < 3; ++k)
+          {
+            EXPECT_NEAR(a[k], b[k], 1e-13 * scale[k]);
+          }
+        }
+      }
+      std::vector<glm::dvec3> fast;
+      table.Reflect(incident, fast);
+      ASSERT_EQ(fast.size(), cells);
+      double worst = 0.0;
+      double largest = 0.0;
+      for (std::size_t o = 0; o < cells; ++o)
+      {
+        const int ro = grid.RowOfCell(static_cast<int>(o));
+        const int co = grid.ColumnOfCell(static_cast<int>(o));
+        glm::dvec3 sum(0.0);
+        for (std::size_t c = 0; c < cells; ++c)
+        {
+          const int ri = grid.RowOfCell(static_cast<int>(c));
+          const int d =
+            (grid.ColumnOfCell(static_cast<int>(c)) - co + grid.PhiBins()) % grid.PhiBins();
+          sum += table.Weight(ro, ri, d) * incident[c];
+        }
+        for (int b = 0; b < 3; ++b)
+        {
+          EXPECT_GE(fast[o][b], 0.0);
+          worst = std::max(worst, std::fabs(fast[o][b] - sum[b]));
+          largest = std::max(largest, sum[b]);
+        }
+      }
+      EXPECT_GT(largest, 0.0);
+      EXPECT_LT(worst, 1e-12 * largest)
+        << MaterialTypeName(material.Type) << " " << grid.ThetaBins() << "x" << grid.PhiBins();
+    }
+  }
 }
