@@ -223,22 +223,24 @@ TEST(CoverRefinement, CornellBoxReciprocityAtTheSceneSettings)
   GTEST_SKIP() << "too slow under the sanitizers (the Release run covers it)";
 #endif
   // The full Cornell box (blocks, light) through the pipeline at the scene's settings with the
-  // cover filter's default refinement (enclosure boundaries with their margin, 3 levels
-  // deeper). Pairs of surfaces that exchange appreciably, min(F_ab, F_ba) >= 0.01: A_a F_ab =
-  // A_b F_ba within 1.5%, and the largest error is printed. The issue asks for 1%: two pairs
-  // stay above it, floor / back_wall (1.0%) and red_wall / tall_block_top (1.4%); both are
-  // one-point quadratures of unrefined level-5 receivers next to a contact line or a
-  // horizon (measured: the back wall's side of floor / back_wall moves by 0.6% when each of
-  // its patches is replaced by 3 x 3 points, while the floor's side is converged), which no
-  // enclosure criterion reaches. Without the refinement the worst pair is floor /
-  // short_block_front at 9.5% (BenchmarkCoverRefinement prints both).
+  // cover filter's default refinement (enclosure boundaries and horizons with their margin, 3
+  // levels deeper). Pairs of surfaces that exchange appreciably, min(F_ab, F_ba) >= 0.01:
+  // A_a F_ab = A_b F_ba within 1% (the issue's figure), and the largest error is printed.
+  // Without the horizon splits two pairs stay above it, red_wall / tall_block_top (1.4%: the
+  // red wall's row of patches across the plane of the block's top has its centres 5 mm above
+  // it) and floor / back_wall (1.0%); without any refinement the worst pair is floor /
+  // short_block_front at 9.5% (BenchmarkCoverRefinement prints every pair, --horizons 0|1).
   // A pair below 0.01 sees the other through a few dozen cells of 32 x 128 or fewer (a cell is
   // 2.4e-4 of a hemisphere's projected solid angle), where the rounding of the boundary cells
   // is an absolute error, not a relative one: for those pairs the error of the exchange
-  // relative to the smaller area, |A_a F_ab - A_b F_ba| / min(A_a, A_b), an error in F
-  // averaged over the smaller surface, stays below 1e-3 (about four cells' worth), unless the
-  // relative error is within 1% anyway (the walls and the small light: F 0.008 one way, 0.17
-  // the other, 0.9%).
+  // relative to the area of the side with the smaller F (the side that sees the other through
+  // few cells), |A_a F_ab - A_b F_ba| / A_s, an error in that side's F averaged over its
+  // surface, stays below 1e-3 (about four cells' worth), unless the relative error is within 1%
+  // anyway. The walls and the small light are such a pair: F 0.0073 one way, 0.166 the other,
+  // 1.05% apart; a direct quadrature of the kernel (light 24 x 24, red wall 160 x 160 points,
+  // the blocks as occluders) gives F_light,red_wall = 0.16635 (the cover: 0.16637) and
+  // F_red_wall,light = 0.00740, so the 1% is the wall's side, which sees the light through
+  // about 30 cells.
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
   const SceneSettingsPipeline run(scene, scene.Settings.MaxLevel, 3, false);
   const size_t count = scene.Surfaces.size();
@@ -268,14 +270,15 @@ TEST(CoverRefinement, CornellBoxReciprocityAtTheSceneSettings)
         ++significant;
         const double relative = std::fabs(ab - ba) / std::max(ab, ba);
         worstRelative = std::max(worstRelative, relative);
-        EXPECT_LT(relative, 0.015)
-          << pair << ": F " << f[a * count + b] << " / " << f[b * count + a];
+        EXPECT_LT(relative, 0.01) << pair << ": F " << f[a * count + b] << " / "
+                                  << f[b * count + a];
         abovePercent += relative > 0.01 ? 1 : 0;
       }
       else if (std::max(ab, ba) > 0.0)
       {
         const double relative = std::fabs(ab - ba) / std::max(ab, ba);
-        const double absolute = std::fabs(ab - ba) / std::min(area[a], area[b]);
+        const double smallSide = f[a * count + b] < f[b * count + a] ? area[a] : area[b];
+        const double absolute = std::fabs(ab - ba) / smallSide;
         worstAbsolute = std::max(worstAbsolute, absolute);
         EXPECT_TRUE(relative < 0.01 || absolute < 1e-3)
           << pair << ": F " << f[a * count + b] << " / " << f[b * count + a] << ", error "
@@ -283,20 +286,22 @@ TEST(CoverRefinement, CornellBoxReciprocityAtTheSceneSettings)
       }
     }
   }
-  std::printf(
-    "[ Refine   ] Cornell box at its settings: %zu -> %zu patches (%zu enclosure "
-    "splits, %zu probe rays); %zu pairs with F >= 0.01: worst reciprocity %.2e, %zu above "
-    "1%%; others: worst |A_a F_ab - A_b F_ba| / min area %.2e\n",
+  std::printf("[ Refine   ] Cornell box at its settings: %zu -> %zu patches (%zu enclosure "
+              "splits, %zu probe rays, %zu horizon splits); %zu pairs with F >= 0.01: worst "
+              "reciprocity %.2e, %zu above "
+              "1%%; others: worst |A_a F_ab - A_b F_ba| / A(smaller F) %.2e\n",
     run.Before.size(),
     run.After.size(),
     run.Statistics.EnclosureSplits,
     run.Statistics.Probes,
+    run.Statistics.HorizonSplits,
     significant,
     worstRelative,
     abovePercent,
     worstAbsolute);
   EXPECT_GE(significant, 30u);
   EXPECT_GT(run.Statistics.EnclosureSplits, 0u);
+  EXPECT_GT(run.Statistics.HorizonSplits, 0u);
   EXPECT_EQ(run.Statistics.Rounds, 0);
   ExpectTiling(scene, run.After);
 }
