@@ -425,6 +425,61 @@ TEST(CoverRefinement, ProgressAndAbort)
   EXPECT_LE(aborted.Patches().size(), complete.Patches().size());
 }
 
+TEST(CoverRefinement, HorizonSplitsFollowAPlaneAcrossAWall)
+{
+  // A unit wall (x = 0, facing +x) standing on a unit floor (y = 0), each 9 x 9 patches, and a
+  // shelf (y = 0.5, x in [0.1, 0.4], z in [0.3, 0.7], facing up) in front of the wall: the
+  // wall sees the shelf's top only above y = 0.5, so the shelf's plane is a horizon across the
+  // wall. The receiver-side horizon test alone (no enclosure probes, no hemispheres) splits
+  // wall patches, and only those within the margin of that plane; the floor meets the wall
+  // along an edge, which is no horizon: without the shelf nothing is split.
+  const Scene furnace = LoadSceneFile(ScenePath("furnace_box.scene"));
+  for (const bool shelf : { false, true })
+  {
+    Scene scene = furnace;
+    scene.Surfaces.clear();
+    scene.Surfaces.emplace_back(Parallelogram({ 0, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }), 0, 0);
+    scene.Surfaces.emplace_back(Parallelogram({ 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }), 0, 0);
+    if (shelf)
+    {
+      scene.Surfaces.emplace_back(
+        Parallelogram({ 0.1, 0.5, 0.3 }, { 0, 0, 0.4 }, { 0.3, 0, 0 }), 0, 0);
+    }
+    const std::vector<Patch> before = SplitScene(scene, 9);
+    RefinementSettings settings;
+    settings.MaxLevel = 2;
+    settings.SplitEnclosureBoundaries = false;
+    settings.AnalyseHemispheres = false;
+    CoverRefinement refinement(scene, before, settings);
+    ASSERT_TRUE(refinement.Run(nullptr, ThreadedFor(2)));
+    const std::vector<Patch> after = refinement.Patches();
+    ExpectTiling(scene, after);
+    const RefinementStatistics& stats = refinement.Statistics();
+    EXPECT_EQ(stats.HorizonSplits, stats.Splits);
+    if (!shelf)
+    {
+      EXPECT_EQ(stats.HorizonSplits, 0u) << "a contact line is no horizon";
+      continue;
+    }
+    EXPECT_GT(stats.HorizonSplits, 0u);
+    bool straddlingSplit = false;
+    for (const Patch& patch : after)
+    {
+      if (patch.Level == 0)
+      {
+        continue;
+      }
+      // Only the wall is cut by another surface's plane, within a patch width (1/9) of a
+      // level-0 patch around it.
+      EXPECT_EQ(patch.SurfaceIndex, 0);
+      EXPECT_LT(std::fabs(patch.Point.y - 0.5), 2.0 / 9.0) << patch.Point.y;
+      straddlingSplit = straddlingSplit ||
+        (std::fabs(patch.Point.y - 0.5) < 1.0 / 9.0 && std::fabs(patch.Point.z - 0.5) < 0.1);
+    }
+    EXPECT_TRUE(straddlingSplit) << "the wall across the shelf's plane, behind the shelf";
+  }
+}
+
 TEST(CoverRefinement, RejectsUnusableSettings)
 {
   const Scene scene = LoadSceneFile(ScenePath("furnace_box.scene"));
@@ -438,6 +493,9 @@ TEST(CoverRefinement, RejectsUnusableSettings)
   EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
   settings = RefinementSettings();
   settings.ProbesPerSide = 1;
+  EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
+  settings = RefinementSettings();
+  settings.HorizonReach = 0.0;
   EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
   settings = RefinementSettings();
   settings.Cover.ThetaBins = 0;
