@@ -23,8 +23,9 @@ namespace
 /// Receivers per ParallelFor call; progress and abort are checked between calls.
 constexpr std::size_t BatchSize = 64;
 
-/// A source's tangent plane cuts a receiver when the receiver's control net reaches this
-/// fraction of its size to both sides (CoverRefinement::SeesHorizonAcross).
+/// A source's tangent plane cuts a receiver's surface when points of it around the receiver
+/// lie farther than this fraction of the receiver's size to both sides
+/// (CoverRefinement::SeesHorizonAcross).
 constexpr double HorizonTolerance = 0.02;
 
 /// Union-find over the samples of one hemisphere (path halving, union by index so that the
