@@ -23,6 +23,11 @@ namespace
 /// Receivers per ParallelFor call; progress and abort are checked between calls.
 constexpr std::size_t BatchSize = 64;
 
+/// A source's tangent plane cuts a receiver's surface when points of it around the receiver
+/// lie farther than this fraction of the receiver's size to both sides
+/// (CoverRefinement::SeesHorizonAcross).
+constexpr double HorizonTolerance = 0.02;
+
 /// Union-find over the samples of one hemisphere (path halving, union by index so that the
 /// labelling does not depend on anything but the R-buffer).
 struct SampleRegions
@@ -83,6 +88,10 @@ std::string RefinementSettings::Problem() const
   if (!(this->EnclosureMargin >= 0.0 && this->EnclosureMargin <= 4.0))
   {
     return "RefinementSettings: EnclosureMargin must be in [0, 4]";
+  }
+  if (!(this->HorizonReach > 0.0 && this->HorizonReach <= 8.0))
+  {
+    return "RefinementSettings: HorizonReach must be in (0, 8]";
   }
   if (this->ProbesPerSide < 2 || this->ProbesPerSide > 16)
   {
@@ -300,16 +309,24 @@ void CoverRefinement::Analyse(std::size_t receiver,
 bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& parallelFor)
 {
   const ParallelFor& run = parallelFor ? parallelFor : ParallelFor(SequentialFor);
-  // The probes cost a few rays per patch; the hemisphere analysis most of the time.
-  const double probeShare = this->Settings.AnalyseHemispheres ? 0.05 : 1.0;
+  // The receiver side costs a few rays and box tests per patch; the hemisphere analysis most
+  // of the time.
+  const double receiverShare = this->Settings.AnalyseHemispheres ? 0.05 : 1.0;
+  const double probeShare = this->Settings.SplitHorizons ? 0.8 * receiverShare : receiverShare;
   if (this->Settings.SplitEnclosureBoundaries &&
     !this->SplitAcrossEnclosures(progress, run, probeShare))
   {
     return false;
   }
+  if (this->Settings.SplitHorizons &&
+    !this->SplitAcrossHorizons(
+      progress, run, this->Settings.SplitEnclosureBoundaries ? probeShare : 0.0, receiverShare))
+  {
+    return false;
+  }
+  const bool receiverSide = this->Settings.SplitEnclosureBoundaries || this->Settings.SplitHorizons;
   if (this->Settings.AnalyseHemispheres &&
-    !this->AnalyseHemispheres(
-      progress, run, this->Settings.SplitEnclosureBoundaries ? probeShare : 0.0))
+    !this->AnalyseHemispheres(progress, run, receiverSide ? receiverShare : 0.0))
   {
     return false;
   }
@@ -537,6 +554,133 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   }
   this->Leaves = std::move(nextLeaves);
   this->Stats.OutputPatches = this->Leaves.size();
+  return true;
+}
+
+bool CoverRefinement::SeesHorizonAcross(std::size_t k) const
+{
+  const Patch& receiver = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+  const double size = receiver.Geometry.Size();
+  const double reach = this->Settings.HorizonReach * size;
+  // A plane "cuts" the surface when points of it lie on both sides by more than this: a
+  // surface meeting it along an edge (a wall on the floor) does not cut it.
+  const double tolerance = HorizonTolerance * size;
+  // The surface over the patch and EnclosureMargin patch widths around it (within the surface,
+  // as the enclosure probes): a plane cutting it there puts a kink into the patch's
+  // neighbourhood, and the pieces shrink towards it as towards an enclosure boundary.
+  const BezierPatch& surface =
+    this->Environment.Surfaces[static_cast<size_t>(receiver.SurfaceIndex)].Patch;
+  const UVRect extent = this->ProbeExtent(receiver.SurfaceIndex);
+  const double margin = this->Settings.EnclosureMargin;
+  const double steps[5] = { -margin, 0.0, 0.5, 1.0, 1.0 + margin };
+  std::array<glm::dvec3, 25> points;
+  for (int b = 0; b < 5; ++b)
+  {
+    for (int a = 0; a < 5; ++a)
+    {
+      const UVRect& d = receiver.Domain;
+      const double u = std::min(extent.U1, std::max(extent.U0, d.U0 + steps[a] * (d.U1 - d.U0)));
+      const double v = std::min(extent.V1, std::max(extent.V0, d.V0 + steps[b] * (d.V1 - d.V0)));
+      points[static_cast<size_t>(5 * b + a)] = surface.Evaluate(u, v);
+    }
+  }
+  const int group = this->GroupOf(receiver.SurfaceIndex);
+  for (const int leaf : this->Leaves)
+  {
+    const Patch& source = this->Nodes[static_cast<size_t>(leaf)];
+    if (this->GroupOf(source.SurfaceIndex) == group)
+    {
+      continue;
+    }
+    const IntervalVec3& bounds = source.Geometry.Bounds();
+    if (Box{ bounds.Lower(), bounds.Upper() }.DistanceTo(receiver.Point) >= reach)
+    {
+      continue;
+    }
+    // In front of the receiver (seen from its characteristic point)...
+    if (glm::dot(source.Point - receiver.Point, receiver.Normal) <= tolerance)
+    {
+      continue;
+    }
+    // ... and its tangent plane cuts the receiver's neighbourhood: part of it sees the
+    // source's front, part of it does not.
+    double below = 0.0;
+    double above = 0.0;
+    for (const glm::dvec3& point : points)
+    {
+      const double height = glm::dot(point - source.Point, source.Normal);
+      below = std::min(below, height);
+      above = std::max(above, height);
+    }
+    if (below < -tolerance && above > tolerance)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool CoverRefinement::SplitAcrossHorizons(const ProgressCallback& progress,
+  const ParallelFor& run,
+  double progressStart,
+  double progressEnd)
+{
+  // Rounds: every leaf is tested against the current list; the leaves that see a horizon
+  // across them are split, and their pieces tested again in the next round (each round deepens
+  // by one level, so there are at most MaxLevel + 1 rounds).
+  for (int round = 0; round <= this->Settings.MaxLevel; ++round)
+  {
+    const size_t count = this->Leaves.size();
+    std::vector<char> split(count, 0);
+    for (size_t first = 0; first < count; first += BatchSize)
+    {
+      const size_t batch = std::min(BatchSize, count - first);
+      run(batch,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = first + begin; k < first + end; ++k)
+          {
+            const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+            split[k] = leaf.Level < this->Settings.MaxLevel && this->SeesHorizonAcross(k);
+          }
+        });
+      const double done = (round + double(first + batch) / count) / (this->Settings.MaxLevel + 1);
+      if (progress && !progress(progressStart + (progressEnd - progressStart) * done))
+      {
+        return false;
+      }
+    }
+    std::vector<int> nextLeaves;
+    size_t splits = 0;
+    for (size_t k = 0; k < count; ++k)
+    {
+      if (!split[k])
+      {
+        nextLeaves.push_back(this->Leaves[k]);
+        continue;
+      }
+      ++splits;
+      const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+      const BezierPatch& surface =
+        this->Environment.Surfaces[static_cast<size_t>(leaf.SurfaceIndex)].Patch;
+      std::array<Patch, 3> three = SplitInThree(leaf, surface, SplitReason::RBuffer);
+      for (Patch& piece : three)
+      {
+        nextLeaves.push_back(static_cast<int>(this->Nodes.size()));
+        this->Nodes.push_back(std::move(piece));
+        this->VisibleNodes.emplace_back();
+        this->Analysed.push_back(false);
+      }
+    }
+    this->Leaves = std::move(nextLeaves);
+    this->Stats.Splits += splits;
+    this->Stats.HorizonSplits += splits;
+    this->Stats.OutputPatches = this->Leaves.size();
+    if (splits == 0)
+    {
+      break;
+    }
+  }
   return true;
 }
 

@@ -102,7 +102,8 @@ public:
   enum RefinementModes
   {
     REFINEMENT_OFF = 0,
-    /// Receiver side only: patches straddling an enclosure boundary (CoverRefinement.h).
+    /// Receiver side only: patches straddling an enclosure boundary, and patches across the
+    /// horizon of a nearby surface (CoverRefinement.h).
     REFINEMENT_ENCLOSURES = 1,
     /// Enclosure boundaries, then paper §4.3 Step 3 from the source side (every hemisphere
     /// analysed once per level; several cover builds' worth of time).
@@ -115,7 +116,10 @@ public:
    * (sphcover::CoverRefinement): REFINEMENT_OFF, REFINEMENT_ENCLOSURES (patches part of which
    * lies inside a closed solid or under a surface turned away, such as the floor along a
    * block's footprint, or within one patch width of such a boundary, are split; costs a few
-   * hundred rays per patch) or REFINEMENT_FULL (then also
+   * hundred rays per patch; and patches across which, or within one patch width of which, the
+   * plane of a surface in front of them within two patch sizes passes, so that part of them
+   * sees that surface and part does not, such as the red wall along the plane of a block's top;
+   * box and plane tests) or REFINEMENT_FULL (then also
    * patches substantially hidden or disconnected in some hemisphere). The output then has one
    * point per refined patch. Default is REFINEMENT_ENCLOSURES.
    */

@@ -33,8 +33,9 @@ subdivision = globals()["IntervalSubdivision"](Input=scene, MaxLevel=2, ThetaBin
 cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0), ThetaBins=8, PhiBins=32)
 
 # One characteristic point on the left wall (x = -6), above the teapot's handle: the one nearest
-# to (-6, 4, 0).
-points = servermanager.Fetch(subdivision, idx=1)
+# to (-6, 4, 0), among the cover's points (the refinement splits patches, so the subdivision's
+# point ids are not the cover's).
+points = servermanager.Fetch(cover, idx=0)
 
 
 def distance_to_spot(k):

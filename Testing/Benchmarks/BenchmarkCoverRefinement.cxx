@@ -7,11 +7,13 @@
  * tests).
  *
  *   BenchmarkCoverRefinement [--threads N] [--extra-levels K] [--enclosures 0|1]
- *                            [--hemispheres 0|1] [--scene name.scene]...
+ *                            [--horizons 0|1] [--hemispheres 0|1] [--scene name.scene]...
  *
- * --enclosures and --hemispheres switch the receiver-side enclosure probes and the Step 3
- * hemisphere analysis (RefinementSettings) on or off; both are on by default. --margin sets
- * RefinementSettings::EnclosureMargin; --skip-before skips the cover before refinement.
+ * --enclosures, --horizons and --hemispheres switch the receiver-side enclosure probes, the
+ * receiver-side horizon splits and the Step 3 hemisphere analysis (RefinementSettings) on or
+ * off; all are on by default. --margin sets
+ * RefinementSettings::EnclosureMargin and --horizon-reach RefinementSettings::HorizonReach;
+ * --skip-before skips the cover before refinement.
  *
  * The refinement may go K levels (default 2) deeper than the scene's MaxLevel: at the scenes'
  * settings the interval subdivision already takes every patch to MaxLevel, so with the same
@@ -52,6 +54,8 @@ double Seconds(std::chrono::steady_clock::time_point start)
 void Run(const std::string& name,
   int extraLevels,
   bool enclosures,
+  bool horizons,
+  double reach,
   bool hemispheres,
   double margin,
   bool skipBefore,
@@ -91,6 +95,8 @@ void Run(const std::string& name,
   refinementSettings.Cover = coverOptions;
   refinementSettings.MaxLevel = scene.Settings.MaxLevel + extraLevels;
   refinementSettings.SplitEnclosureBoundaries = enclosures;
+  refinementSettings.SplitHorizons = horizons;
+  refinementSettings.HorizonReach = reach;
   refinementSettings.AnalyseHemispheres = hemispheres;
   refinementSettings.EnclosureMargin = margin;
   start = std::chrono::steady_clock::now();
@@ -108,13 +114,14 @@ void Run(const std::string& name,
 
   const RefinementStatistics& s = refinement.Statistics();
   std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d, enclosure probes %s, "
-              "hemisphere analysis %s)\n",
+              "horizons %s, hemisphere analysis %s)\n",
     name.c_str(),
     coverOptions.ThetaBins,
     coverOptions.PhiBins,
     scene.Settings.MaxLevel,
     refinementSettings.MaxLevel,
     enclosures ? "on" : "off",
+    horizons ? "on" : "off",
     hemispheres ? "on" : "off");
   std::printf("  subdivision          %8zu patches  %8.2f s\n", before.size(), subdivisionSeconds);
   std::printf("  cover before         %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
@@ -126,8 +133,8 @@ void Run(const std::string& name,
     reciprocityBefore.WorstRowError);
   std::printf(
     "  refinement           %8zu patches  %8.2f s  rounds %d, hemispheres analysed %zu, "
-    "splits %zu (%zu across enclosure boundaries by %zu probe rays, %zu for disconnection "
-    "only), refused by limits %zu\n",
+    "splits %zu (%zu across enclosure boundaries by %zu probe rays, %zu across horizons, %zu "
+    "for disconnection only), refused by limits %zu\n",
     after.size(),
     refinementSeconds,
     s.Rounds,
@@ -135,6 +142,7 @@ void Run(const std::string& name,
     s.Splits,
     s.EnclosureSplits,
     s.Probes,
+    s.HorizonSplits,
     s.DisconnectedSplits,
     s.LimitedRequests);
   std::printf("  cover after          %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
@@ -144,7 +152,8 @@ void Run(const std::string& name,
     reciprocityAfter.WorstReciprocity,
     reciprocityAfter.WorstPair.c_str(),
     reciprocityAfter.WorstRowError);
-  // Every pair still above 1%, with its exchange relative to the smaller area.
+  // Every pair with min(F_ab, F_ba) >= 0.01 and every other pair above 1%, with its exchange
+  // relative to the smaller area.
   {
     const size_t count = scene.Surfaces.size();
     std::vector<int> groups;
@@ -161,10 +170,12 @@ void Run(const std::string& name,
       {
         const double ab = area[a] * f[a * count + b];
         const double ba = area[b] * f[b * count + a];
-        if (std::max(ab, ba) > 0.0 && std::fabs(ab - ba) > 0.01 * std::max(ab, ba))
+        const bool significant = std::min(f[a * count + b], f[b * count + a]) >= 0.01;
+        if (std::max(ab, ba) > 0.0 && (significant || std::fabs(ab - ba) > 0.01 * std::max(ab, ba)))
         {
-          std::printf("    pair above 1%%: %s / %s  F %.4g / %.4g  error %.2e  exchange / min "
+          std::printf("    %s: %s / %s  F %.4g / %.4g  error %.2e  exchange / min "
                       "area %.2e\n",
+            significant ? "pair F >= 0.01" : "pair above 1% ",
             scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[a].NameIndex)].c_str(),
             scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[b].NameIndex)].c_str(),
             f[a * count + b],
@@ -186,6 +197,8 @@ int main(int argc, char* argv[])
   int threads = 2;
   int extraLevels = 2;
   bool enclosures = true;
+  bool horizons = true;
+  double reach = RefinementSettings().HorizonReach;
   double margin = RefinementSettings().EnclosureMargin;
   bool skipBefore = false;
   bool hemispheres = true;
@@ -203,6 +216,14 @@ int main(int argc, char* argv[])
     else if (std::strcmp(argv[k], "--enclosures") == 0 && k + 1 < argc)
     {
       enclosures = std::atoi(argv[++k]) != 0;
+    }
+    else if (std::strcmp(argv[k], "--horizons") == 0 && k + 1 < argc)
+    {
+      horizons = std::atoi(argv[++k]) != 0;
+    }
+    else if (std::strcmp(argv[k], "--horizon-reach") == 0 && k + 1 < argc)
+    {
+      reach = std::atof(argv[++k]);
     }
     else if (std::strcmp(argv[k], "--margin") == 0 && k + 1 < argc)
     {
@@ -223,8 +244,9 @@ int main(int argc, char* argv[])
     else
     {
       std::fprintf(stderr,
-        "usage: %s [--threads N] [--extra-levels K] [--enclosures 0|1] [--hemispheres 0|1] "
-        "[--margin W] [--skip-before] [--scene name.scene]...\n",
+        "usage: %s [--threads N] [--extra-levels K] [--enclosures 0|1] [--horizons 0|1] "
+        "[--horizon-reach R] [--hemispheres 0|1] [--margin W] [--skip-before] [--scene "
+        "name.scene]...\n",
         argv[0]);
       return 2;
     }
@@ -239,7 +261,15 @@ int main(int argc, char* argv[])
   std::printf("threads %d\n", threads);
   for (const std::string& scene : scenes)
   {
-    Run(scene, extraLevels, enclosures, hemispheres, margin, skipBefore, parallelFor);
+    Run(scene,
+      extraLevels,
+      enclosures,
+      horizons,
+      reach,
+      hemispheres,
+      margin,
+      skipBefore,
+      parallelFor);
   }
   return 0;
 }

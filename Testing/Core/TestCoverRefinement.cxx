@@ -223,22 +223,24 @@ TEST(CoverRefinement, CornellBoxReciprocityAtTheSceneSettings)
   GTEST_SKIP() << "too slow under the sanitizers (the Release run covers it)";
 #endif
   // The full Cornell box (blocks, light) through the pipeline at the scene's settings with the
-  // cover filter's default refinement (enclosure boundaries with their margin, 3 levels
-  // deeper). Pairs of surfaces that exchange appreciably, min(F_ab, F_ba) >= 0.01: A_a F_ab =
-  // A_b F_ba within 1.5%, and the largest error is printed. The issue asks for 1%: two pairs
-  // stay above it, floor / back_wall (1.0%) and red_wall / tall_block_top (1.4%); both are
-  // one-point quadratures of unrefined level-5 receivers next to a contact line or a
-  // horizon (measured: the back wall's side of floor / back_wall moves by 0.6% when each of
-  // its patches is replaced by 3 x 3 points, while the floor's side is converged), which no
-  // enclosure criterion reaches. Without the refinement the worst pair is floor /
-  // short_block_front at 9.5% (BenchmarkCoverRefinement prints both).
+  // cover filter's default refinement (enclosure boundaries and horizons with their margin, 3
+  // levels deeper). Pairs of surfaces that exchange appreciably, min(F_ab, F_ba) >= 0.01:
+  // A_a F_ab = A_b F_ba within 1% (the issue's figure), and the largest error is printed.
+  // Without the horizon splits two pairs stay above it, red_wall / tall_block_top (1.4%: the
+  // red wall's row of patches across the plane of the block's top has its centres 5 mm above
+  // it) and floor / back_wall (1.0%); without any refinement the worst pair is floor /
+  // short_block_front at 9.5% (BenchmarkCoverRefinement prints every pair, --horizons 0|1).
   // A pair below 0.01 sees the other through a few dozen cells of 32 x 128 or fewer (a cell is
   // 2.4e-4 of a hemisphere's projected solid angle), where the rounding of the boundary cells
   // is an absolute error, not a relative one: for those pairs the error of the exchange
-  // relative to the smaller area, |A_a F_ab - A_b F_ba| / min(A_a, A_b), an error in F
-  // averaged over the smaller surface, stays below 1e-3 (about four cells' worth), unless the
-  // relative error is within 1% anyway (the walls and the small light: F 0.008 one way, 0.17
-  // the other, 0.9%).
+  // relative to the area of the side with the smaller F (the side that sees the other through
+  // few cells), |A_a F_ab - A_b F_ba| / A_s, an error in that side's F averaged over its
+  // surface, stays below 1e-3 (about four cells' worth), unless the relative error is within 1%
+  // anyway. The walls and the small light are such a pair: F 0.0073 one way, 0.166 the other,
+  // 1.05% apart; a direct quadrature of the kernel (light 24 x 24, red wall 160 x 160 points,
+  // the blocks as occluders) gives F_light,red_wall = 0.16635 (the cover: 0.16637) and
+  // F_red_wall,light = 0.00740, so the 1% is the wall's side, which sees the light through
+  // about 30 cells.
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
   const SceneSettingsPipeline run(scene, scene.Settings.MaxLevel, 3, false);
   const size_t count = scene.Surfaces.size();
@@ -268,14 +270,15 @@ TEST(CoverRefinement, CornellBoxReciprocityAtTheSceneSettings)
         ++significant;
         const double relative = std::fabs(ab - ba) / std::max(ab, ba);
         worstRelative = std::max(worstRelative, relative);
-        EXPECT_LT(relative, 0.015)
-          << pair << ": F " << f[a * count + b] << " / " << f[b * count + a];
+        EXPECT_LT(relative, 0.01) << pair << ": F " << f[a * count + b] << " / "
+                                  << f[b * count + a];
         abovePercent += relative > 0.01 ? 1 : 0;
       }
       else if (std::max(ab, ba) > 0.0)
       {
         const double relative = std::fabs(ab - ba) / std::max(ab, ba);
-        const double absolute = std::fabs(ab - ba) / std::min(area[a], area[b]);
+        const double smallSide = f[a * count + b] < f[b * count + a] ? area[a] : area[b];
+        const double absolute = std::fabs(ab - ba) / smallSide;
         worstAbsolute = std::max(worstAbsolute, absolute);
         EXPECT_TRUE(relative < 0.01 || absolute < 1e-3)
           << pair << ": F " << f[a * count + b] << " / " << f[b * count + a] << ", error "
@@ -283,20 +286,22 @@ TEST(CoverRefinement, CornellBoxReciprocityAtTheSceneSettings)
       }
     }
   }
-  std::printf(
-    "[ Refine   ] Cornell box at its settings: %zu -> %zu patches (%zu enclosure "
-    "splits, %zu probe rays); %zu pairs with F >= 0.01: worst reciprocity %.2e, %zu above "
-    "1%%; others: worst |A_a F_ab - A_b F_ba| / min area %.2e\n",
+  std::printf("[ Refine   ] Cornell box at its settings: %zu -> %zu patches (%zu enclosure "
+              "splits, %zu probe rays, %zu horizon splits); %zu pairs with F >= 0.01: worst "
+              "reciprocity %.2e, %zu above "
+              "1%%; others: worst |A_a F_ab - A_b F_ba| / A(smaller F) %.2e\n",
     run.Before.size(),
     run.After.size(),
     run.Statistics.EnclosureSplits,
     run.Statistics.Probes,
+    run.Statistics.HorizonSplits,
     significant,
     worstRelative,
     abovePercent,
     worstAbsolute);
   EXPECT_GE(significant, 30u);
   EXPECT_GT(run.Statistics.EnclosureSplits, 0u);
+  EXPECT_GT(run.Statistics.HorizonSplits, 0u);
   EXPECT_EQ(run.Statistics.Rounds, 0);
   ExpectTiling(scene, run.After);
 }
@@ -420,6 +425,61 @@ TEST(CoverRefinement, ProgressAndAbort)
   EXPECT_LE(aborted.Patches().size(), complete.Patches().size());
 }
 
+TEST(CoverRefinement, HorizonSplitsFollowAPlaneAcrossAWall)
+{
+  // A unit wall (x = 0, facing +x) standing on a unit floor (y = 0), each 9 x 9 patches, and a
+  // shelf (y = 0.5, x in [0.1, 0.4], z in [0.3, 0.7], facing up) in front of the wall: the
+  // wall sees the shelf's top only above y = 0.5, so the shelf's plane is a horizon across the
+  // wall. The receiver-side horizon test alone (no enclosure probes, no hemispheres) splits
+  // wall patches, and only those within the margin of that plane; the floor meets the wall
+  // along an edge, which is no horizon: without the shelf nothing is split.
+  const Scene furnace = LoadSceneFile(ScenePath("furnace_box.scene"));
+  for (const bool shelf : { false, true })
+  {
+    Scene scene = furnace;
+    scene.Surfaces.clear();
+    scene.Surfaces.emplace_back(Parallelogram({ 0, 0, 0 }, { 0, 1, 0 }, { 0, 0, 1 }), 0, 0);
+    scene.Surfaces.emplace_back(Parallelogram({ 0, 0, 0 }, { 0, 0, 1 }, { 1, 0, 0 }), 0, 0);
+    if (shelf)
+    {
+      scene.Surfaces.emplace_back(
+        Parallelogram({ 0.1, 0.5, 0.3 }, { 0, 0, 0.4 }, { 0.3, 0, 0 }), 0, 0);
+    }
+    const std::vector<Patch> before = SplitScene(scene, 9);
+    RefinementSettings settings;
+    settings.MaxLevel = 2;
+    settings.SplitEnclosureBoundaries = false;
+    settings.AnalyseHemispheres = false;
+    CoverRefinement refinement(scene, before, settings);
+    ASSERT_TRUE(refinement.Run(nullptr, ThreadedFor(2)));
+    const std::vector<Patch> after = refinement.Patches();
+    ExpectTiling(scene, after);
+    const RefinementStatistics& stats = refinement.Statistics();
+    EXPECT_EQ(stats.HorizonSplits, stats.Splits);
+    if (!shelf)
+    {
+      EXPECT_EQ(stats.HorizonSplits, 0u) << "a contact line is no horizon";
+      continue;
+    }
+    EXPECT_GT(stats.HorizonSplits, 0u);
+    bool straddlingSplit = false;
+    for (const Patch& patch : after)
+    {
+      if (patch.Level == 0)
+      {
+        continue;
+      }
+      // Only the wall is cut by another surface's plane, within a patch width (1/9) of a
+      // level-0 patch around it.
+      EXPECT_EQ(patch.SurfaceIndex, 0);
+      EXPECT_LT(std::fabs(patch.Point.y - 0.5), 2.0 / 9.0) << patch.Point.y;
+      straddlingSplit = straddlingSplit ||
+        (std::fabs(patch.Point.y - 0.5) < 1.0 / 9.0 && std::fabs(patch.Point.z - 0.5) < 0.1);
+    }
+    EXPECT_TRUE(straddlingSplit) << "the wall across the shelf's plane, behind the shelf";
+  }
+}
+
 TEST(CoverRefinement, RejectsUnusableSettings)
 {
   const Scene scene = LoadSceneFile(ScenePath("furnace_box.scene"));
@@ -433,6 +493,9 @@ TEST(CoverRefinement, RejectsUnusableSettings)
   EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
   settings = RefinementSettings();
   settings.ProbesPerSide = 1;
+  EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
+  settings = RefinementSettings();
+  settings.HorizonReach = 0.0;
   EXPECT_THROW(CoverRefinement(scene, patches, settings), std::invalid_argument);
   settings = RefinementSettings();
   settings.Cover.ThetaBins = 0;
