@@ -17,6 +17,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 using namespace sphcover;
@@ -28,6 +29,24 @@ constexpr double Pi = 3.14159265358979323846;
 std::string ClayPath()
 {
   return std::string(SPHCOVER_DATA_DIR) + "/brdf/clay.brdf.csv";
+}
+
+/// One material of each non-diffuse kind: phong (diffuse + lobe of the given exponent), a
+/// coloured mirror and the clay table.
+std::tuple<Material, Material, Material> NonDiffuseMaterials(double exponent)
+{
+  Material phong;
+  phong.Type = MaterialType::Phong;
+  phong.Diffuse = glm::dvec3(0.1, 0.3, 0.5);
+  phong.Specular = glm::dvec3(0.5, 0.3, 0.1);
+  phong.PhongExponent = exponent;
+  Material mirror;
+  mirror.Type = MaterialType::Mirror;
+  mirror.Specular = glm::dvec3(0.9, 0.8, 0.7);
+  Material clay;
+  clay.Type = MaterialType::Tabulated;
+  clay.TableFile = ClayPath();
+  return { phong, mirror, clay };
 }
 
 /// The clay formula of Data/brdf/tools/make_clay_table.py.
@@ -185,17 +204,7 @@ TEST(Reflectance, PhongLobeReflectsExactlyItsAlbedoFromEveryDirection)
 TEST(ReflectanceWeights, RowsGiveTheAlbedoColumnsConserveEnergy)
 {
   const HemisphereGrid grid(16, 48);
-  Material phong;
-  phong.Type = MaterialType::Phong;
-  phong.Diffuse = glm::dvec3(0.1, 0.3, 0.5);
-  phong.Specular = glm::dvec3(0.5, 0.3, 0.1);
-  phong.PhongExponent = 20.0;
-  Material mirror;
-  mirror.Type = MaterialType::Mirror;
-  mirror.Specular = glm::dvec3(0.9, 0.8, 0.7);
-  Material clay;
-  clay.Type = MaterialType::Tabulated;
-  clay.TableFile = ClayPath();
+  const auto [phong, mirror, clay] = NonDiffuseMaterials(20.0);
   for (const Material& material : { phong, mirror, clay })
   {
     const Reflectance model(material);
@@ -301,19 +310,9 @@ TEST(ReflectanceWeights, ReflectEqualsTheCellSum)
   // Reflect (direct terms and Fourier transforms over the column difference) against the plain
   // sum I(o) = sum_c w(o, c) e_c over all cells, for every kind, on even and odd PhiBins
   // (the mirror splits k_s over two cells then) and an incident radiance with empty rows.
-  Material phong;
-  phong.Type = MaterialType::Phong;
-  phong.Diffuse = glm::dvec3(0.1, 0.3, 0.5);
-  phong.Specular = glm::dvec3(0.5, 0.3, 0.1);
-  phong.PhongExponent = 40.0;
+  const auto [phong, mirror, clay] = NonDiffuseMaterials(40.0);
   Material wide = phong;
   wide.PhongExponent = 2.0;
-  Material mirror;
-  mirror.Type = MaterialType::Mirror;
-  mirror.Specular = glm::dvec3(0.9, 0.8, 0.7);
-  Material clay;
-  clay.Type = MaterialType::Tabulated;
-  clay.TableFile = ClayPath();
   for (const HemisphereGrid& grid : { HemisphereGrid(16, 64), HemisphereGrid(9, 35) })
   {
     const std::size_t cells = static_cast<std::size_t>(grid.CellCount());
