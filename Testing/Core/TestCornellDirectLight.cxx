@@ -72,7 +72,9 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
 
   for (const bool diffuse : { false, true })
   {
-    for (int split : { Sanitized ? 9 : 15 })
+    // 15 x 15 patches per wall in every build: coarser ones (tried under the sanitizers: 9)
+    // leave the diffused vote -1.4% on a wall, above the limit below.
+    const int split = 15;
     {
       std::vector<Patch> patches;
       for (size_t s = 0; s < scene.Surfaces.size(); ++s)
