@@ -36,6 +36,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -218,7 +220,9 @@ void RunPipeline(const std::string& scenePath)
   }
 }
 
-int main(int argc, char** argv)
+namespace
+{
+int Run(int argc, char** argv)
 {
   bool pipeline = false;
   std::vector<std::string> pipelineScenes;
@@ -244,7 +248,12 @@ int main(int argc, char** argv)
     }
     else if (arg == "--scene" && k + 1 < argc)
     {
+      // A bare name is one of Data/scenes, as BenchmarkLightPropagation takes it.
       scenePath = argv[++k];
+      if (!std::filesystem::exists(scenePath))
+      {
+        scenePath = std::string(SPHCOVER_DATA_DIR) + "/scenes/" + scenePath;
+      }
       pipelineScenes.push_back(scenePath);
     }
     else if (arg == "--pipeline")
@@ -345,4 +354,18 @@ int main(int argc, char** argv)
     }
   }
   return 0;
+}
+}
+
+int main(int argc, char** argv)
+{
+  try
+  {
+    return Run(argc, argv);
+  }
+  catch (const std::exception& e)
+  {
+    std::fprintf(stderr, "BenchmarkSphericalCover: %s\n", e.what());
+    return 1;
+  }
 }
