@@ -23,35 +23,6 @@
 using namespace sphcover;
 using namespace sphcover_test;
 
-namespace
-{
-constexpr double Pi = 3.14159265358979323846;
-
-/// Lambert's contour formula: the form factor from a point with unit normal n to a planar
-/// polygon (either orientation), F = |1/(2 pi) sum_k gamma_k n . (R_k x R_k+1) / |R_k x R_k+1||.
-double PointToPolygonFormFactor(const glm::dvec3& point,
-  const glm::dvec3& normal,
-  const std::vector<glm::dvec3>& polygon)
-{
-  double sum = 0.0;
-  for (size_t k = 0; k < polygon.size(); ++k)
-  {
-    const glm::dvec3 a = glm::normalize(polygon[k] - point);
-    const glm::dvec3 b = glm::normalize(polygon[(k + 1) % polygon.size()] - point);
-    const glm::dvec3 c = glm::cross(a, b);
-    const double length = glm::length(c);
-    if (length <= 0.0)
-    {
-      continue;
-    }
-    const double gamma = std::atan2(length, glm::dot(a, b));
-    sum += gamma * glm::dot(normal, c) / length;
-  }
-  return std::fabs(sum) / (2.0 * Pi);
-}
-
-}
-
 TEST(CornellDirectLight, LampProjectedSolidAngle)
 {
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
@@ -159,7 +130,7 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
             }
           }
         }
-        const double exact = Pi * PointToPolygonFormFactor(p.Point, p.Normal, polygon);
+        const double exact = LambertProjectedSolidAngle(p.Point, p.Normal, polygon);
         const size_t s = static_cast<size_t>(p.SurfaceIndex);
         coverSum[s] += p.Area * omega;
         sampleSum[s] += p.Area * sampleOmega;
