@@ -23,6 +23,34 @@ namespace
 /// Receivers per ParallelFor call; progress and abort are checked between calls.
 constexpr std::size_t BatchSize = 64;
 
+/// Runs body(k) for every k in [0, count), in batches of BatchSize items shared out by `run`;
+/// after each batch afterBatch(items done so far) reports progress and may stop the loop by
+/// returning false (then so does this).
+template<class Body, class AfterBatch>
+bool ForEachInBatches(std::size_t count,
+  const ParallelFor& run,
+  Body&& body,
+  AfterBatch&& afterBatch)
+{
+  for (std::size_t first = 0; first < count; first += BatchSize)
+  {
+    const std::size_t batch = std::min(BatchSize, count - first);
+    run(batch,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t k = first + begin; k < first + end; ++k)
+        {
+          body(k);
+        }
+      });
+    if (!afterBatch(first + batch))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
 /// A source's tangent plane cuts a receiver's surface when points of it around the receiver
 /// lie farther than this fraction of the receiver's size to both sides
 /// (CoverRefinement::SeesHorizonAcross).
@@ -493,45 +521,41 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   std::vector<std::vector<Patch>> pieces(count);
   std::vector<std::size_t> splits(count, 0);
   std::vector<std::size_t> probes(count, 0);
-  for (size_t first = 0; first < count; first += BatchSize)
-  {
-    const size_t batch = std::min(BatchSize, count - first);
-    run(batch,
-      [&](size_t begin, size_t end)
-      {
-        for (size_t k = first + begin; k < first + end; ++k)
-        {
-          const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
-          if (leaf.Level >= this->Settings.MaxLevel || !straddles(leaf, probes[k]))
-          {
-            continue;
-          }
-          const BezierPatch& surface =
-            this->Environment.Surfaces[static_cast<size_t>(leaf.SurfaceIndex)].Patch;
-          std::vector<Patch> stack{ leaf };
-          while (!stack.empty())
-          {
-            const Patch patch = std::move(stack.back());
-            stack.pop_back();
-            if (patch.Level >= this->Settings.MaxLevel ||
-              (splits[k] > 0 && !straddles(patch, probes[k])))
-            {
-              pieces[k].push_back(patch);
-              continue;
-            }
-            ++splits[k];
-            std::array<Patch, 3> three = SplitInThree(patch, surface, SplitReason::RBuffer);
-            for (int t = 2; t >= 0; --t)
-            {
-              stack.push_back(std::move(three[static_cast<size_t>(t)]));
-            }
-          }
-        }
-      });
-    if (progress && !progress(progressShare * double(first + batch) / count))
+  const bool finished = ForEachInBatches(
+    count,
+    run,
+    [&](size_t k)
     {
-      return false;
-    }
+      const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+      if (leaf.Level >= this->Settings.MaxLevel || !straddles(leaf, probes[k]))
+      {
+        return;
+      }
+      const BezierPatch& surface =
+        this->Environment.Surfaces[static_cast<size_t>(leaf.SurfaceIndex)].Patch;
+      std::vector<Patch> stack{ leaf };
+      while (!stack.empty())
+      {
+        const Patch patch = std::move(stack.back());
+        stack.pop_back();
+        if (patch.Level >= this->Settings.MaxLevel ||
+          (splits[k] > 0 && !straddles(patch, probes[k])))
+        {
+          pieces[k].push_back(patch);
+          continue;
+        }
+        ++splits[k];
+        std::array<Patch, 3> three = SplitInThree(patch, surface, SplitReason::RBuffer);
+        for (int t = 2; t >= 0; --t)
+        {
+          stack.push_back(std::move(three[static_cast<size_t>(t)]));
+        }
+      }
+    },
+    [&](size_t done) { return !progress || progress(progressShare * double(done) / count); });
+  if (!finished)
+  {
+    return false;
   }
   std::vector<int> nextLeaves;
   for (size_t k = 0; k < count; ++k)
@@ -632,23 +656,22 @@ bool CoverRefinement::SplitAcrossHorizons(const ProgressCallback& progress,
   {
     const size_t count = this->Leaves.size();
     std::vector<char> split(count, 0);
-    for (size_t first = 0; first < count; first += BatchSize)
-    {
-      const size_t batch = std::min(BatchSize, count - first);
-      run(batch,
-        [&](size_t begin, size_t end)
-        {
-          for (size_t k = first + begin; k < first + end; ++k)
-          {
-            const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
-            split[k] = leaf.Level < this->Settings.MaxLevel && this->SeesHorizonAcross(k);
-          }
-        });
-      const double done = (round + double(first + batch) / count) / (this->Settings.MaxLevel + 1);
-      if (progress && !progress(progressStart + (progressEnd - progressStart) * done))
+    const bool finished = ForEachInBatches(
+      count,
+      run,
+      [&](size_t k)
       {
-        return false;
-      }
+        const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+        split[k] = leaf.Level < this->Settings.MaxLevel && this->SeesHorizonAcross(k);
+      },
+      [&](size_t done)
+      {
+        const double share = (round + double(done) / count) / (this->Settings.MaxLevel + 1);
+        return !progress || progress(progressStart + (progressEnd - progressStart) * share);
+      });
+    if (!finished)
+    {
+      return false;
     }
     std::vector<int> nextLeaves;
     size_t splits = 0;
