@@ -214,6 +214,27 @@ std::vector<Material> LightPropagation::MaterialsOfPatches(const Scene& scene,
   return materials;
 }
 
+void LightPropagation::SetExchangeFactors(const std::vector<double>& entryFactors)
+{
+  if (!entryFactors.empty() && entryFactors.size() != this->Cover.EntryCount())
+  {
+    throw std::invalid_argument("LightPropagation: " + std::to_string(entryFactors.size()) +
+      " exchange factors for " + std::to_string(this->Cover.EntryCount()) + " entries");
+  }
+  this->ColumnFactor.assign(entryFactors.size(), 1.0);
+  for (std::size_t e = 0; e < entryFactors.size(); ++e)
+  {
+    if (!(entryFactors[e] >= 0.0 && std::isfinite(entryFactors[e])))
+    {
+      this->ColumnFactor.clear();
+      throw std::invalid_argument("LightPropagation: exchange factor of entry " +
+        std::to_string(e) + " is not finite and >= 0");
+    }
+    this->ColumnFactor[this->EntryPosition[e]] = entryFactors[e];
+  }
+  this->Reset();
+}
+
 void LightPropagation::Reset()
 {
   this->Incident.assign(this->Cover.EntryCount(), glm::dvec3(0.0));
@@ -518,7 +539,8 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   for (std::size_t k = begin; k < end; ++k)
   {
     const SphericalCover::ColumnEntry& item = this->Cover.ColumnAt(k);
-    glm::dvec3 value = increment;
+    // The balance factor scales the uniform part only (see SetExchangeFactors).
+    glm::dvec3 value = this->ColumnFactor.empty() ? increment : this->ColumnFactor[k] * increment;
     if (directional)
     {
       const uint32_t back = this->ColumnBack[k];

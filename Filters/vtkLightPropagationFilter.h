@@ -80,6 +80,20 @@ public:
   vtkGetMacro(ShootingOrder, int);
   ///@}
 
+  ///@{
+  /**
+   * Balance the cover's exchange before propagating (Core's ExchangeBalance): the radiance a
+   * shot delivers through region h_ij is scaled by x_i y_j so that every point still gathers
+   * exactly its covered projected solid angle (row sums) and every point delivers exactly what
+   * its own hemisphere sends into the scene (column sums). A point-sampled cover is not exactly
+   * reciprocal; balanced, the equilibrium of a closed scene conserves energy. Off: the cover's
+   * exchange as built (the paper's method as such). Default is on.
+   */
+  vtkSetMacro(BalanceExchanges, bool);
+  vtkGetMacro(BalanceExchanges, bool);
+  vtkBooleanMacro(BalanceExchanges, bool);
+  ///@}
+
   /// Shots of the last update.
   vtkGetMacro(Shots, int);
 
@@ -94,6 +108,7 @@ protected:
   double ConvergenceTolerance = 1e-5;
   int MaximumShots = 0;
   int ShootingOrder = BRIGHTEST_FIRST;
+  bool BalanceExchanges = true;
   int Shots = 0;
 
 private:

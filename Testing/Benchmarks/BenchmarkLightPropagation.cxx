@@ -35,6 +35,7 @@
  *    microseconds per shot by the whole-hemisphere grid (DirectionalMethod).
  */
 #include "CoverRefinement.h"
+#include "ExchangeBalance.h"
 #include "IntervalSubdivision.h"
 #include "LightPropagation.h"
 #include "ParallelFor.h"
@@ -285,6 +286,7 @@ void Converge(const std::string& name,
   std::size_t maximumShots,
   const std::string& cacheDirectory,
   bool compare,
+  bool balance,
   const ParallelFor& parallelFor)
 {
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -303,6 +305,22 @@ void Converge(const std::string& name,
   LightPropagation propagation(cover, prepared.Materials);
   propagation.SetFrames(prepared.Frames);
   const double setUpSeconds = Seconds(start);
+  ExchangeBalance exchangeBalance;
+  if (balance)
+  {
+    start = Clock::now();
+    exchangeBalance = ExchangeBalance(cover);
+    propagation.SetExchangeFactors(exchangeBalance.EntryFactors());
+    std::printf("  exchange balance: %s after %zu iterations, %.3f s; column residual %.2e "
+                "(cover as built %.2e)\n",
+      exchangeBalance.Converged()   ? "converged"
+        : exchangeBalance.Stalled() ? "stalled"
+                                    : "NOT converged",
+      exchangeBalance.Iterations(),
+      Seconds(start),
+      exchangeBalance.ColumnResidual(),
+      exchangeBalance.InitialColumnResidual());
+  }
   std::size_t nonDiffuse = 0;
   for (std::size_t i = 0; i < cover.PatchCount(); ++i)
   {
@@ -367,6 +385,7 @@ void Converge(const std::string& name,
     // before the grid): the two must agree up to rounding, shot for shot.
     LightPropagation reference(cover, prepared.Materials);
     reference.SetFrames(prepared.Frames);
+    reference.SetExchangeFactors(exchangeBalance.EntryFactors());
     reference.SetDirectionalMethod(DirectionalMethod::StripPairs);
     reference.Run(settings);
     double largestIncident = 0.0;
@@ -536,6 +555,7 @@ int main(int argc, char* argv[])
   bool costs = true;
   std::string cacheDirectory;
   bool compare = false;
+  bool balance = true;
   std::vector<std::string> scenes;
   for (int k = 1; k < argc; ++k)
   {
@@ -567,6 +587,10 @@ int main(int argc, char* argv[])
     {
       compare = true;
     }
+    else if (!std::strcmp(argv[k], "--balance") && k + 1 < argc)
+    {
+      balance = std::atoi(argv[++k]) != 0;
+    }
     else if (!std::strcmp(argv[k], "--no-costs"))
     {
       costs = false;
@@ -575,7 +599,7 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: %s [--threads N] [--tolerance T] [--refine K] [--max-shots N] [--no-costs] "
-        "[--cache DIR] [--compare] [--scene name.scene]...\n",
+        "[--cache DIR] [--compare] [--balance 0|1] [--scene name.scene]...\n",
         argv[0]);
       return 2;
     }
@@ -587,7 +611,8 @@ int main(int argc, char* argv[])
   const ParallelFor parallelFor = threads == 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   for (const std::string& scene : scenes)
   {
-    Converge(scene, tolerance, refineLevels, maximumShots, cacheDirectory, compare, parallelFor);
+    Converge(
+      scene, tolerance, refineLevels, maximumShots, cacheDirectory, compare, balance, parallelFor);
   }
   if (costs)
   {

@@ -22,7 +22,8 @@ subdivision = globals()["IntervalSubdivision"](Input=scene)
 cxx = vtkIntervalSubdivisionFilter()
 
 BOOLEANS_AND_ENUMS = ("RangeMethod", "SelfShadowing", "HemisphericalContainment", "SphericalShape",
-                      "Characterisability", "FillMethod", "BackFacesOcclude", "Refinement")
+                      "Characterisability", "FillMethod", "BackFacesOcclude", "Refinement",
+                      "ShootingOrder", "BalanceExchanges")
 
 
 def check_properties(proxy, native, names):
@@ -128,7 +129,7 @@ if cover.GetDataInformation(1).GetNumberOfRows() == 0:
 # Light propagation over the cover: the Cornell box is all diffuse.
 propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
 check_properties(propagation, vtkLightPropagationFilter(), ["ConvergenceTolerance", "MaximumShots",
-                 "ShootingOrder"])
+                 "ShootingOrder", "BalanceExchanges"])
 propagation.UpdatePipeline()
 lit = servermanager.Fetch(propagation)
 for name in ["Irradiance", "Radiosity", "Brightness"]:

@@ -112,6 +112,19 @@ def cornell_box():
             "cameras": [CORNELL_CAMERA], "settings": dict(DEFAULT_SETTINGS)}
 
 
+def cornell_box_closed():
+    """The Cornell box closed by a white front wall (z = 0, facing into the room): a closed,
+    non-uniform scene, for the energy balance (emitted = absorbed at equilibrium). The camera is
+    inside, by the front wall."""
+    scene = cornell_box()
+    floor, ceiling = scene["surfaces"][0]["points"], scene["surfaces"][1]["points"]
+    front = [floor[1], floor[0], ceiling[0], ceiling[3]]  # the four corners at z = 0
+    scene["surfaces"].append(bilinear_surface("front_wall", front, "white"))
+    scene["cameras"] = [{"name": "inside", "position": [278, 273, 20], "focal_point": [278, 273, 559.2],
+                         "view_up": [0, 1, 0], "view_angle": 80.0, "width": 512, "height": 512}]
+    return scene
+
+
 def cornell_box_meshes():
     rel = "../models/cornell_box/"
     entries = [("floor", "cbox_floor.obj", "white", None), ("ceiling", "cbox_ceiling.obj", "white", None),
@@ -263,6 +276,7 @@ def howell_perpendicular():
 
 ALL = {
     "cornell_box.scene": cornell_box,
+    "cornell_box_closed.scene": cornell_box_closed,
     "cornell_box_meshes.scene": cornell_box_meshes,
     "teapot_room.scene": teapot_room,
     "furnace_box.scene": furnace_box,
