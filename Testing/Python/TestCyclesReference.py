@@ -9,10 +9,10 @@ pixel: its 4 x 4-pixel blocks cover the same regions as the reference's 16 x 16 
 means are area integrals: a 128 x 128 render with 1024 spp and a 512 x 512 one with 64 spp
 differ by a block-RMS of 0.0026, against 0.082 to Cycles).
 
-Measured (Data/reference/README.md, "SphericalCover vs Cycles"): block-RMS relative error
-e = 0.0412 (R 0.0318, G 0.0397, B 0.0500); image means -0.62 %, -0.61 %, -0.56 % (with
-RBufferFillOptions::DiffuseRounding on, not yet the default: e = 0.0393, -0.12 %, -0.22 %,
--0.24 %). The error is
+Measured (Data/reference/README.md, "SphericalCover vs Cycles"), with the exchange balance
+(vtkLightPropagationFilter's BalanceExchanges, the default): block-RMS relative error
+e = 0.0346 (R 0.0265, G 0.0358, B 0.0401); image means -0.09 %, -0.19 %, -0.17 % (balance
+off: e = 0.0337, means -0.57 %, -0.57 %, -0.51 %). The error is
 method error: interpolation across shadow and occlusion boundaries (the ceiling next to the
 lamp, the floor at the blocks' bases) and a low bias of the walls of 1.2 to 2 % (0.3 to 1 %
 when RBuffer::Classify diffuses its rounding error along the rows: the plain plurality vote
@@ -21,7 +21,8 @@ loses 1-2 % of the lamp's projected solid angle, Testing/Core/TestCornellDirectL
 Asserted, with margins for changes of the method that are not regressions (~0.02 on the
 block errors):
   - e < 0.06 and every e_c < 0.07;
-  - each image mean within 1.5 % of the reference's.
+  - each image mean within 1 % of the reference's (the balance off misses it by half of that
+    at coarser settings: -4.6 % at max_level 2 and a 16 x 64 grid).
 Checked by hand: halving the emission (means -50 %), swapping the R and B bands of the red
 wall's reflectance, or flipping the image (e ~ 59) fails it.
 """
@@ -50,8 +51,8 @@ for name, value in zip("RGB", result["block_rms_channel"]):
     if not value < 0.07:
         failures.append(f"block-RMS relative error of {name} {value:.4f} >= 0.07")
 for name, value in zip("RGB", result["mean_error_channel"]):
-    if not abs(value) < 0.015:
-        failures.append(f"image mean of {name} differs by {100 * value:+.2f} % (limit 1.5 %)")
+    if not abs(value) < 0.01:
+        failures.append(f"image mean of {name} differs by {100 * value:+.2f} % (limit 1 %)")
 
 for failure in failures:
     print("FAILED:", failure)
