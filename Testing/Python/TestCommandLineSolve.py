@@ -1,7 +1,8 @@
 """`sphcover solve`: the report of SPEC §5 (surfaces with mean irradiance and exitant radiance,
 form factors, energy, counts, timings): Howell's closed forms C-11 (parallel opposed
 rectangles) and C-14 (perpendicular rectangles with a common edge) within 0.5% at the scenes'
-default settings, dimensions read from the scenes, not assumed; reciprocity; the white furnace;
+default settings, and C-41 (coaxial parallel disks, two configurations), dimensions read from
+the scenes, not assumed; reciprocity; the white furnace;
 the energy balance of a closed non-uniform scene (the closed Cornell box, coarser); the
 solution file read back by VTK; and a clean failure."""
 import json
@@ -30,7 +31,7 @@ def solve(scene, *extra):
 
 # Howell's closed forms C-11 and C-14, as documented with the scenes (Data/scenes/tools).
 sys.path.insert(0, os.path.join(data, "scenes", "tools"))
-from howell import f_parallel, f_perpendicular  # noqa: E402
+from howell import f_disks, f_parallel, f_perpendicular  # noqa: E402
 
 
 def distance(p, q):
@@ -98,6 +99,35 @@ if perpendicular:
     cover = reader.GetOutput().GetBlock(1)
     if cover is None or cover.GetFieldData().GetArray("CoverStrips") is None:
         failures.append("the solution file lacks the cover")
+
+# Howell C-41, coaxial parallel disks (SPEC §6): curved-boundary patches with a collapsed edge
+# (Data/models/unit_disk.bpt, four cubic quarter-disks). The shipped scene (radii 1 and 0.5 at
+# 0.8) and equal disks at a distance of their radius, written beside it; radii and separation
+# read from the scene's transforms (the model is the unit disk).
+disks_file = f"{data}/scenes/howell_disks.scene"
+disks_scene = json.load(open(disks_file))
+equal = json.loads(json.dumps(disks_scene))
+equal["surfaces"][1]["transform"]["scale"] = 1.0
+equal["surfaces"][1]["transform"]["translate"] = [0, 1.0, 0]
+for surface in equal["surfaces"]:
+    surface["file"] = os.path.join(data, "models", "unit_disk.bpt")
+equal_file = os.path.join(folder, "howell_equal_disks.scene")
+json.dump(equal, open(equal_file, "w"))
+for label, scene_file, scene in [("disks", disks_file, disks_scene), ("equal disks", equal_file, equal)]:
+    report = solve(scene_file)
+    if not report:
+        continue
+    first, second = scene["surfaces"]
+    r_a, r_b = first["transform"]["scale"], second["transform"]["scale"]
+    separation = second["transform"]["translate"][1] - first["transform"].get("translate", [0, 0, 0])[1]
+    names, matrix = report["form_factors"]["names"], report["form_factors"]["matrix"]
+    i, j = names.index("A"), names.index("B")
+    for name, got, want in [("F_AB", matrix[i][j], f_disks(r_a, r_b, separation)),
+                            ("F_BA", matrix[j][i], f_disks(r_b, r_a, separation))]:
+        error = (got - want) / want
+        print(f"{label} r_A={r_a} r_B={r_b} at {separation}: {name} = {got:.6f}, Howell C-41 {want:.6f}, error {100 * error:+.3f}%")
+        if abs(error) > 0.005:
+            failures.append(f"{label}: {name} off by {100 * error:.3f}% (more than 0.5%)")
 
 # White furnace (SPEC §6): every surface's mean exitant radiance is Le / (1 - rho), and the
 # closed box absorbs what it emits; material values read from the scene.

@@ -3,6 +3,7 @@
 
   C-11  parallel, coaxial, equal rectangles a x b at separation c
   C-14  perpendicular rectangles with a common edge of length l (plate A: l x w, plate B: l x h)
+  C-41  parallel coaxial disks of radii r1 and r2 at separation h
 
 Run:  python3 howell.py            (prints the values used in Data/scenes/README.md)
       python3 howell.py --quick    (skips the quadrature cross-check)
@@ -51,6 +52,37 @@ def f_perpendicular(l, w, h):
 
 
 # --------------------------------------------------------------------------- quadrature check
+
+
+def f_disks(r1, r2, h):
+    """Howell C-41: F from a disk of radius r1 to a parallel, coaxial disk of radius r2 at
+    distance h.
+
+    R1 = r1/h, R2 = r2/h, X = 1 + (1 + R2^2) / R1^2
+    F = 1/2 * { X - sqrt(X^2 - 4 (R2/R1)^2) }
+    """
+    R1, R2 = r1 / h, r2 / h
+    X = 1 + (1 + R2 * R2) / (R1 * R1)
+    return 0.5 * (X - math.sqrt(X * X - 4 * (R2 / R1) ** 2))
+
+
+def disks_quadrature(r1, r2, h, n=24):
+    """F_12 for C-41 by quadrature: by symmetry the inner integral over disk 2 depends on the
+    radius rho of the point on disk 1 only; F_12 = (2 / r1^2) int_0^r1 rho F_d(rho) d rho with
+    F_d(rho) = int_2 h^2 / (pi r^4) dA, integrated in polar coordinates (s, phi) on disk 2."""
+    xs, ws = _gauss_legendre(n)
+    total = 0.0
+    for x, w in zip(xs, ws):
+        rho = r1 * x
+        fd = 0.0
+        for y, v in zip(xs, ws):
+            s_ = r2 * y
+            for z, u in zip(xs, ws):
+                phi = 2 * math.pi * z
+                d2 = rho * rho + s_ * s_ - 2 * rho * s_ * math.cos(phi) + h * h
+                fd += v * u * r2 * 2 * math.pi * s_ * h * h / (math.pi * d2 * d2)
+        total += w * r1 * rho * fd
+    return 2.0 * total / (r1 * r1)
 
 
 def _gauss_legendre(n):
@@ -165,6 +197,13 @@ def main():
     print("  F_BA = %.6f   (reciprocity: A_A F_AB / A_B = %.6f)" % (fba, (l * w) * fab / (l * h)))
     print("  mean irradiance on B for Le = 1 on a black emitter A: pi * F_BA = %.6f W m^-2" % (math.pi * fba))
 
+    # howell_disks.scene: disks of radii 1 (A) and 0.5 (B) at distance 0.8
+    r1, r2, hd = 1.0, 0.5, 0.8
+    print("\nhowell_disks.scene  (C-41, r1 = %g, r2 = %g, h = %g)" % (r1, r2, hd))
+    print("  F_AB = %.6f" % f_disks(r1, r2, hd))
+    print("  F_BA = %.6f" % f_disks(r2, r1, hd))
+    print("  C-41 equal disks r = h: F = %.6f  (tables: 0.38197)" % f_disks(1, 1, 1))
+
     if quick:
         return
     print("\nQuadrature cross-check (composite Gauss-Legendre):")
@@ -179,6 +218,9 @@ def main():
     print("  perpendicular F_AB quadrature %.6f  closed form %.6f  rel.diff %.1e" % (q, fab, abs(q - fab) / fab))
     q = perpendicular_quadrature(l, h, w)
     print("  perpendicular F_BA quadrature %.6f  closed form %.6f  rel.diff %.1e" % (q, fba, abs(q - fba) / fba))
+    for a1, a2 in ((r1, r2), (r2, r1)):
+        q, f = disks_quadrature(a1, a2, hd), f_disks(a1, a2, hd)
+        print("  disks r1 = %g r2 = %g: F quadrature %.6f  closed form %.6f  rel.diff %.1e" % (a1, a2, q, f, abs(q - f) / f))
 
 
 if __name__ == "__main__":

@@ -274,6 +274,45 @@ def howell_perpendicular():
             "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
 
 
+# The unit disk (radius 1, centre at the origin, in the plane z = 0, front side +z) as four
+# Bezier patches of degree 3 x 1: u runs along a quarter circle (the cubic arc with the usual
+# handle length kappa = 4/3 (sqrt 2 - 1), radial error < 2.8e-4), v from the rim (v = 0) to the
+# centre (v = 1, a collapsed edge).
+UNIT_DISK_BPT = os.path.join(MODELS, "unit_disk.bpt")
+KAPPA = 4.0 / 3.0 * (2.0 ** 0.5 - 1.0)
+
+
+def unit_disk_bpt():
+    def rotate(p, quarter):
+        x, y = p
+        for _ in range(quarter):
+            x, y = -y, x
+        return (x, y)
+
+    arc = [(1.0, 0.0), (1.0, KAPPA), (KAPPA, 1.0), (0.0, 1.0)]
+    lines = ["4"]
+    for quarter in range(4):
+        lines.append("3 1")
+        for p in arc:
+            x, y = rotate(p, quarter)
+            lines.append("%r %r 0" % (x + 0.0, y + 0.0))  # + 0.0: no negative zeros
+        lines += ["0 0 0"] * 4
+    return "\n".join(lines) + "\n"
+
+
+def howell_disks():
+    # C-41: disk A (radius 1) in y = 0 facing +y, disk B (radius 0.5) in y = 0.8 facing -y, coaxial.
+    rel = "../models/unit_disk.bpt"
+    A = {"name": "A", "type": "bpt", "file": rel, "material": "lamp",
+         "transform": {"scale": 1.0, "rotate": [-90, 0, 0]}}
+    B = {"name": "B", "type": "bpt", "file": rel, "material": "white",
+         "transform": {"scale": 0.5, "rotate": [90, 0, 0], "translate": [0, 0.8, 0]}}
+    camera = {"name": "side", "position": [2.6, 1.6, 2.6], "focal_point": [0.0, 0.4, 0.0],
+              "view_up": [0, 1, 0], "view_angle": 45.0, "width": 400, "height": 300}
+    return {"version": 1, "materials": HOWELL_MATERIALS, "surfaces": [A, B],
+            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+
+
 ALL = {
     "cornell_box.scene": cornell_box,
     "cornell_box_closed.scene": cornell_box_closed,
@@ -284,10 +323,14 @@ ALL = {
     "furnace_clay.scene": furnace_clay,
     "howell_parallel.scene": howell_parallel,
     "howell_perpendicular.scene": howell_perpendicular,
+    "howell_disks.scene": howell_disks,
 }
 
 
 def main():
+    with open(UNIT_DISK_BPT, "w") as f:
+        f.write(unit_disk_bpt())
+    print("wrote", UNIT_DISK_BPT)
     for name, make in ALL.items():
         write_scene(os.path.join(SCENES, name), make())
         print("wrote", os.path.join(SCENES, name))
