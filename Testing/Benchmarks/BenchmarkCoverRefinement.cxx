@@ -59,6 +59,7 @@ void Run(const std::string& name,
   bool hemispheres,
   double margin,
   bool skipBefore,
+  bool patchesOnly,
   const ParallelFor& parallelFor)
 {
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -105,13 +106,6 @@ void Run(const std::string& name,
   const std::vector<Patch> after = refinement.Patches();
   const double refinementSeconds = Seconds(start);
 
-  start = std::chrono::steady_clock::now();
-  SphericalCover coverAfter;
-  coverAfter.Build(after, coverOptions, parallelFor);
-  const double coverAfterSeconds = Seconds(start);
-  const sphcover_test::Exchange reciprocityAfter =
-    sphcover_test::MeasureExchange(scene, after, coverAfter);
-
   const RefinementStatistics& s = refinement.Statistics();
   std::printf("%s (grid %dx%d, MaxLevel %d, refinement MaxLevel %d, enclosure probes %s, "
               "horizons %s, hemisphere analysis %s)\n",
@@ -145,6 +139,17 @@ void Run(const std::string& name,
     s.HorizonSplits,
     s.DisconnectedSplits,
     s.LimitedRequests);
+  if (patchesOnly)
+  {
+    return;
+  }
+
+  start = std::chrono::steady_clock::now();
+  SphericalCover coverAfter;
+  coverAfter.Build(after, coverOptions, parallelFor);
+  const double coverAfterSeconds = Seconds(start);
+  const sphcover_test::Exchange reciprocityAfter =
+    sphcover_test::MeasureExchange(scene, after, coverAfter);
   std::printf("  cover after          %8zu rows     %8.2f s  worst reciprocity %.2e (%s), "
               "worst |row - 1| %.2e\n",
     after.size(),
@@ -201,6 +206,7 @@ int main(int argc, char* argv[])
   double reach = RefinementSettings().HorizonReach;
   double margin = RefinementSettings().EnclosureMargin;
   bool skipBefore = false;
+  bool patchesOnly = false;
   bool hemispheres = true;
   std::vector<std::string> scenes;
   for (int k = 1; k < argc; ++k)
@@ -233,6 +239,10 @@ int main(int argc, char* argv[])
     {
       skipBefore = true;
     }
+    else if (std::strcmp(argv[k], "--patches-only") == 0)
+    {
+      patchesOnly = true;
+    }
     else if (std::strcmp(argv[k], "--hemispheres") == 0 && k + 1 < argc)
     {
       hemispheres = std::atoi(argv[++k]) != 0;
@@ -245,7 +255,8 @@ int main(int argc, char* argv[])
     {
       std::fprintf(stderr,
         "usage: %s [--threads N] [--extra-levels K] [--enclosures 0|1] [--horizons 0|1] "
-        "[--horizon-reach R] [--hemispheres 0|1] [--margin W] [--skip-before] [--scene "
+        "[--horizon-reach R] [--hemispheres 0|1] [--margin W] [--skip-before] [--patches-only] "
+        "[--scene "
         "name.scene]...\n",
         argv[0]);
       return 2;
@@ -269,6 +280,7 @@ int main(int argc, char* argv[])
       hemispheres,
       margin,
       skipBefore,
+      patchesOnly,
       parallelFor);
   }
   return 0;
