@@ -10,6 +10,7 @@
 #define SPHCOVER_COVERTESTUTILITIES_H
 
 #include "BezierPatch.h"
+#include "LightPropagation.h"
 #include "Patch.h"
 #include "Scene.h"
 #include "SceneLoader.h"
@@ -20,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -68,6 +70,28 @@ inline std::vector<sphcover::Patch> SplitScene(const sphcover::Scene& scene, int
   }
   return patches;
 }
+
+/// A scene split uniformly (SplitScene), its cover at the default options and the scene's
+/// material of every patch: the fixture of the propagation tests.
+struct CoveredScene
+{
+  sphcover::Scene Environment;
+  std::vector<sphcover::Patch> Patches;
+  sphcover::SphericalCover Cover;
+  std::vector<sphcover::Material> Materials;
+
+  CoveredScene(const std::string& name, int split)
+    : Environment(sphcover::LoadSceneFile(ScenePath(name)))
+    , Patches(SplitScene(this->Environment, split))
+  {
+    if (!this->Cover.Build(this->Patches))
+    {
+      throw std::runtime_error("cover not built");
+    }
+    this->Materials =
+      sphcover::LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
+  }
+};
 
 /// A bilinear patch with corners origin, origin + e1, origin + e1 + e2, origin + e2: its front
 /// side is e1 x e2.

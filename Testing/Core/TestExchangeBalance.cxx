@@ -23,26 +23,6 @@ using namespace sphcover_test;
 
 namespace
 {
-/// A scene split uniformly, its cover and the material of every patch.
-struct BalancedScene
-{
-  Scene Environment;
-  std::vector<Patch> Patches;
-  SphericalCover Cover;
-  std::vector<Material> Materials;
-
-  BalancedScene(const std::string& name, int split)
-    : Environment(LoadSceneFile(ScenePath(name)))
-    , Patches(SplitScene(this->Environment, split))
-  {
-    if (!this->Cover.Build(this->Patches))
-    {
-      throw std::runtime_error("cover not built");
-    }
-    this->Materials = LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
-  }
-};
-
 /// Largest |balanced row sum / r_i - 1| (over rows that see something) and
 /// |c_j - r_j| / max(c_j, r_j) for the balanced column sums c_j (over sources that are seen),
 /// with G_e = A_i Omega_e and r_i the covered throughput of row i.
@@ -81,7 +61,7 @@ void BalancedMarginals(const SphericalCover& cover,
   }
 }
 
-EnergyBalance Equilibrium(const BalancedScene& setup, const ExchangeBalance* balance)
+EnergyBalance Equilibrium(const CoveredScene& setup, const ExchangeBalance* balance)
 {
   LightPropagation propagation(setup.Cover, setup.Materials);
   if (balance)
@@ -102,7 +82,7 @@ TEST(ExchangeBalance, KeepsRowsAndMatchesColumns)
 {
   // The closed Cornell box, every surface 5 x 5: the blocks make hemispheres that see each
   // other one way only, and neighbours of unequal size are far from reciprocal.
-  BalancedScene setup("cornell_box_closed.scene", 5);
+  CoveredScene setup("cornell_box_closed.scene", 5);
   const ExchangeBalance balance(setup.Cover);
   ASSERT_EQ(balance.EntryFactors().size(), setup.Cover.EntryCount());
   double rowError = 0.0;
@@ -140,7 +120,7 @@ TEST(ExchangeBalance, ClosedNonUniformSceneAbsorbsWhatItEmits)
   // Issue 5: at equilibrium a closed scene absorbs what it emits, within 0.1%. The closed
   // Cornell box is closed but not uniform (one lamp, coloured walls, blocks): the furnace's
   // symmetry does not hide the cover's non-reciprocity there.
-  BalancedScene setup("cornell_box_closed.scene", Sanitized ? 4 : 6);
+  CoveredScene setup("cornell_box_closed.scene", Sanitized ? 4 : 6);
   const EnergyBalance raw = Equilibrium(setup, nullptr);
   const ExchangeBalance balance(setup.Cover);
   const EnergyBalance balanced = Equilibrium(setup, &balance);
@@ -170,7 +150,7 @@ TEST(ExchangeBalance, FurnaceStaysUniform)
   // with balanced exchange, in the flat and the curved enclosure, every point within 0.5%.
   for (const char* name : { "furnace_box.scene", "furnace_sphere.scene" })
   {
-    BalancedScene setup(name, 2);
+    CoveredScene setup(name, 2);
     const ExchangeBalance balance(setup.Cover);
     LightPropagation propagation(setup.Cover, setup.Materials);
     propagation.SetExchangeFactors(balance.EntryFactors());
@@ -202,7 +182,7 @@ TEST(ExchangeBalance, FurnaceStaysUniform)
 
 TEST(ExchangeBalance, RejectsFactorsThatDoNotFit)
 {
-  BalancedScene setup("furnace_box.scene", 1);
+  CoveredScene setup("furnace_box.scene", 1);
   LightPropagation propagation(setup.Cover, setup.Materials);
   EXPECT_THROW(
     propagation.SetExchangeFactors(std::vector<double>(setup.Cover.EntryCount() + 1, 1.0)),

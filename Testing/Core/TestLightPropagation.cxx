@@ -24,26 +24,6 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-/// A scene split uniformly, its cover and the material of every patch.
-struct CoveredScene
-{
-  Scene Environment;
-  std::vector<Patch> Patches;
-  SphericalCover Cover;
-  std::vector<Material> Materials;
-
-  CoveredScene(const std::string& name, int split)
-    : Environment(LoadSceneFile(ScenePath(name)))
-    , Patches(SplitScene(this->Environment, split))
-  {
-    if (!this->Cover.Build(this->Patches))
-    {
-      throw std::runtime_error("cover not built");
-    }
-    this->Materials = LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
-  }
-};
-
 /// Largest relative deviation, over patches and bands, of the exitant radiance from the
 /// furnace's Le / (1 - rho), both taken from the scene's material of each patch.
 double WorstFurnaceError(const LightPropagation& propagation, const std::vector<Material>& m)

@@ -26,21 +26,10 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
-struct CoveredPatches
+/// CoveredScene with the frames of its points and materials given per surface.
+struct CoveredPatches : CoveredScene
 {
-  Scene Environment;
-  std::vector<Patch> Patches;
-  SphericalCover Cover;
-
-  CoveredPatches(const std::string& name, int split)
-    : Environment(LoadSceneFile(ScenePath(name)))
-    , Patches(SplitScene(this->Environment, split))
-  {
-    if (!this->Cover.Build(this->Patches))
-    {
-      throw std::runtime_error("cover not built");
-    }
-  }
+  using CoveredScene::CoveredScene;
 
   std::vector<HemisphereFrame> Frames() const
   {
