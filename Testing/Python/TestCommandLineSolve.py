@@ -34,6 +34,18 @@ sys.path.insert(0, os.path.join(data, "scenes", "tools"))
 from howell import f_disks, f_parallel, f_perpendicular  # noqa: E402
 
 
+def check_pair(report, configuration, catalogue, want_ab, want_ba):
+    """F_AB and F_BA of the report against the closed forms, each within 0.5%."""
+    names, matrix = report["form_factors"]["names"], report["form_factors"]["matrix"]
+    i, j = names.index("A"), names.index("B")
+    for label, got, want in [("F_AB", matrix[i][j], want_ab), ("F_BA", matrix[j][i], want_ba)]:
+        error = (got - want) / want
+        print(f"{configuration}: {label} = {got:.6f}, Howell {catalogue} {want:.6f}, error {100 * error:+.3f}%")
+        if abs(error) > 0.005:
+            failures.append(f"{configuration}: {label} off by {100 * error:.3f}% (more than 0.5%)")
+    return matrix[i][j], matrix[j][i]
+
+
 def distance(p, q):
     return math.dist(p, q)
 
@@ -55,13 +67,8 @@ if report:
     for key in ["surfaces", "form_factors", "counts", "timings_s"]:
         if key not in report:
             failures.append(f"report lacks {key}")
-    names = report["form_factors"]["names"]
-    matrix = report["form_factors"]["matrix"]
-    got = matrix[names.index("A")][names.index("B")]
-    error = (got - expected) / expected
-    print(f"parallel rectangles {a} x {b} at {c}: F_AB = {got:.6f}, Howell C-11 {expected:.6f}, error {100 * error:+.3f}%")
-    if abs(error) > 0.005:
-        failures.append(f"F_AB off by {100 * error:.3f}% (more than 0.5%)")
+    # Equal rectangles: F_BA = F_AB.
+    check_pair(report, f"parallel rectangles {a} x {b} at {c}", "C-11", expected, expected)
     areas = {s["name"]: s["area"] for s in report["surfaces"]}
     if abs(areas["A"] - a * b) > 1e-9 * a * b:
         failures.append(f"area of A {areas['A']} != {a * b}")
@@ -79,17 +86,10 @@ if perpendicular:
     common = [e for e in edges_a if any(abs(e - f) < 1e-12 for f in edges_b)][0]
     w = [e for e in edges_a if e != common][0] if edges_a[0] != edges_a[1] else common
     h = [e for e in edges_b if e != common][0] if edges_b[0] != edges_b[1] else common
-    names = perpendicular["form_factors"]["names"]
-    matrix = perpendicular["form_factors"]["matrix"]
     areas = {s["name"]: s["area"] for s in perpendicular["surfaces"]}
-    i, j = names.index("A"), names.index("B")
-    for label, got, want in [("F_AB", matrix[i][j], f_perpendicular(common, w, h)),
-                             ("F_BA", matrix[j][i], f_perpendicular(common, h, w))]:
-        error = (got - want) / want
-        print(f"perpendicular rectangles l={common} w={w} h={h}: {label} = {got:.6f}, Howell C-14 {want:.6f}, error {100 * error:+.3f}%")
-        if abs(error) > 0.005:
-            failures.append(f"{label} off by {100 * error:.3f}% (more than 0.5%)")
-    ab, ba = areas["A"] * matrix[i][j], areas["B"] * matrix[j][i]
+    f_ab, f_ba = check_pair(perpendicular, f"perpendicular rectangles l={common} w={w} h={h}", "C-14",
+                            f_perpendicular(common, w, h), f_perpendicular(common, h, w))
+    ab, ba = areas["A"] * f_ab, areas["B"] * f_ba
     print(f"perpendicular rectangles: A F_AB = {ab:.6f}, A F_BA = {ba:.6f}")
     if abs(ab - ba) > 0.01 * max(ab, ba):
         failures.append(f"reciprocity off by more than 1%: {ab} vs {ba}")
@@ -120,14 +120,8 @@ for label, scene_file, scene in [("disks", disks_file, disks_scene), ("equal dis
     first, second = scene["surfaces"]
     r_a, r_b = first["transform"]["scale"], second["transform"]["scale"]
     separation = second["transform"]["translate"][1] - first["transform"].get("translate", [0, 0, 0])[1]
-    names, matrix = report["form_factors"]["names"], report["form_factors"]["matrix"]
-    i, j = names.index("A"), names.index("B")
-    for name, got, want in [("F_AB", matrix[i][j], f_disks(r_a, r_b, separation)),
-                            ("F_BA", matrix[j][i], f_disks(r_b, r_a, separation))]:
-        error = (got - want) / want
-        print(f"{label} r_A={r_a} r_B={r_b} at {separation}: {name} = {got:.6f}, Howell C-41 {want:.6f}, error {100 * error:+.3f}%")
-        if abs(error) > 0.005:
-            failures.append(f"{label}: {name} off by {100 * error:.3f}% (more than 0.5%)")
+    check_pair(report, f"{label} r_A={r_a} r_B={r_b} at {separation}", "C-41",
+               f_disks(r_a, r_b, separation), f_disks(r_b, r_a, separation))
 
 # White furnace (SPEC §6): every surface's mean exitant radiance is Le / (1 - rho), and the
 # closed box absorbs what it emits; material values read from the scene.
