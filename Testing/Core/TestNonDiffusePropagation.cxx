@@ -4,6 +4,7 @@
 // order in a closed box of mixed materials; and a mirror carrying light to a patch that cannot
 // see the lamp, against the image-source construction; the two summations of a directional shot
 // (strip pairs, whole-hemisphere grid) agree.
+#include "ExchangeBalance.h"
 #include "LightPropagation.h"
 
 #include "CoverTestUtilities.h"
@@ -242,10 +243,19 @@ TEST(NonDiffusePropagation, ClosedMixedBoxAbsorbsWhatItEmits)
       energy.RelativeImbalance,
       propagation.History().size(),
       reciprocity);
+    // With the exchange balanced (ExchangeBalance): the uniform parts of the shots (emission,
+    // Lambertian reflection) then conserve energy; the directional parts stay per pair.
+    LightPropagation balanced(setup.Cover, setup.PerPatch(MixedBox()));
+    balanced.SetExchangeFactors(ExchangeBalance(setup.Cover).EntryFactors());
+    ASSERT_TRUE(balanced.Run(settings));
+    std::printf("[ Energy   ] mixed box split %d, exchange balanced: relative imbalance %.1e\n",
+      split,
+      balanced.Energy().RelativeImbalance);
     if (split == 1)
     {
       ASSERT_LT(reciprocity, 1e-9);
       EXPECT_LT(energy.RelativeImbalance, 1e-3);
+      EXPECT_LT(balanced.Energy().RelativeImbalance, 1e-3);
     }
     // Diffuse shooters keep the closed-form shot (§5.2): no weight table is touched.
     for (const ShotRecord& record : propagation.History())
