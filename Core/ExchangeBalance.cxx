@@ -34,8 +34,8 @@ ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
 
   std::vector<double> x(n, 1.0);
   std::vector<double> y(n, 1.0);
-  // Column sums of x_i G_ij y_j against r_j, over the sources that have a target; also
-  // updates y when asked (the column step).
+  // Column sums of x_i G_ij y_j against r_j, over the sources that are seen (r_j = 0 gives
+  // y_j = 0, see the header); also updates y when asked (the column step).
   const auto columnStep = [&](bool update)
   {
     double residual = 0.0;

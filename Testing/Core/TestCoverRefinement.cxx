@@ -436,7 +436,7 @@ TEST(CoverRefinement, HorizonSplitsFollowAPlaneAcrossAWall)
   // vault over the same footprint) splits nothing either: the tangent plane at a curved
   // surface's patch is not where its horizon lies (it moves over the surface), and that rule
   // made the teapot's close curved surfaces split each other (33111 points in the teapot room
-  // instead of 13585).
+  // instead of 13461).
   const Scene furnace = LoadSceneFile(ScenePath("furnace_box.scene"));
   enum Shelf
   {
