@@ -30,15 +30,18 @@
  * sum_j G_ij y_j and y_j = r_j / sum_i x_i G_ij, until no y changes by more than Tolerance
  * (relative); the last step is a row step, so rows are exact and columns within the tolerance.
  * The factors touch only the entries that exist: regions keep their cells (what a point sees
- * through which cells, used for directional reflection and the renderer), only the radiance
- * delivered through them is scaled. They are fixed before the first shot, so the propagation
- * stays linear: order independence is kept (unlike a per-shot rescaling of what each shot
- * delivers, which was rejected for that reason, LightPropagation).
+ * through which cells, used for directional reflection and the renderer), only the measure
+ * with which the radiance arriving through them counts in the irradiance and the power is
+ * scaled (LightPropagation: the radiance itself is not, so that mirrors pass on what they see).
+ * They are fixed before the first shot, so the propagation stays linear: order independence is kept
+ * (unlike a per-shot rescaling of what each shot delivers, which was rejected for that reason,
+ * LightPropagation).
  *
  * Why the marginals and not the pairs: a symmetric G' cannot keep one-sided entries (h_ij
  * without h_ji), and dropping them leaves holes where a point sees a source. The marginals are
  * what energy conservation needs for Lambertian sources; a non-diffuse shooter, whose radiance
- * differs from region to region, balances per pair only (LightPropagation).
+ * differs from region to region, is balanced only up to how its radiance varies along its
+ * column: closed scenes with mirrors keep a few tenths of a percent (LightPropagation).
  *
  * Sources that see nothing (r_j = 0) but are seen get the target 0, so y_j = 0: in a closed
  * scene these are points buried under an object (the Cornell floor under the blocks), whose

@@ -539,8 +539,8 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   for (std::size_t k = begin; k < end; ++k)
   {
     const SphericalCover::ColumnEntry& item = this->Cover.ColumnAt(k);
-    // The balance factor scales the uniform part only (see SetExchangeFactors).
-    glm::dvec3 value = this->ColumnFactor.empty() ? increment : this->ColumnFactor[k] * increment;
+    // The radiance P_i sees through h_ij: the shooter's, whatever the balance.
+    glm::dvec3 value = increment;
     if (directional)
     {
       const uint32_t back = this->ColumnBack[k];
@@ -555,8 +555,12 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
       }
     }
     this->Incident[k] += value;
-    // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form.
-    this->Unshot[item.Receiver] += this->Rho[item.Receiver] * (this->ColumnOmega[k] / Pi) * value;
+    // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form,
+    // over the region's balanced measure f_e Omega_e (SetExchangeFactors).
+    const double measure = this->ColumnFactor.empty()
+      ? this->ColumnOmega[k]
+      : this->ColumnFactor[k] * this->ColumnOmega[k];
+    this->Unshot[item.Receiver] += this->Rho[item.Receiver] * (measure / Pi) * value;
     if (this->ModelOfPatch[item.Receiver] >= 0)
     {
       this->UnshotIncident[k] += value;
@@ -728,7 +732,10 @@ glm::dvec3 LightPropagation::Irradiance(std::size_t patch) const
   glm::dvec3 sum(0.0);
   for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
   {
-    sum += this->Incident[this->EntryPosition[e]] * this->EntryOmega[e];
+    const uint32_t k = this->EntryPosition[e];
+    const double measure = this->ColumnFactor.empty() ? this->EntryOmega[e]
+                                                      : this->ColumnFactor[k] * this->EntryOmega[e];
+    sum += this->Incident[k] * measure;
   }
   return sum;
 }

@@ -17,7 +17,8 @@
  * h_ji") takes the shooter j's unshot radiance dL_j and walks column j of the cover: for every
  * receiver i whose hemisphere holds Q_j (entry e),
  *     E_e += dL_j,   dL_i += rho_i / pi * dL_j * Omega_e,
- * where Omega_e is the projected (cosine-weighted) solid angle of h_ij. For a diffuse shooter
+ * where Omega_e is the projected (cosine-weighted) solid angle of h_ij (f_e Omega_e with the
+ * exchange balanced, SetExchangeFactors; E_e itself is never scaled). For a diffuse shooter
  * the exitant radiance is the same in every direction (§3.5.1), so it is evaluated once per
  * shot and a shot costs O(column size) updates (§5.2: "I can be computed only once and then
  * used for all updates. eta in this case, now becomes O(N)").
@@ -58,15 +59,34 @@
  * weight table reflects. Receiver i gets A_i Omega(h_ij) I_ji, the same where the cover is
  * reciprocal (A_i Omega(h_ij) = A_j Omega(h_ji): the test's one-patch-per-wall box balances to
  * 1e-7). Point-sampled hemispheres of unequal neighbours are not reciprocal (up to 20-27% per
- * pair in the split furnace box), and a directional shot, unlike a diffuse one, does not
- * average that out: the split mixed box balances to ~0.6% only. Scaling each shot's delivered
- * power to the sent power was tried and rejected: it balances the energy but breaks the white
- * furnace (21% with mirrors) and the order independence. What is done instead
- * (SetExchangeFactors, ExchangeBalance) is fixed before the first shot: every entry's delivery
- * is scaled by x_i y_j so that rows keep their covered measure (the furnace stays exact) and
- * columns deliver what the source's own hemisphere sends (a diffuse shot into a closed scene
- * arrives in full). The propagation stays linear, hence order independent; a closed Cornell box
- * goes from 0.84% to 6e-5 (ExchangeBalance.h).
+ * pair in the split furnace box). The balance (SetExchangeFactors, ExchangeBalance), fixed
+ * before the first shot, gives every region h_ij the measure f_ij Omega_ij (f_ij = x_i y_j)
+ * over which its radiance is gathered into irradiance and power: rows keep their covered
+ * measure (the furnace stays exact) and columns deliver what the source's own hemisphere sends
+ * (a diffuse shot into a closed scene arrives in full). E_e stays the radiance P_i sees (the
+ * shooter's exitant radiance toward it, not scaled), and that is what a non-diffuse receiver
+ * reflects through its weight table and what the renderer reads. A mirror thus passes on the
+ * radiance it sees, and mirror and phong furnaces stay uniform with the balance on. (With E_e
+ * scaled by f_e instead, light that crossed k mirrors carried the product of k factors: 2.3% off
+ * in the furnace box with a cube inside, NonDiffusePropagation.
+ * FurnacesThroughThePipelineWithTheExchangeBalanced.) A non-diffuse point's reflection is
+ * counted over its cells' own measure (which the table conserves) and what it receives over the
+ * balanced one. Both differ from an exchange that is exact pair by pair only through how the
+ * radiance varies along a row or a column, so closed scenes with mirrors and glossy surfaces
+ * keep an imbalance of a few tenths of a percent: the split mixed box (27% per pair) 0.65%, the
+ * teapot room 0.081% unrefined (1.26% as built) and 0.40% refined as the cover filter does
+ * (0.18% as built; with the stored radiance scaled instead of the measure, 0.33% and 0.29%).
+ * In the refined teapot room the balance itself cannot close: patches smaller than a cell as
+ * seen from afar win few cells of other hemispheres, so their columns fall far short of their
+ * rows (1010 of the 13461 points would need y_j > 4) and ExchangeBalance stops stalled. The
+ * propagation stays linear, hence order independent; a closed Cornell box goes from 0.84% to
+ * 6e-5 (ExchangeBalance.h). Tried and rejected: scaling each shot's delivered power to the sent
+ * power (it breaks the furnace, 21% with mirrors, and the order independence); making
+ * directional shots exact pair by pair by renormalising each weight table to the balanced
+ * out-measures (the split mixed box then balances to 6e-8, but the mirror sphere through the
+ * pipeline is 12.6% off the furnace value and the teapot room had not converged after 890902
+ * shots, against 72066); re-emitting what a non-diffuse receiver gains or loses by the balanced
+ * measure as a uniform radiance (no change: the refined teapot room 0.398%).
  *
  * The sum over the table is taken in one of two ways (DirectionalMethod), the same sum in another
  * order (the test GridAndStripPairShotsAgree: 7e-15; the teapot room to 1e-3: incident radiance
@@ -105,7 +125,7 @@
  *  - Brightness is pi Le + k_d E + sum_e E_e a_e Omega_e, the flux density it reflects and emits
  * into its whole hemisphere (for a diffuse patch rho E + pi Le as before): the paper's B = (k_d +
  * k_s) int E cos dw + int eps cos dw with the albedo per direction;
- *  - absorbed power A (E - (Brightness - pi Le));
+ *  - absorbed power A (E - (Brightness - pi Le)), E the irradiance over the balanced measures;
  *  - ExitantRadianceToward(i, direction) evaluates the BRDF toward any direction through the
  *    weight table at the direction's cell (paper §5.3.1: "E interpolated then the BRDF
  *    evaluated toward the eye"); the one implementation is DirectionalExitantRadiance, which
@@ -267,17 +287,12 @@ public:
 
   /**
    * Balance factors f_e of the entries (ExchangeBalance::EntryFactors, by entry index), or none
-   * (empty: f_e = 1, the cover's exchange as built). A shot then delivers f_e times the
-   * uniform part of the shooter's exitant radiance (emission, Lambertian reflection) through
-   * h_ij: the cover's hemispheres with the exchange made energy conserving (see the file
-   * comment). The directional part of a non-diffuse shooter is delivered unscaled: the balance
-   * matches what a source delivers to what it sends for a radiance that is the same toward every
-   * receiver, and a large y_j on a mirror whose few receivers lie in its specular direction would
-   * create light (with it scaled too, the unrefined teapot room did not converge in 20000 shots;
-   * with the uniform part only it converges as before, 72066 shots, and its imbalance goes from
-   * 1.26% to 0.33%, the rest being the directional shots'). Resets the propagation. Throws
-   * std::invalid_argument for a size other than 0 or the cover's entry count, or a factor that
-   * is negative or not finite.
+   * (empty: f_e = 1, the cover's exchange as built). Region h_ij then counts with the measure
+   * f_e Omega_e in the irradiance (and so in every Lambertian reflection and in the energy): the
+   * cover's hemispheres with the exchange made energy conserving. The stored incident radiance
+   * E_e, which directional reflection and the renderer read, stays the shooter's radiance (see
+   * the file comment). Resets the propagation. Throws std::invalid_argument for a size other
+   * than 0 or the cover's entry count, or a factor that is negative or not finite.
    */
   void SetExchangeFactors(const std::vector<double>& entryFactors);
   bool HasExchangeFactors() const { return !this->ColumnFactor.empty(); }
@@ -322,7 +337,7 @@ public:
   /// after a shot (O(entries)); not to be called concurrently with itself or
   /// ExitantRadianceToward before that copy exists.
   const std::vector<glm::dvec3>& IncidentRadiances() const;
-  /// sum over row i of E_e Omega_e (W m^-2 per band).
+  /// sum over row i of f_e E_e Omega_e (W m^-2 per band; f_e = 1 without exchange factors).
   glm::dvec3 Irradiance(std::size_t patch) const;
   /// Le_i + k_d / pi * Irradiance(i): the Lambertian exitant radiance (all of it for a diffuse
   /// patch; the diffuse part of phong; Le for mirror and tabulated).

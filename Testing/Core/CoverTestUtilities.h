@@ -10,7 +10,10 @@
 #define SPHCOVER_COVERTESTUTILITIES_H
 
 #include "BezierPatch.h"
+#include "CoverRefinement.h"
+#include "IntervalSubdivision.h"
 #include "LightPropagation.h"
+#include "ParallelFor.h"
 #include "Patch.h"
 #include "Scene.h"
 #include "SceneLoader.h"
@@ -93,6 +96,55 @@ struct CoveredScene
   }
 };
 
+/// The real pipeline at a scene's own settings (as sphcover solve and the filters run it): the
+/// interval subdivision to `maxLevel`, the cover refinement `extraLevels` deeper (receiver side
+/// only unless `hemispheres`), the cover of the refined patches. Throws std::runtime_error when
+/// a stage fails.
+struct SceneSettingsPipeline
+{
+  std::vector<sphcover::Patch> Before;
+  std::vector<sphcover::Patch> After;
+  sphcover::RefinementStatistics Statistics;
+  sphcover::SphericalCover Cover;
+
+  SceneSettingsPipeline(const sphcover::Scene& scene,
+    int maxLevel,
+    int extraLevels,
+    bool hemispheres)
+  {
+    sphcover::SubdivisionSettings subdivision;
+    subdivision.MaxLevel = maxLevel;
+    subdivision.ThetaBins = scene.Settings.ThetaBins;
+    subdivision.PhiBins = scene.Settings.PhiBins;
+    for (double& tolerance : subdivision.Tolerance)
+    {
+      tolerance = scene.Settings.Tolerance;
+    }
+    sphcover::IntervalSubdivision interval(scene, subdivision);
+    if (!interval.Run(nullptr, sphcover::ThreadedFor(2)))
+    {
+      throw std::runtime_error("subdivision failed");
+    }
+    this->Before = interval.Patches();
+    sphcover::RefinementSettings settings;
+    settings.Cover.ThetaBins = scene.Settings.ThetaBins;
+    settings.Cover.PhiBins = scene.Settings.PhiBins;
+    settings.MaxLevel = maxLevel + extraLevels;
+    settings.AnalyseHemispheres = hemispheres;
+    sphcover::CoverRefinement refinement(scene, this->Before, settings);
+    if (!refinement.Run(nullptr, sphcover::ThreadedFor(2)))
+    {
+      throw std::runtime_error("refinement failed");
+    }
+    this->After = refinement.Patches();
+    this->Statistics = refinement.Statistics();
+    if (!this->Cover.Build(this->After, settings.Cover, sphcover::ThreadedFor(2)))
+    {
+      throw std::runtime_error("cover not built");
+    }
+  }
+};
+
 /// A bilinear patch with corners origin, origin + e1, origin + e1 + e2, origin + e2: its front
 /// side is e1 x e2.
 inline sphcover::BezierPatch Parallelogram(const glm::dvec3& origin,
@@ -100,6 +152,33 @@ inline sphcover::BezierPatch Parallelogram(const glm::dvec3& origin,
   const glm::dvec3& e2)
 {
   return sphcover::BezierPatch(1, 1, { origin, origin + e1, origin + e2, origin + e1 + e2 });
+}
+
+/// The furnace box with a closed, outward-facing cube [0.35, 0.65]^3 inside: every direction
+/// from every point still meets a surface, and the cube hides parts of the walls.
+inline sphcover::Scene FurnaceBoxWithOccluder()
+{
+  sphcover::Scene scene = sphcover::LoadSceneFile(ScenePath("furnace_box.scene"));
+  const double lo = 0.35;
+  const double hi = 0.65;
+  const double w = hi - lo;
+  const int name = static_cast<int>(scene.SurfaceNames.size());
+  scene.SurfaceNames.push_back("inner_box");
+  const glm::dvec3 x(w, 0, 0);
+  const glm::dvec3 y(0, w, 0);
+  const glm::dvec3 z(0, 0, w);
+  // Each face's e1 x e2 points out of the cube.
+  const sphcover::BezierPatch faces[6] = { Parallelogram({ lo, lo, lo }, z, y),
+    Parallelogram({ hi, lo, lo }, y, z),
+    Parallelogram({ lo, lo, lo }, x, z),
+    Parallelogram({ lo, hi, lo }, z, x),
+    Parallelogram({ lo, lo, lo }, y, x),
+    Parallelogram({ lo, lo, hi }, x, y) };
+  for (const sphcover::BezierPatch& face : faces)
+  {
+    scene.Surfaces.emplace_back(face, name, 0);
+  }
+  return scene;
 }
 
 /// Howell C-11: parallel, directly opposed, equal a x b rectangles at distance c.

@@ -81,32 +81,6 @@ void ExpectTiling(const Scene& scene, const std::vector<Patch>& patches)
   }
 }
 
-/// The furnace box with a closed, outward-facing cube [0.35, 0.65]^3 inside: every direction
-/// from every point still meets a surface, and the cube hides parts of the walls.
-Scene FurnaceBoxWithOccluder()
-{
-  Scene scene = LoadSceneFile(ScenePath("furnace_box.scene"));
-  const double lo = 0.35;
-  const double hi = 0.65;
-  const double w = hi - lo;
-  const int name = static_cast<int>(scene.SurfaceNames.size());
-  scene.SurfaceNames.push_back("inner_box");
-  const glm::dvec3 x(w, 0, 0);
-  const glm::dvec3 y(0, w, 0);
-  const glm::dvec3 z(0, 0, w);
-  // Each face's e1 x e2 points out of the cube.
-  const BezierPatch faces[6] = { Parallelogram({ lo, lo, lo }, z, y),
-    Parallelogram({ hi, lo, lo }, y, z),
-    Parallelogram({ lo, lo, lo }, x, z),
-    Parallelogram({ lo, hi, lo }, z, x),
-    Parallelogram({ lo, lo, lo }, y, x),
-    Parallelogram({ lo, lo, hi }, x, y) };
-  for (const BezierPatch& face : faces)
-  {
-    scene.Surfaces.emplace_back(face, name, 0);
-  }
-  return scene;
-}
 }
 
 TEST(CoverRefinement, CornellBoxReciprocity)
@@ -178,43 +152,6 @@ TEST(CoverRefinement, CornellBoxReciprocity)
     uniform += static_cast<size_t>(std::pow(3.0, deepest - patch.Level));
   }
   EXPECT_LT(after.size(), uniform / 2);
-}
-
-namespace
-{
-/// The real pipeline at a scene's own settings (as sphcover solve and the filters run it): the
-/// interval subdivision, the refinement `extraLevels` deeper (receiver side only unless
-/// `hemispheres`), the cover.
-struct SceneSettingsPipeline
-{
-  std::vector<Patch> Before;
-  std::vector<Patch> After;
-  RefinementStatistics Statistics;
-  SphericalCover Cover;
-
-  SceneSettingsPipeline(const Scene& scene, int maxLevel, int extraLevels, bool hemispheres)
-  {
-    SubdivisionSettings subdivision;
-    subdivision.MaxLevel = maxLevel;
-    subdivision.ThetaBins = scene.Settings.ThetaBins;
-    subdivision.PhiBins = scene.Settings.PhiBins;
-    for (double& tolerance : subdivision.Tolerance)
-    {
-      tolerance = scene.Settings.Tolerance;
-    }
-    this->Before = Subdivide(scene, subdivision);
-    RefinementSettings settings;
-    settings.Cover.ThetaBins = scene.Settings.ThetaBins;
-    settings.Cover.PhiBins = scene.Settings.PhiBins;
-    settings.MaxLevel = maxLevel + extraLevels;
-    settings.AnalyseHemispheres = hemispheres;
-    CoverRefinement refinement(scene, this->Before, settings);
-    EXPECT_TRUE(refinement.Run(nullptr, ThreadedFor(2)));
-    this->After = refinement.Patches();
-    this->Statistics = refinement.Statistics();
-    EXPECT_TRUE(this->Cover.Build(this->After, settings.Cover, ThreadedFor(2)));
-  }
-};
 }
 
 TEST(CoverRefinement, CornellBoxReciprocityAtTheSceneSettings)
