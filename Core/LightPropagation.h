@@ -86,7 +86,9 @@
  * out-measures (the split mixed box then balances to 6e-8, but the mirror sphere through the
  * pipeline is 12.6% off the furnace value and the teapot room had not converged after 890902
  * shots, against 72066); re-emitting what a non-diffuse receiver gains or loses by the balanced
- * measure as a uniform radiance (no change: the refined teapot room 0.398%).
+ * measure as a uniform radiance (no change: the refined teapot room 0.398%); a cover filled
+ * with RBufferFillOptions::DiffuseRounding (the unrefined teapot room 0.22% balanced, 0.96% as
+ * built).
  *
  * The sum over the table is taken in one of two ways (DirectionalMethod), the same sum in another
  * order (the test GridAndStripPairShotsAgree: 7e-15; the teapot room to 1e-3: incident radiance
