@@ -21,12 +21,21 @@
 #include <vtkStringArray.h>
 
 #include <cmath>
-#include <map>
+#include <sstream>
+#include <vector>
 
 namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
+/// A cell array's value as written in an error message (NaN and fractions included).
+std::string NumberText(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 std::string StringValue(vtkFieldData* fd, const char* name, vtkIdType index)
 {
   auto* array = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
@@ -74,11 +83,22 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
     return false;
   }
 
-  std::map<int, int> materialIndexOf; // input MaterialId -> index in scene.Materials
-  std::map<int, int> nameIndexOf;     // input SurfaceNameId -> index in scene.SurfaceNames
+  // The input's MaterialId and SurfaceNameId index its field arrays (MaterialNames,
+  // MaterialFiles, SurfaceNames), which the filters pass on to their outputs: the scene keeps
+  // them as its indices, so that the ids written downstream still name the same entries. An id
+  // no cell uses (cells removed in ParaView, say) gets a placeholder that no surface refers to.
+  const vtkIdType numberOfCells = input->GetNumberOfCells();
+  const auto idLimit = [&](const char* name)
+  {
+    auto* array = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
+    return numberOfCells + (array ? array->GetNumberOfValues() : 0);
+  };
+  const vtkIdType materialLimit = idLimit(names::MaterialNames);
+  const vtkIdType nameLimit = idLimit(names::SurfaceNames);
+  vtkDataArray* materialId = cd->GetArray(names::MaterialId);
+  std::vector<char> materialRead;
   vtkNew<vtkIdList> ids;
   vtkNew<vtkPoints> cellPoints;
-  const vtkIdType numberOfCells = input->GetNumberOfCells();
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
     const int type = input->GetCellType(c);
@@ -156,9 +176,28 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
     int materialIndex = 0;
     if (hasMaterials)
     {
-      const int id = static_cast<int>(materials.MaterialId(c));
-      auto found = materialIndexOf.find(id);
-      if (found == materialIndexOf.end())
+      const double id = materialId->GetComponent(c, 0);
+      if (!(id >= 0.0 && id < static_cast<double>(materialLimit)) || id != std::floor(id))
+      {
+        error = "cell " + std::to_string(c) + ": MaterialId " + NumberText(id) +
+          " is not an index in [0, " + std::to_string(materialLimit) + ")";
+        return false;
+      }
+      materialIndex = static_cast<int>(id);
+      const std::size_t index = static_cast<std::size_t>(materialIndex);
+      while (scene.Materials.size() <= index)
+      {
+        sphcover::Material placeholder;
+        const int k = static_cast<int>(scene.Materials.size());
+        placeholder.Name = StringValue(fd, names::MaterialNames, k);
+        if (placeholder.Name.empty())
+        {
+          placeholder.Name = "material" + std::to_string(k);
+        }
+        scene.Materials.push_back(placeholder);
+        materialRead.push_back(0);
+      }
+      if (!materialRead[index])
       {
         sphcover::Material material;
         if (!materials.Read(c, material, error))
@@ -167,28 +206,30 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
         }
         if (material.Name.empty())
         {
-          material.Name = "material" + std::to_string(id);
+          material.Name = scene.Materials[index].Name;
         }
-        found = materialIndexOf.emplace(id, static_cast<int>(scene.Materials.size())).first;
-        scene.Materials.push_back(material);
+        scene.Materials[index] = material;
+        materialRead[index] = 1;
       }
-      materialIndex = found->second;
     }
 
-    const int inputNameId = nameId ? static_cast<int>(nameId->GetComponent(c, 0)) : 0;
-    auto name = nameIndexOf.find(inputNameId);
-    if (name == nameIndexOf.end())
+    const double nameValue = nameId ? nameId->GetComponent(c, 0) : 0.0;
+    if (!(nameValue >= 0.0 && nameValue < static_cast<double>(nameLimit)) ||
+      nameValue != std::floor(nameValue))
     {
-      std::string text = StringValue(fd, names::SurfaceNames, inputNameId);
-      if (text.empty())
-      {
-        text = "surface" + std::to_string(inputNameId);
-      }
-      name = nameIndexOf.emplace(inputNameId, static_cast<int>(scene.SurfaceNames.size())).first;
-      scene.SurfaceNames.push_back(text);
+      error = "cell " + std::to_string(c) + ": SurfaceNameId " + NumberText(nameValue) +
+        " is not an index in [0, " + std::to_string(nameLimit) + ")";
+      return false;
+    }
+    const int nameIndex = static_cast<int>(nameValue);
+    while (scene.SurfaceNames.size() <= static_cast<std::size_t>(nameIndex))
+    {
+      const int k = static_cast<int>(scene.SurfaceNames.size());
+      std::string text = StringValue(fd, names::SurfaceNames, k);
+      scene.SurfaceNames.push_back(text.empty() ? "surface" + std::to_string(k) : text);
     }
 
-    sphcover::Surface surface(std::move(patch), name->second, materialIndex);
+    sphcover::Surface surface(std::move(patch), nameIndex, materialIndex);
     surface.IsTriangle = triangle;
     surface.TwoSided = twoSided && twoSided->GetComponent(c, 0) != 0.0;
     scene.Surfaces.push_back(std::move(surface));

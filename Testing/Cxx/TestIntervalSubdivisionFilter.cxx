@@ -2,7 +2,9 @@
 // vtkIntervalSubdivisionFilter:
 // - a regression image (VTK-style baseline) of the paper's Fig. 9 situation: a doubly curved
 //   patch seen from a point near it, its patches coloured by SplitReason with their edges;
-// - bad properties and inputs give one clear error and a failed request, never a crash.
+// - bad properties and inputs give one clear error and a failed request, never a crash;
+// - the patches keep the MaterialId and SurfaceNameId of their surfaces (the field arrays they
+//   index are passed on).
 #include "FailureExpectation.h"
 #include "vtkIntervalSubdivisionFilter.h"
 #include "vtkPatchSceneReader.h"
@@ -115,6 +117,57 @@ int TestIntervalSubdivisionFilter(int argc, char* argv[])
     unknownKind->GetCellData()->GetArray("MaterialType")->SetComponent(0, 0, 7.0);
     filter->SetInputData(unknownKind);
     failures += ExpectFailure(filter, "cell 0 has the unknown MaterialType 7");
+
+    // Ids that index no material or name.
+    for (const double id : { -1.0, 1e9 })
+    {
+      vtkNew<vtkUnstructuredGrid> badId;
+      badId->DeepCopy(reader->GetOutput());
+      badId->GetCellData()->GetArray("MaterialId")->SetComponent(0, 0, id);
+      filter->SetInputData(badId);
+      failures += ExpectFailure(filter, "cell 0: MaterialId");
+    }
+    vtkNew<vtkUnstructuredGrid> badName;
+    badName->DeepCopy(reader->GetOutput());
+    badName->GetCellData()->GetArray("SurfaceNameId")->SetComponent(0, 0, -3.0);
+    filter->SetInputData(badName);
+    failures += ExpectFailure(filter, "cell 0: SurfaceNameId -3 is not an index");
+  }
+
+  // The output's MaterialId and SurfaceNameId index the field arrays it passes on
+  // (MaterialNames, MaterialFiles, SurfaceNames) as the input's do: each patch keeps the ids of
+  // the surface it came from. In the teapot room the materials (sorted by name in the field data)
+  // first appear in another order than their ids (the floor, id 1, comes first); when the
+  // filter renumbered them by appearance, a tabulated material got another material's (empty)
+  // table file downstream.
+  {
+    vtkNew<vtkPatchSceneReader> room;
+    room->SetFileName(SPHCOVER_DATA_DIR "/scenes/teapot_room.scene");
+    vtkNew<vtkIntervalSubdivisionFilter> filter;
+    filter->SetInputConnection(room->GetOutputPort());
+    filter->SetMaxLevel(2);
+    filter->Update();
+    vtkUnstructuredGrid* surfaces = room->GetOutput();
+    vtkUnstructuredGrid* out = filter->GetOutput();
+    vtkDataArray* surfaceOf = out->GetCellData()->GetArray("SurfaceId");
+    int mismatches = 0;
+    for (const char* idName : { "MaterialId", "SurfaceNameId" })
+    {
+      vtkDataArray* in = surfaces->GetCellData()->GetArray(idName);
+      vtkDataArray* kept = out->GetCellData()->GetArray(idName);
+      for (vtkIdType c = 0; c < out->GetNumberOfCells(); ++c)
+      {
+        const vtkIdType surface = static_cast<vtkIdType>(surfaceOf->GetComponent(c, 0));
+        mismatches += kept->GetComponent(c, 0) != in->GetComponent(surface, 0) ? 1 : 0;
+      }
+    }
+    std::cout << "teapot room: " << out->GetNumberOfCells() << " patches, " << mismatches
+              << " ids not the input's\n";
+    if (out->GetNumberOfCells() <= surfaces->GetNumberOfCells() || mismatches != 0)
+    {
+      std::cerr << "FAILED: the patches do not keep their surfaces' MaterialId and SurfaceNameId\n";
+      ++failures;
+    }
   }
 
   // The Fig. 9 dome with the scene's settings, coloured by SplitReason.
