@@ -73,9 +73,13 @@
  * counted over its cells' own measure (which the table conserves) and what it receives over the
  * balanced one. Both differ from an exchange that is exact pair by pair only through how the
  * radiance varies along a row or a column, so closed scenes with mirrors and glossy surfaces
- * keep an imbalance of a few tenths of a percent: the split mixed box (27% per pair) 0.65%, the
- * teapot room 0.081% unrefined (1.26% as built) and 0.40% refined as the cover filter does
- * (0.18% as built; with the stored radiance scaled instead of the measure, 0.33% and 0.29%).
+ * keep an imbalance of a few tenths of a percent. It is the cover's discretisation error and
+ * falls as the patches shrink: the mixed box split 2 x 2, 3 x 3, 4 x 4, 6 x 6, 8 x 8 loses 0.70,
+ * 0.65, 0.57, 0.49, 0.37% (ClosedMixedBoxAbsorbsWhatItEmits asserts the fall); a finer grid at
+ * the same patches does not help (the mixed box with a cube inside through `sphcover solve`:
+ * 0.41, 0.29, 0.39% at 16 x 64, 32 x 128, 64 x 256). The
+ * teapot room is off by 0.081% unrefined (1.26% as built) and 0.40% refined as the cover filter
+ * does (0.18% as built; with the stored radiance scaled instead of the measure, 0.33% and 0.29%).
  * In the refined teapot room the balance itself cannot close: patches smaller than a cell as
  * seen from afar win few cells of other hemispheres, so their columns fall far short of their
  * rows (1010 of the 13461 points would need y_j > 4) and ExchangeBalance stops stalled. The
