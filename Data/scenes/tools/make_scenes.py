@@ -203,6 +203,32 @@ def furnace_sphere():
             "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
 
 
+MIXED_MATERIALS = {
+    "lamp": {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5], "emission": [1.0, 2.0, 3.0]},
+    "mirror": {"type": "mirror", "reflectance": [0.9, 0.8, 0.7]},
+    "glossy": {"type": "phong", "diffuse": [0.3, 0.2, 0.1], "specular": [0.5, 0.4, 0.6], "exponent": 30},
+    "clay": {"type": "tabulated", "file": "../brdf/clay.brdf.csv"},
+    "white": {"type": "diffuse", "reflectance": [0.7, 0.6, 0.5]},
+    "satin": {"type": "phong", "diffuse": [0.1, 0.1, 0.1], "specular": [0.8, 0.8, 0.8], "exponent": 5},
+}
+
+
+def mixed_box():
+    # A closed, non-uniform scene of all four reflectance kinds: the unit cube's walls a lamp,
+    # a mirror, two phong surfaces, the tabulated clay and a white wall, around an outward-facing
+    # glossy cube [0.35, 0.65]^3 that hides parts of them. The materials are listed (and so
+    # first used) in another order than their names sort.
+    walls = box_faces([0, 0, 0], [1, 1, 1], inward=True)
+    kinds = ["lamp", "mirror", "glossy", "clay", "white", "satin"]
+    surfaces = [bilinear_surface(k, v, m) for (k, v), m in zip(walls.items(), kinds)]
+    cube = box_faces([0.35, 0.35, 0.35], [0.65, 0.65, 0.65], inward=False)
+    surfaces += [bilinear_surface("cube_" + k, v, "glossy") for k, v in cube.items()]
+    camera = {"name": "inside", "position": [0.5, 0.5, 0.05], "focal_point": [0.5, 0.5, 1.0],
+              "view_up": [0, 1, 0], "view_angle": 90.0, "width": 256, "height": 256}
+    return {"version": 1, "materials": MIXED_MATERIALS, "surfaces": surfaces,
+            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+
+
 # --------------------------------------------------------------------------- teapot room
 
 ROOM_LO, ROOM_HI = [-6.0, 0.0, -6.0], [6.0, 8.0, 6.0]
@@ -321,6 +347,7 @@ ALL = {
     "furnace_box.scene": furnace_box,
     "furnace_sphere.scene": furnace_sphere,
     "furnace_clay.scene": furnace_clay,
+    "mixed_box.scene": mixed_box,
     "howell_parallel.scene": howell_parallel,
     "howell_perpendicular.scene": howell_perpendicular,
     "howell_disks.scene": howell_disks,

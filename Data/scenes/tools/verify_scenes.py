@@ -230,6 +230,21 @@ def furnace_box():
     check_camera(scene, ([0, 0, 0], [1, 1, 1]))
 
 
+def mixed_box():
+    print("mixed_box.scene")
+    scene, patches = load_scene(os.path.join(SCENES, "mixed_box.scene"))
+    for _, name, p in patches:
+        if name.startswith("cube_"):
+            check(faces_away(p, [0.5, 0.5, 0.5]), "%-10s front faces out of the inner cube" % name)
+        else:
+            check(faces_toward(p, [0.5, 0.5, 0.5]), "%-10s front faces into the room" % name)
+    ok, pairs, _, gap = check_watertight.check([p for _, _, p in patches], verbose=False)
+    check(ok and pairs == 24, "closed: 24 shared edges (room and cube), consistently oriented (gap %.3g)" % gap)
+    kinds = sorted({m["type"] for m in scene["materials"].values()})
+    check(kinds == ["diffuse", "mirror", "phong", "tabulated"], "all four reflectance kinds: %s" % kinds)
+    check_camera(scene, ([0, 0, 0], [1, 1, 1]))
+
+
 def furnace_sphere():
     print("furnace_sphere.scene")
     raw = check_watertight.read_bpt(os.path.join(MODELS, "geonum2017", "sphere.bpt"))
@@ -337,6 +352,7 @@ def main():
     cornell()
     cornell_meshes()
     furnace_box()
+    mixed_box()
     furnace_sphere()
     teapot_room()
     howell_scenes()
