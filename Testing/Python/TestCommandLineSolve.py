@@ -30,6 +30,17 @@ def solve(scene, *extra):
     return json.load(open(report))
 
 
+def check_energy(label, report, tolerance):
+    """Per band, the absorbed power equals the emitted power within `tolerance` (relative)."""
+    energy = report["energy"]
+    print(f"{label}: emitted {energy['emitted_w']} W, absorbed {energy['absorbed_w']} W, "
+          f"imbalance {energy['relative_imbalance']:.2e}, {report['counts']['characteristic_points']} points, "
+          f"{report['counts']['shots']} shots")
+    for emitted, absorbed in zip(energy["emitted_w"], energy["absorbed_w"]):
+        if not emitted > 0 or abs(absorbed - emitted) > tolerance * emitted:
+            failures.append(f"{label}: absorbed {absorbed} W for {emitted} W emitted")
+
+
 # Howell's closed forms C-11 and C-14, as documented with the scenes (Data/scenes/tools).
 sys.path.insert(0, os.path.join(data, "scenes", "tools"))
 from howell import f_disks, f_parallel, f_perpendicular  # noqa: E402
@@ -151,12 +162,7 @@ if furnace:
 closed = solve(f"{data}/scenes/cornell_box_closed.scene", "--set", "theta_bins=16", "--set", "phi_bins=64",
                "--set", "max_level=3")
 if closed:
-    energy = closed["energy"]
-    print(f"closed Cornell box: emitted {energy['emitted_w']} W, absorbed {energy['absorbed_w']} W, "
-          f"imbalance {energy['relative_imbalance']:.2e}, {closed['counts']['characteristic_points']} points")
-    for emitted, absorbed in zip(energy["emitted_w"], energy["absorbed_w"]):
-        if not emitted > 0 or abs(absorbed - emitted) > 1e-3 * emitted:
-            failures.append(f"closed Cornell box: absorbed {absorbed} W for {emitted} W emitted")
+    check_energy("closed Cornell box", closed, 1e-3)
 
 # A closed scene of all four reflectance kinds (mirror, phong, tabulated, diffuse) around an
 # occluding cube. It solves (its tabulated material is first used after others that sort after
@@ -166,12 +172,7 @@ if closed:
 # doubled bounce would show.
 mixed = solve(f"{data}/scenes/mixed_box.scene", "--set", "theta_bins=16", "--set", "phi_bins=64")
 if mixed:
-    energy = mixed["energy"]
-    print(f"mixed box: emitted {energy['emitted_w']} W, absorbed {energy['absorbed_w']} W, "
-          f"imbalance {energy['relative_imbalance']:.2e}, {mixed['counts']['shots']} shots")
-    for emitted, absorbed in zip(energy["emitted_w"], energy["absorbed_w"]):
-        if not emitted > 0 or abs(absorbed - emitted) > 1e-2 * emitted:
-            failures.append(f"mixed box: absorbed {absorbed} W for {emitted} W emitted")
+    check_energy("mixed box", mixed, 1e-2)
     names = {s["name"] for s in mixed["surfaces"]}
     if len(names) != 12 or not all(math.isfinite(v) and v >= 0 for s in mixed["surfaces"]
                                    for v in s["mean_exitant_radiance"] + s["mean_irradiance"]):
