@@ -145,6 +145,18 @@ struct SceneSettingsPipeline
   }
 };
 
+/// Runs `brightest` brightest-first and `fixed` in a fixed order, both to a relative tolerance
+/// of 1e-7 (the order-independence tests); whether both converged.
+inline bool RunInBothOrders(sphcover::LightPropagation& brightest,
+  sphcover::LightPropagation& fixed)
+{
+  sphcover::PropagationSettings settings;
+  settings.ConvergenceTolerance = 1e-7;
+  const bool first = brightest.Run(settings);
+  settings.Order = sphcover::ShootingOrder::FixedOrder;
+  return fixed.Run(settings) && first;
+}
+
 /// A bilinear patch with corners origin, origin + e1, origin + e1 + e2, origin + e2: its front
 /// side is e1 x e2.
 inline sphcover::BezierPatch Parallelogram(const glm::dvec3& origin,

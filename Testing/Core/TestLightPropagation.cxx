@@ -133,11 +133,7 @@ TEST(LightPropagation, ShootingOrderDoesNotChangeTheEquilibrium)
     CoveredScene setup(name, 2);
     LightPropagation brightest(setup.Cover, setup.Materials);
     LightPropagation fixed(setup.Cover, setup.Materials);
-    PropagationSettings settings;
-    settings.ConvergenceTolerance = 1e-7;
-    ASSERT_TRUE(brightest.Run(settings));
-    settings.Order = ShootingOrder::FixedOrder;
-    ASSERT_TRUE(fixed.Run(settings));
+    ASSERT_TRUE(RunInBothOrders(brightest, fixed));
     double worst = 0.0;
     double largest = 0.0;
     for (size_t i = 0; i < setup.Patches.size(); ++i)

@@ -398,11 +398,7 @@ TEST(NonDiffusePropagation, ShootingOrderDoesNotChangeTheEquilibrium)
         propagation->SetExchangeFactors(balance.EntryFactors());
       }
     }
-    PropagationSettings settings;
-    settings.ConvergenceTolerance = 1e-7;
-    ASSERT_TRUE(brightest.Run(settings));
-    settings.Order = ShootingOrder::FixedOrder;
-    ASSERT_TRUE(fixed.Run(settings));
+    ASSERT_TRUE(RunInBothOrders(brightest, fixed));
     double worst = 0.0;
     double largest = 0.0;
     for (size_t e = 0; e < cover.EntryCount(); ++e)
