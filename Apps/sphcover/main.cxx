@@ -275,7 +275,13 @@ nlohmann::json Report(vtkPolyData* points, const ReportCounts& counts)
   std::vector<double> groupArea(static_cast<size_t>(groups), 0.0);
   for (vtkIdType k = 0; k < points->GetNumberOfPoints(); ++k)
   {
-    groupOfPatch[static_cast<size_t>(k)] = static_cast<int>(nameId->GetComponent(k, 0));
+    const double id = nameId->GetComponent(k, 0);
+    if (!(id >= 0.0 && id < groups))
+    {
+      throw std::runtime_error("point " + std::to_string(k) + " has SurfaceNameId " +
+        std::to_string(id) + ", not an index of the " + std::to_string(groups) + " surface names");
+    }
+    groupOfPatch[static_cast<size_t>(k)] = static_cast<int>(id);
     groupArea[static_cast<size_t>(groupOfPatch[static_cast<size_t>(k)])] +=
       area->GetComponent(k, 0);
   }
