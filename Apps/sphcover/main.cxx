@@ -278,8 +278,10 @@ nlohmann::json Report(vtkPolyData* points, const ReportCounts& counts)
     const double id = nameId->GetComponent(k, 0);
     if (!(id >= 0.0 && id < groups))
     {
-      throw std::runtime_error("point " + std::to_string(k) + " has SurfaceNameId " +
-        std::to_string(id) + ", not an index of the " + std::to_string(groups) + " surface names");
+      std::ostringstream text;
+      text << "point " << k << " has SurfaceNameId " << id << ", not an index of the " << groups
+           << " surface names";
+      throw std::runtime_error(text.str());
     }
     groupOfPatch[static_cast<size_t>(k)] = static_cast<int>(id);
     groupArea[static_cast<size_t>(groupOfPatch[static_cast<size_t>(k)])] +=
@@ -643,17 +645,11 @@ int RunRender(const Options& options)
     renderSeconds = bar.Seconds();
   }
   timings["render"] = renderSeconds;
-  if (!exr.empty())
-  {
-    WriteExr(render->GetOutput(), exr);
-  }
-  for (const std::string& png : pngs)
-  {
-    WritePngAtomically(render->GetOutput(), png);
-  }
+  // The report is computed before any file is written: a solution it cannot read fails the
+  // command without leaving an image behind.
+  nlohmann::json report;
   if (!options.Report.empty())
   {
-    nlohmann::json report;
     if (options.SolutionFile.empty())
     {
       report = Report(solution);
@@ -671,6 +667,17 @@ int RunRender(const Options& options)
       { "width", width },
       { "height", height },
       { "samples_per_pixel", options.SamplesPerPixel } };
+  }
+  if (!exr.empty())
+  {
+    WriteExr(render->GetOutput(), exr);
+  }
+  for (const std::string& png : pngs)
+  {
+    WritePngAtomically(render->GetOutput(), png);
+  }
+  if (!options.Report.empty())
+  {
     WriteTextAtomically(report.dump(2) + "\n", options.Report);
   }
   std::cout << "image: " << width << "x" << height << " from camera '" << camera->Name << "', "

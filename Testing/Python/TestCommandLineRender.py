@@ -3,7 +3,7 @@ camera at a small size (read back by VTK: the size asked for, the lamp the brigh
 red wall red and the green wall green); the report's timings include the render; a solution
 saved by `sphcover solve -o` and rendered with --solution gives the identical image (the
 walk-through case: only the render runs); the image does not depend on the thread count; bad
-input gives one line, a non-zero exit and no output file."""
+input (a corrupted saved solution too) gives one line, a non-zero exit and no output file."""
 import json
 import os
 import subprocess
@@ -11,6 +11,7 @@ import sys
 import tempfile
 
 from vtkmodules.vtkIOImage import vtkPNGReader
+from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataReader, vtkXMLMultiBlockDataWriter
 
 sphcover, data = sys.argv[1:3]
 failures = []
@@ -126,9 +127,25 @@ result = run("render", scene, "-o", single, "--size", "64x48", "--threads", "1",
 if result.returncode != 0 or open(single, "rb").read() != open(first, "rb").read():
     failures.append("the image depends on the thread count")
 
+# A saved solution whose first point names a surface that does not exist (SurfaceNameId out of
+# range): the report cannot be made, and nothing is written (not even the image).
+corrupt = os.path.join(folder, "corrupt_solution.vtm")
+if os.path.exists(solution):
+    reader = vtkXMLMultiBlockDataReader()
+    reader.SetFileName(solution)
+    reader.Update()
+    blocks = reader.GetOutput()
+    blocks.GetBlock(1).GetPointData().GetArray("SurfaceNameId").SetComponent(0, 0, 99)
+    writer = vtkXMLMultiBlockDataWriter()
+    writer.SetFileName(corrupt)
+    writer.SetInputData(blocks)
+    writer.Write()
+
 # Bad input: one line on stderr, non-zero exit, no output file.
 bad_output = os.path.join(folder, "bad.png")
 for arguments, words in [
+        (["render", scene, "-o", bad_output, "--solution", corrupt, "--report",
+          os.path.join(folder, "bad.json")], "SurfaceNameId 99"),
         (["render", scene, "-o", os.path.join(folder, "bad.tiff")], "unknown image format"),
         (["render", scene, "-o", os.path.join(folder, "nofolder", "bad.exr")], "no folder"),
         (["render", scene, "-o", bad_output, "--camera", "nowhere"], "nowhere"),
