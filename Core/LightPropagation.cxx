@@ -108,11 +108,11 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
     throw std::invalid_argument("LightPropagation: too many cover entries for 32-bit positions");
   }
   this->EntryPosition.resize(cover.EntryCount());
-  this->ColumnOmega.resize(cover.EntryCount());
+  this->ColumnMeasure.resize(cover.EntryCount());
   for (std::size_t k = 0; k < cover.EntryCount(); ++k)
   {
     this->EntryPosition[cover.ColumnAt(k).EntryIndex] = static_cast<uint32_t>(k);
-    this->ColumnOmega[k] = this->EntryOmega[cover.ColumnAt(k).EntryIndex];
+    this->ColumnMeasure[k] = this->EntryOmega[cover.ColumnAt(k).EntryIndex];
   }
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -221,17 +221,21 @@ void LightPropagation::SetExchangeFactors(const std::vector<double>& entryFactor
     throw std::invalid_argument("LightPropagation: " + std::to_string(entryFactors.size()) +
       " exchange factors for " + std::to_string(this->Cover.EntryCount()) + " entries");
   }
-  this->ColumnFactor.assign(entryFactors.size(), 1.0);
-  for (std::size_t e = 0; e < entryFactors.size(); ++e)
+  std::vector<double> measure(this->EntryOmega.size());
+  for (std::size_t e = 0; e < measure.size(); ++e)
   {
-    if (!(entryFactors[e] >= 0.0 && std::isfinite(entryFactors[e])))
+    const double factor = entryFactors.empty() ? 1.0 : entryFactors[e];
+    if (!(factor >= 0.0 && std::isfinite(factor)))
     {
-      this->ColumnFactor.clear();
+      // Rejected factors leave the cover's exchange as built.
+      this->SetExchangeFactors({});
       throw std::invalid_argument("LightPropagation: exchange factor of entry " +
         std::to_string(e) + " is not finite and >= 0");
     }
-    this->ColumnFactor[this->EntryPosition[e]] = entryFactors[e];
+    measure[this->EntryPosition[e]] = factor * this->EntryOmega[e];
   }
+  this->ColumnMeasure = std::move(measure);
+  this->Balanced = !entryFactors.empty();
   this->Reset();
 }
 
@@ -557,10 +561,7 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
     this->Incident[k] += value;
     // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form,
     // over the region's balanced measure f_e Omega_e (SetExchangeFactors).
-    const double measure = this->ColumnFactor.empty()
-      ? this->ColumnOmega[k]
-      : this->ColumnFactor[k] * this->ColumnOmega[k];
-    this->Unshot[item.Receiver] += this->Rho[item.Receiver] * (measure / Pi) * value;
+    this->Unshot[item.Receiver] += this->Rho[item.Receiver] * (this->ColumnMeasure[k] / Pi) * value;
     if (this->ModelOfPatch[item.Receiver] >= 0)
     {
       this->UnshotIncident[k] += value;
@@ -733,9 +734,7 @@ glm::dvec3 LightPropagation::Irradiance(std::size_t patch) const
   for (std::size_t e = this->Cover.EntryBegin(patch); e < this->Cover.EntryEnd(patch); ++e)
   {
     const uint32_t k = this->EntryPosition[e];
-    const double measure = this->ColumnFactor.empty() ? this->EntryOmega[e]
-                                                      : this->ColumnFactor[k] * this->EntryOmega[e];
-    sum += this->Incident[k] * measure;
+    sum += this->Incident[k] * this->ColumnMeasure[k];
   }
   return sum;
 }

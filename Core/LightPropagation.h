@@ -302,7 +302,7 @@ public:
    * than 0 or the cover's entry count, or a factor that is negative or not finite.
    */
   void SetExchangeFactors(const std::vector<double>& entryFactors);
-  bool HasExchangeFactors() const { return !this->ColumnFactor.empty(); }
+  bool HasExchangeFactors() const { return this->Balanced; }
 
   /// Back to the start: E = 0, unshot radiance = emission, no history.
   void Reset();
@@ -415,9 +415,10 @@ private:
   /// k-th element of the cover's columns: a shot walks column j, and reads its entries'
   /// data in one sweep instead of all over the rows).
   std::vector<double> EntryOmega;
-  std::vector<double> ColumnOmega;
-  /// The balance factor f_e of every entry in column order (SetExchangeFactors), or empty.
-  std::vector<double> ColumnFactor;
+  /// The measure each region's radiance counts with, in column order: f_e Omega_e with exchange
+  /// factors (SetExchangeFactors), Omega_e without.
+  std::vector<double> ColumnMeasure;
+  bool Balanced = false;
   /// E_e in column order (EntryPosition), and by entry for IncidentRadiances.
   std::vector<glm::dvec3> Incident;
   mutable std::vector<glm::dvec3> IncidentByEntry;
@@ -437,7 +438,7 @@ private:
   static constexpr uint32_t FallbackFlag = 0x80000000u;
   /// Position in column order of every entry.
   std::vector<uint32_t> EntryPosition;
-  // Only when some patch is non-diffuse, all in column order (see ColumnOmega):
+  // Only when some patch is non-diffuse, all in column order (see ColumnMeasure):
   /// For the entry (i, j) at column position k: the position of the entry (j, i) within row j
   /// (an index of DirectionalOut); when h_ji is null, FallbackFlag | the cell of the direction
   /// P_i - P_j in H_j (frames known, EncodeFallbacks), or NoEntry (the mean).
