@@ -28,19 +28,43 @@ namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
-/// A cell array's value as written in an error message (NaN and fractions included).
-std::string NumberText(double value)
-{
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
 std::string StringValue(vtkFieldData* fd, const char* name, vtkIdType index)
 {
   auto* array = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
   return (array && index >= 0 && index < array->GetNumberOfValues()) ? array->GetValue(index)
                                                                      : std::string();
+}
+
+/// Entry `index` of the field array `name`, or `fallback` followed by the index where it has
+/// none.
+std::string NameOrFallback(vtkFieldData* fd,
+  const char* name,
+  vtkIdType index,
+  const std::string& fallback)
+{
+  const std::string text = StringValue(fd, name, index);
+  return text.empty() ? fallback + std::to_string(index) : text;
+}
+
+/// Cell c's value of the id array `idName` as an index in [0, limit): false, with the error,
+/// for a value that is negative, fractional, not a number or too large.
+bool CellIndex(double value,
+  vtkIdType limit,
+  const char* idName,
+  vtkIdType c,
+  int& index,
+  std::string& error)
+{
+  if (!(value >= 0.0 && value < static_cast<double>(limit)) || value != std::floor(value))
+  {
+    std::ostringstream text;
+    text << "cell " << c << ": " << idName << " " << value << " is not an index in [0, " << limit
+         << ")";
+    error = text.str();
+    return false;
+  }
+  index = static_cast<int>(value);
+  return true;
 }
 }
 
@@ -176,24 +200,21 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
     int materialIndex = 0;
     if (hasMaterials)
     {
-      const double id = materialId->GetComponent(c, 0);
-      if (!(id >= 0.0 && id < static_cast<double>(materialLimit)) || id != std::floor(id))
+      if (!CellIndex(materialId->GetComponent(c, 0),
+            materialLimit,
+            names::MaterialId,
+            c,
+            materialIndex,
+            error))
       {
-        error = "cell " + std::to_string(c) + ": MaterialId " + NumberText(id) +
-          " is not an index in [0, " + std::to_string(materialLimit) + ")";
         return false;
       }
-      materialIndex = static_cast<int>(id);
       const std::size_t index = static_cast<std::size_t>(materialIndex);
       while (scene.Materials.size() <= index)
       {
         sphcover::Material placeholder;
-        const int k = static_cast<int>(scene.Materials.size());
-        placeholder.Name = StringValue(fd, names::MaterialNames, k);
-        if (placeholder.Name.empty())
-        {
-          placeholder.Name = "material" + std::to_string(k);
-        }
+        placeholder.Name = NameOrFallback(
+          fd, names::MaterialNames, static_cast<vtkIdType>(scene.Materials.size()), "material");
         scene.Materials.push_back(placeholder);
         materialRead.push_back(0);
       }
@@ -213,20 +234,20 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
       }
     }
 
-    const double nameValue = nameId ? nameId->GetComponent(c, 0) : 0.0;
-    if (!(nameValue >= 0.0 && nameValue < static_cast<double>(nameLimit)) ||
-      nameValue != std::floor(nameValue))
+    int nameIndex = 0;
+    if (!CellIndex(nameId ? nameId->GetComponent(c, 0) : 0.0,
+          nameLimit,
+          names::SurfaceNameId,
+          c,
+          nameIndex,
+          error))
     {
-      error = "cell " + std::to_string(c) + ": SurfaceNameId " + NumberText(nameValue) +
-        " is not an index in [0, " + std::to_string(nameLimit) + ")";
       return false;
     }
-    const int nameIndex = static_cast<int>(nameValue);
     while (scene.SurfaceNames.size() <= static_cast<std::size_t>(nameIndex))
     {
-      const int k = static_cast<int>(scene.SurfaceNames.size());
-      std::string text = StringValue(fd, names::SurfaceNames, k);
-      scene.SurfaceNames.push_back(text.empty() ? "surface" + std::to_string(k) : text);
+      scene.SurfaceNames.push_back(NameOrFallback(
+        fd, names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()), "surface"));
     }
 
     sphcover::Surface surface(std::move(patch), nameIndex, materialIndex);
