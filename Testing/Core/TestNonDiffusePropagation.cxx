@@ -27,30 +27,40 @@ namespace
 {
 constexpr double Pi = 3.14159265358979323846;
 
+/// The hemisphere frame of every patch's characteristic point.
+std::vector<HemisphereFrame> FramesOf(const std::vector<Patch>& patches)
+{
+  std::vector<HemisphereFrame> frames;
+  for (const Patch& patch : patches)
+  {
+    frames.push_back(HemisphereFrame::OfPatch(patch));
+  }
+  return frames;
+}
+
+/// The material of every patch from one material per surface (cycled when there are fewer
+/// materials than surfaces).
+std::vector<Material> MaterialsPerPatch(const std::vector<Patch>& patches,
+  const std::vector<Material>& ofSurface)
+{
+  std::vector<Material> materials;
+  for (const Patch& patch : patches)
+  {
+    materials.push_back(ofSurface.at(static_cast<size_t>(patch.SurfaceIndex) % ofSurface.size()));
+  }
+  return materials;
+}
+
 /// CoveredScene with the frames of its points and materials given per surface.
 struct CoveredPatches : CoveredScene
 {
   using CoveredScene::CoveredScene;
 
-  std::vector<HemisphereFrame> Frames() const
-  {
-    std::vector<HemisphereFrame> frames;
-    for (const Patch& patch : this->Patches)
-    {
-      frames.push_back(HemisphereFrame::OfPatch(patch));
-    }
-    return frames;
-  }
+  std::vector<HemisphereFrame> Frames() const { return FramesOf(this->Patches); }
 
-  /// The material of every patch from one material per surface.
   std::vector<Material> PerPatch(const std::vector<Material>& ofSurface) const
   {
-    std::vector<Material> materials;
-    for (const Patch& patch : this->Patches)
-    {
-      materials.push_back(ofSurface.at(static_cast<size_t>(patch.SurfaceIndex) % ofSurface.size()));
-    }
-    return materials;
+    return MaterialsPerPatch(this->Patches, ofSurface);
   }
 };
 
@@ -247,11 +257,7 @@ TEST(NonDiffusePropagation, FurnacesThroughThePipelineWithTheExchangeBalanced)
   for (const auto& named : scenes)
   {
     const SceneSettingsPipeline run(named.second, 2, 3, false);
-    std::vector<HemisphereFrame> frames;
-    for (const Patch& patch : run.After)
-    {
-      frames.push_back(HemisphereFrame::OfPatch(patch));
-    }
+    const std::vector<HemisphereFrame> frames = FramesOf(run.After);
     const ExchangeBalance balance(run.Cover);
     for (const Case& c : cases)
     {
@@ -371,14 +377,8 @@ TEST(NonDiffusePropagation, ShootingOrderDoesNotChangeTheEquilibrium)
   const std::vector<Patch> patches = SplitScene(FurnaceBoxWithOccluder(), 2);
   SphericalCover cover;
   ASSERT_TRUE(cover.Build(patches));
-  std::vector<Material> materials;
-  std::vector<HemisphereFrame> frames;
-  const std::vector<Material> ofSurface = MixedBox();
-  for (const Patch& patch : patches)
-  {
-    materials.push_back(ofSurface.at(static_cast<size_t>(patch.SurfaceIndex) % ofSurface.size()));
-    frames.push_back(HemisphereFrame::OfPatch(patch));
-  }
+  const std::vector<Material> materials = MaterialsPerPatch(patches, MixedBox());
+  const std::vector<HemisphereFrame> frames = FramesOf(patches);
   const ExchangeBalance balance(cover);
   double farthest = 0.0;
   for (double f : balance.EntryFactors())
@@ -556,14 +556,9 @@ std::size_t CheckMirrorCarriesLight(double half, bool frames)
   EXPECT_LT(cover.FindEntry(receiver, lamp), 0);
 
   LightPropagation propagation(cover, materials);
-  std::vector<HemisphereFrame> frameOfPatch;
-  for (const Patch& patch : patches)
-  {
-    frameOfPatch.push_back(HemisphereFrame::OfPatch(patch));
-  }
   if (frames)
   {
-    propagation.SetFrames(frameOfPatch);
+    propagation.SetFrames(FramesOf(patches));
   }
   EXPECT_THROW(propagation.SetFrames(std::vector<HemisphereFrame>(2)), std::invalid_argument);
   PropagationSettings settings;
