@@ -135,6 +135,13 @@ void WriteAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::strin
   }
   const fs::path staging(pattern);
   const fs::path staged = staging / target.filename();
+  // Inline base64 (zlib-compressed), not VTK's default raw appended data: from expat 2.6 on (and
+  // Debian 12's libexpat1 2.5.0-1+deb12u5, which carries its "reparse deferral") the XML reader
+  // of VTK 9.2 / ParaView 5.11 no longer stops at <AppendedData> and fails on the raw bytes
+  // after it ("not well-formed"). Inline data is well-formed XML every reader parses, and still
+  // bit-exact.
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
   writer->SetInputData(data);
   writer->SetFileName(staged.string().c_str());
   ErrorCollector errors;

@@ -137,6 +137,7 @@ if os.path.exists(solution):
     blocks = reader.GetOutput()
     blocks.GetBlock(1).GetPointData().GetArray("SurfaceNameId").SetComponent(0, 0, 99)
     writer = vtkXMLMultiBlockDataWriter()
+    writer.SetDataModeToBinary()  # appended data does not read back under expat >= 2.6
     writer.SetFileName(corrupt)
     writer.SetInputData(blocks)
     writer.Write()

@@ -6,11 +6,13 @@ the scenes, not assumed; reciprocity; the white furnace;
 the energy balance of a closed non-uniform scene (the closed Cornell box, coarser) and of a
 closed scene of all four reflectance kinds (within the directional shots' 1%); the
 solution file read back by VTK; and a clean failure."""
+import glob
 import json
 import math
 import os
 import subprocess
 import sys
+import xml.etree.ElementTree
 import tempfile
 
 from vtkmodules.vtkIOXML import vtkXMLMultiBlockDataReader
@@ -111,6 +113,26 @@ if perpendicular:
     cover = reader.GetOutput().GetBlock(1)
     if cover is None or cover.GetFieldData().GetArray("CoverStrips") is None:
         failures.append("the solution file lacks the cover")
+    else:
+        strips = cover.GetFieldData().GetArray("CoverStrips").GetNumberOfTuples()
+        points = cover.GetNumberOfPoints()
+        counts = perpendicular["counts"]
+        if (strips, points) != (counts["strips"], counts["characteristic_points"]):
+            failures.append(f"the solution reads back {strips} strips and {points} points, "
+                            f"the report counts {counts['strips']} and {counts['characteristic_points']}")
+    # Every file of the solution is well-formed XML with its data inline (no <AppendedData>, raw
+    # or base64): VTK 9.2's reader fails on appended data under expat >= 2.6 (Debian 12's
+    # libexpat1 2.5.0-1+deb12u5), and a machine with an older expat would not show it.
+    pieces = [os.path.join(folder, "solution.vtm")] + sorted(
+        glob.glob(os.path.join(folder, "solution", "*")))
+    for piece in pieces:
+        try:
+            if xml.etree.ElementTree.parse(piece).find(".//AppendedData") is not None:
+                failures.append(f"{os.path.basename(piece)} has appended data")
+        except xml.etree.ElementTree.ParseError as error:
+            failures.append(f"{os.path.basename(piece)} is not well-formed XML: {error}")
+    if len(pieces) != 3:
+        failures.append(f"the solution has {len(pieces)} files, expected the .vtm and 2 pieces")
 
 # Howell C-41, coaxial parallel disks (SPEC §6): curved-boundary patches with a collapsed edge
 # (Data/models/unit_disk.bpt, four cubic quarter-disks). The shipped scene (radii 1 and 0.5 at
