@@ -11,9 +11,10 @@
  *                   [--exposure E] [--solution solution.vtm] [--report report.json] [--set k=v]
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
- * half-written (files are written under a temporary name and renamed when complete).
+ * half-written, also when interrupted (OutputFiles.h).
  */
 #include "ErrorCollector.h"
+#include "OutputFiles.h"
 #include "ProgressBar.h"
 #include "SceneSummary.h"
 
@@ -41,9 +42,7 @@
 #include <vtkLogger.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkNew.h>
-#include <vtkOpenEXRWriter.h>
 #include <vtkOutputWindow.h>
-#include <vtkPNGWriter.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
@@ -55,14 +54,11 @@
 #include <vtkXMLMultiBlockDataWriter.h>
 
 #include <cctype>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <stdexcept>
 
@@ -114,80 +110,6 @@ sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<st
     settings = sphcover::OverrideSetting(settings, assignment);
   }
   return settings;
-}
-
-/// Writes a dataset with VTK's XML writer so that no half-written output is ever visible: into
-/// a temporary folder beside the target, then renamed into place (a multiblock file's folder of
-/// pieces first, the file that refers to them last).
-void WriteAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path)
-{
-  namespace fs = std::filesystem;
-  const fs::path target = fs::absolute(path);
-  const fs::path folder = target.parent_path();
-  if (!fs::is_directory(folder))
-  {
-    throw std::runtime_error("cannot write '" + path + "': no folder " + folder.string());
-  }
-  std::string pattern = (folder / ("." + target.filename().string() + ".XXXXXX")).string();
-  if (!mkdtemp(pattern.data()))
-  {
-    throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
-  }
-  const fs::path staging(pattern);
-  const fs::path staged = staging / target.filename();
-  // Inline base64 (zlib-compressed), not VTK's default raw appended data: from expat 2.6 on (and
-  // Debian 12's libexpat1 2.5.0-1+deb12u5, which carries its "reparse deferral") the XML reader
-  // of VTK 9.2 / ParaView 5.11 no longer stops at <AppendedData> and fails on the raw bytes
-  // after it ("not well-formed"). Inline data is well-formed XML every reader parses, and still
-  // bit-exact.
-  writer->SetDataModeToBinary();
-  writer->SetCompressorTypeToZLib();
-  writer->SetInputData(data);
-  writer->SetFileName(staged.string().c_str());
-  ErrorCollector errors;
-  errors.Watch(writer);
-  const bool written = writer->Write() == 1 && writer->GetErrorCode() == 0;
-  std::error_code failure;
-  if (written)
-  {
-    // A multiblock writer puts its pieces in a folder named after the file's stem.
-    const fs::path pieces = staging / target.stem();
-    if (fs::is_directory(pieces))
-    {
-      fs::remove_all(folder / target.stem(), failure);
-      fs::rename(pieces, folder / target.stem(), failure);
-    }
-    if (!failure)
-    {
-      fs::rename(staged, target, failure);
-    }
-  }
-  fs::remove_all(staging);
-  if (!written || failure)
-  {
-    throw std::runtime_error(
-      "cannot write '" + path + "': " + (written ? failure.message() : errors.First()));
-  }
-}
-
-/// Writes text to a temporary file beside `path`, then renames it into place.
-void WriteTextAtomically(const std::string& text, const std::string& path)
-{
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    out << text;
-    if (!out.good())
-    {
-      std::remove(temporary.c_str());
-      throw std::runtime_error("cannot write '" + path + "'");
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0)
-  {
-    std::remove(temporary.c_str());
-    throw std::runtime_error("cannot write '" + path + "'");
-  }
 }
 
 /// The stages up to the spherical cover, run with progress bars; errors throw one line.
@@ -394,7 +316,7 @@ int RunSolve(const Options& options)
   solution.Run(options);
   if (!options.Report.empty())
   {
-    WriteTextAtomically(Report(solution).dump(2) + "\n", options.Report);
+    sphcover_cli::WriteTextAtomically(Report(solution).dump(2) + "\n", options.Report);
   }
   if (!options.Output.empty())
   {
@@ -405,7 +327,7 @@ int RunSolve(const Options& options)
     blocks->SetBlock(1, solution.Propagation->GetOutput());
     blocks->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Illumination");
     vtkNew<vtkXMLMultiBlockDataWriter> writer;
-    WriteAtomically(writer, blocks, options.Output);
+    sphcover_cli::WriteXmlAtomically(writer, blocks, options.Output);
   }
   std::cout << "patches: " << solution.Subdivision->GetOutput()->GetNumberOfCells() << "\n"
             << "seconds: read " << solution.ReadSeconds << ", subdivide "
@@ -423,60 +345,6 @@ std::string ExtensionOf(const std::string& path)
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
   return extension;
-}
-
-/// Writes the image's RGB as PNG through VTK, to a temporary file beside `path` renamed into
-/// place when complete.
-void WritePngAtomically(vtkImageData* image, const std::string& path)
-{
-  namespace fs = std::filesystem;
-  const fs::path target = fs::absolute(path);
-  if (!fs::is_directory(target.parent_path()))
-  {
-    throw std::runtime_error(
-      "cannot write '" + path + "': no folder " + target.parent_path().string());
-  }
-  const std::string temporary =
-    (target.parent_path() / ("." + target.filename().string() + ".partial.png")).string();
-  vtkNew<vtkImageData> rgb;
-  rgb->SetExtent(image->GetExtent());
-  rgb->GetPointData()->SetScalars(
-    image->GetPointData()->GetArray(vtkSphericalCoverArrayNames::RGB));
-  vtkNew<vtkPNGWriter> writer;
-  ErrorCollector errors;
-  errors.Watch(writer);
-  writer->SetInputData(rgb);
-  writer->SetFileName(temporary.c_str());
-  writer->Write();
-  std::error_code failure;
-  if (writer->GetErrorCode() != 0 || !fs::is_regular_file(temporary))
-  {
-    fs::remove(temporary, failure);
-    throw std::runtime_error("cannot write '" + path + "': " + errors.First());
-  }
-  fs::rename(temporary, target, failure);
-  if (failure)
-  {
-    fs::remove(temporary, failure);
-    throw std::runtime_error("cannot write '" + path + "': " + failure.message());
-  }
-}
-
-/// Writes the HDR `Radiance` (float RGB) and `Depth` as OpenEXR; vtkOpenEXRWriter writes to a
-/// temporary file renamed into place, so a failure leaves no partial file.
-void WriteExr(vtkImageData* image, const std::string& path)
-{
-  vtkNew<vtkOpenEXRWriter> writer;
-  ErrorCollector errors;
-  errors.Watch(writer);
-  writer->SetInputData(image);
-  writer->SetFileName(path.c_str());
-  writer->SetColorArrayName(vtkSphericalCoverArrayNames::Radiance);
-  writer->AddChannelArray(vtkSphericalCoverArrayNames::Depth);
-  if (!writer->Write())
-  {
-    throw std::runtime_error("cannot write '" + path + "': " + errors.First());
-  }
 }
 
 /// "WxH" as two positive integers.
@@ -677,15 +545,15 @@ int RunRender(const Options& options)
   }
   if (!exr.empty())
   {
-    WriteExr(render->GetOutput(), exr);
+    sphcover_cli::WriteExrAtomically(render->GetOutput(), exr);
   }
   for (const std::string& png : pngs)
   {
-    WritePngAtomically(render->GetOutput(), png);
+    sphcover_cli::WritePngAtomically(render->GetOutput(), png);
   }
   if (!options.Report.empty())
   {
-    WriteTextAtomically(report.dump(2) + "\n", options.Report);
+    sphcover_cli::WriteTextAtomically(report.dump(2) + "\n", options.Report);
   }
   std::cout << "image: " << width << "x" << height << " from camera '" << camera->Name << "', "
             << options.SamplesPerPixel << " samples per pixel\n"
@@ -741,7 +609,7 @@ int RunSubdivide(const Options& options)
   blocks->SetBlock(1, points);
   blocks->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "CharacteristicPoints");
   vtkNew<vtkXMLMultiBlockDataWriter> writer;
-  WriteAtomically(writer, blocks, options.Output);
+  sphcover_cli::WriteXmlAtomically(writer, blocks, options.Output);
 
   std::cout << "patches: " << patches->GetNumberOfCells() << "\n"
             << "characteristic points: " << points->GetNumberOfPoints() << "\n"
@@ -831,6 +699,9 @@ int main(int argc, char** argv)
   {
     return app.exit(e);
   }
+
+  // Before any thread starts: an interrupted run leaves no partial output behind.
+  sphcover_cli::WatchTerminationSignals();
 
   // ParaView's VTK selects the Sequential SMP backend unless told otherwise (SPEC §2).
   vtkSMPTools::SetBackend("STDThread");
