@@ -133,6 +133,18 @@ if perpendicular:
             failures.append(f"{os.path.basename(piece)} is not well-formed XML: {error}")
     if len(pieces) != 3:
         failures.append(f"the solution has {len(pieces)} files, expected the .vtm and 2 pieces")
+    # ParaView opens it too (pvbatch: the reader a user's File > Open picks for .vtm).
+    opened = subprocess.run([os.environ["SPHCOVER_PVBATCH"], "-c", (
+        "from paraview.simple import OpenDataFile\n"
+        f"r = OpenDataFile({os.path.join(folder, 'solution.vtm')!r})\n"
+        "r.UpdatePipeline()\n"
+        "print('points', r.GetDataInformation().GetNumberOfPoints())\n")],
+        capture_output=True, text=True, timeout=300)
+    expected = "points " + str(sum(reader.GetOutput().GetBlock(i).GetNumberOfPoints()
+                                   for i in range(reader.GetOutput().GetNumberOfBlocks())))
+    if expected not in opened.stdout or "ERR" in opened.stderr:
+        failures.append(f"ParaView does not open the solution ({expected} expected): "
+                        f"{opened.stdout.strip()} {opened.stderr.strip()[-300:]}")
 
 # Howell C-41, coaxial parallel disks (SPEC §6): curved-boundary patches with a collapsed edge
 # (Data/models/unit_disk.bpt, four cubic quarter-disks). The shipped scene (radii 1 and 0.5 at
