@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -137,6 +138,30 @@ ImageLayout ReadLayout(const Imf::Header& header, vtkIdType maximumPixels)
   return layout;
 }
 
+/// A float array of `tuples` x `components` values, allocated here so that a failed
+/// allocation is an error (std::runtime_error) rather than VTK's: vtkFloatArray reports it and
+/// goes on with no buffer, where OpenEXR then writes the pixels (a crash on a small file whose
+/// header claims a large image, on a machine or under a limit with less memory than that).
+vtkSmartPointer<vtkFloatArray> NewFloatArray(const std::string& name,
+  int components,
+  vtkIdType tuples)
+{
+  const std::size_t values = static_cast<std::size_t>(components) * tuples;
+  float* buffer = static_cast<float*>(std::malloc(values * sizeof(float)));
+  if (!buffer)
+  {
+    std::ostringstream problem;
+    problem << "not enough memory for the channel '" << name << "' ("
+            << (values * sizeof(float) + (1 << 20) - 1) / (1 << 20) << " MiB)";
+    throw std::runtime_error(problem.str());
+  }
+  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  array->SetName(name.c_str());
+  array->SetNumberOfComponents(components);
+  array->SetArray(buffer, static_cast<vtkIdType>(values), 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+  return array;
+}
+
 /// Reverses the order of the rows of an array of `height` rows of `rowValues` floats.
 void FlipRows(float* values, int height, std::size_t rowValues)
 {
@@ -240,13 +265,11 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
     // OpenEXR writes straight into the arrays (converting half and uint to float) in EXR
     // scanline order; the rows are flipped afterwards.
     Imf::FrameBuffer frameBuffer;
-    vtkNew<vtkFloatArray> radiance;
+    vtkSmartPointer<vtkFloatArray> radiance;
     std::vector<vtkSmartPointer<vtkFloatArray>> others;
     if (layout.HasColor)
     {
-      radiance->SetName("Radiance");
-      radiance->SetNumberOfComponents(3);
-      radiance->SetNumberOfTuples(pixels);
+      radiance = NewFloatArray("Radiance", 3, pixels);
       const char* rgb[3] = { "R", "G", "B" };
       for (int c = 0; c < 3; ++c)
       {
@@ -260,9 +283,7 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
     }
     for (const std::string& name : layout.OtherChannels)
     {
-      auto array = vtkSmartPointer<vtkFloatArray>::New();
-      array->SetName(name.c_str());
-      array->SetNumberOfTuples(pixels);
+      vtkSmartPointer<vtkFloatArray> array = NewFloatArray(name, 1, pixels);
       frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, array->GetPointer(0), layout.Window));
       others.push_back(array);
     }
