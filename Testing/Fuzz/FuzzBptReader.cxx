@@ -17,7 +17,8 @@
 
 namespace
 {
-const bool Invariants = [] {
+const bool Invariants = []
+{
   const char* value = std::getenv("SPHCOVER_FUZZ_INVARIANTS");
   return value && std::string(value) == "1";
 }();

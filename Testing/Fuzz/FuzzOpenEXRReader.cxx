@@ -51,8 +51,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size)
     const vtkIdType values = array->GetNumberOfValues();
     for (vtkIdType k = 0; k < values; k += 1 + values / 4096)
     {
-      sum += array->GetComponent(k / array->GetNumberOfComponents(),
-        static_cast<int>(k % array->GetNumberOfComponents()));
+      sum += array->GetComponent(
+        k / array->GetNumberOfComponents(), static_cast<int>(k % array->GetNumberOfComponents()));
     }
     (void)sum;
   }

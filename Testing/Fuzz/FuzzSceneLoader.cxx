@@ -41,11 +41,15 @@ const char* const Brdf = "# constant 0.1 / sr\n"
 /// The anchor of relative paths: <tmp>/scenes/fuzz.scene (never written).
 const std::string& ScenePath()
 {
-  static const std::string path = [] {
+  static const std::string path = []
+  {
     namespace T = FuzzTemporaryFolder;
     const std::filesystem::path root = T::Get();
-    for (const char* model : { "models/teapot.bpt", "models/unit_disk.bpt",
-           "models/geonum2017/sphere.bpt", "scenes/support/base.bpt", "scenes/m.bpt" })
+    for (const char* model : { "models/teapot.bpt",
+           "models/unit_disk.bpt",
+           "models/geonum2017/sphere.bpt",
+           "scenes/support/base.bpt",
+           "scenes/m.bpt" })
     {
       T::WriteText(root / model, Bpt);
     }
@@ -57,8 +61,8 @@ const std::string& ScenePath()
     T::WriteText(root / "scenes/support/bad_header.brdf.csv", "theta,phi,r,g,b\n0,0,1,1,1\n");
     T::WriteText(root / "scenes/support/incomplete.brdf.csv",
       "theta_in,theta_out,delta_phi,r,g,b\n0,0,0,0.2,0.2,0.2\n90,90,180,0.2,0.2,0.2\n");
-    for (const char* mesh : { "back", "ceiling", "floor", "greenwall", "largebox", "luminaire",
-           "redwall", "smallbox" })
+    for (const char* mesh :
+      { "back", "ceiling", "floor", "greenwall", "largebox", "luminaire", "redwall", "smallbox" })
     {
       T::WriteText(root / ("models/cornell_box/cbox_" + std::string(mesh) + ".obj"), "");
     }
@@ -101,14 +105,15 @@ void CheckInvariants(const sphcover::Scene& scene)
     Require(Finite(camera.Position) && Finite(camera.FocalPoint) && Finite(camera.ViewUp),
       "a non-finite camera vector");
     const glm::dvec3 direction = camera.FocalPoint - camera.Position;
-    Require(Finite(direction) && glm::length(direction) > 0.0 &&
-        std::isfinite(glm::length(direction)),
+    Require(
+      Finite(direction) && glm::length(direction) > 0.0 && std::isfinite(glm::length(direction)),
       "a camera view direction that is not finite and non-zero");
     Require(Finite(glm::normalize(direction)), "a camera view direction that does not normalize");
   }
 }
 
-const bool Invariants = [] {
+const bool Invariants = []
+{
   const char* value = std::getenv("SPHCOVER_FUZZ_INVARIANTS");
   return value && std::string(value) == "1";
 }();

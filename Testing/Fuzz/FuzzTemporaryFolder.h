@@ -20,7 +20,8 @@ namespace FuzzTemporaryFolder
 /// The folder (made on the first call; every call returns the same one).
 inline const std::filesystem::path& Get()
 {
-  static const std::filesystem::path folder = [] {
+  static const std::filesystem::path folder = []
+  {
     const char* tmp = std::getenv("TMPDIR");
     std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/sphcover-fuzz-XXXXXX";
     if (!mkdtemp(pattern.data()))
@@ -28,10 +29,12 @@ inline const std::filesystem::path& Get()
       std::perror("sphcover fuzz: mkdtemp");
       std::abort();
     }
-    std::atexit([] {
-      std::error_code ignored;
-      std::filesystem::remove_all(Get(), ignored);
-    });
+    std::atexit(
+      []
+      {
+        std::error_code ignored;
+        std::filesystem::remove_all(Get(), ignored);
+      });
     return std::filesystem::path(pattern);
   }();
   return folder;

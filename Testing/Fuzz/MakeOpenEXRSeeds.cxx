@@ -63,8 +63,12 @@ Imf::FrameBuffer Frame(Planes& p, const char* const* names, Imf::PixelType type,
   return fb;
 }
 
-void Scanline(const std::string& file, Imf::Compression compression, Imf::PixelType type,
-  const char* const* names, int count, bool attributes)
+void Scanline(const std::string& file,
+  Imf::Compression compression,
+  Imf::PixelType type,
+  const char* const* names,
+  int count,
+  bool attributes)
 {
   Planes p;
   Imf::Header header(W, H);
@@ -89,10 +93,14 @@ int main(int argc, char** argv)
   const std::string dir = argc > 1 ? argv[1] : ".";
   const char* rgbd[] = { "R", "G", "B", "Depth" };
   const std::pair<Imf::Compression, const char*> compressions[] = { { Imf::NO_COMPRESSION, "none" },
-    { Imf::RLE_COMPRESSION, "rle" }, { Imf::ZIPS_COMPRESSION, "zips" },
-    { Imf::ZIP_COMPRESSION, "zip" }, { Imf::PIZ_COMPRESSION, "piz" },
-    { Imf::PXR24_COMPRESSION, "pxr24" }, { Imf::B44_COMPRESSION, "b44" },
-    { Imf::B44A_COMPRESSION, "b44a" }, { Imf::DWAA_COMPRESSION, "dwaa" },
+    { Imf::RLE_COMPRESSION, "rle" },
+    { Imf::ZIPS_COMPRESSION, "zips" },
+    { Imf::ZIP_COMPRESSION, "zip" },
+    { Imf::PIZ_COMPRESSION, "piz" },
+    { Imf::PXR24_COMPRESSION, "pxr24" },
+    { Imf::B44_COMPRESSION, "b44" },
+    { Imf::B44A_COMPRESSION, "b44a" },
+    { Imf::DWAA_COMPRESSION, "dwaa" },
     { Imf::DWAB_COMPRESSION, "dwab" } };
   for (const auto& [compression, name] : compressions)
   {
@@ -144,7 +152,8 @@ int main(int argc, char** argv)
       Imf::FrameBuffer fb;
       for (int c = part == 0 ? 0 : 3; c < (part == 0 ? 3 : 4); ++c)
       {
-        fb.insert(rgbd[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(p.F[c].data()), 4, 4 * W));
+        fb.insert(
+          rgbd[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(p.F[c].data()), 4, 4 * W));
       }
       o.setFrameBuffer(fb);
       o.writePixels(H);
