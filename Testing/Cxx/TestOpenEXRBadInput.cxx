@@ -2,9 +2,10 @@
 // Bad input for the OpenEXR reader and writer (SPEC §4.5, bad-input standard):
 // - the reader on an empty file, a text file, truncated files (pixels, header), a corrupt
 //   header, an unsupported version field, corrupt pixel data, a missing file, no file name and
-//   a data window beyond MaximumPixels, and a 1 kB file whose data window (within MaximumPixels)
-//   needs more memory than the process may have: one error naming the file and the problem, a
-//   failed request and an empty output, also after the same reader had read a good file;
+//   a data window beyond MaximumPixels, a header attribute claiming more bytes than the file
+//   holds, and a 1 kB file whose data window (within MaximumPixels) needs more memory than the
+//   process may have: one error naming the file and the problem, a failed request and an
+//   empty output, also after the same reader had read a good file;
 // - the writer with no input, no file name, a missing, wrong-sized or integer array, a 3-D
 //   image, or an unwritable folder: one error, Write() returns 0, no file (and no temporary
 //   file) is left; an aborted write leaves an existing file untouched.
@@ -210,6 +211,21 @@ int TestOpenEXRBadInput(int, char*[])
       good.string(),
       { "good.exr", "64 x 200", "MaximumPixels" },
       "data window beyond MaximumPixels");
+  }
+
+  // Testing/Data/bad/fuzz/exr_attribute_size_beyond_file.exr (FuzzOpenEXRReader): 918 bytes
+  // whose `type` attribute claims 1.7 GB; OpenEXR allocates and fills what a string attribute
+  // claims before reading it (1.7 GB and seconds per open). Refused before OpenEXR sees it.
+  {
+    const std::string file =
+      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_attribute_size_beyond_file.exr";
+    vtkNew<vtkOpenEXRReader> reader;
+    Check(
+      reader->CanReadFile(file.c_str()) == 0, "CanReadFile accepts an attribute beyond the file");
+    CheckReaderFails(reader,
+      file,
+      { "Cannot read OpenEXR file", file, "corrupt header", "'type' (string)", "1702390128 bytes" },
+      "attribute size beyond the file");
   }
 
   // Testing/Data/bad/fuzz/exr_window_exceeds_memory.exr: the writer's 8 x 6 file with its data
