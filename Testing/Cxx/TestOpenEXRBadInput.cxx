@@ -3,9 +3,9 @@
 // - the reader on an empty file, a text file, truncated files (pixels, header), a corrupt
 //   header, an unsupported version field, corrupt pixel data, a missing file, no file name and
 //   a data window beyond MaximumPixels, a header attribute claiming more bytes than the file
-//   holds, and a 1 kB file whose data window (within MaximumPixels) needs more memory than the
-//   process may have: one error naming the file and the problem, a failed request and an
-//   empty output, also after the same reader had read a good file;
+//   holds or than its value has, and a 1 kB file whose data window (within MaximumPixels) needs
+//   more memory than the process may have: one error naming the file and the problem, a failed
+//   request and an empty output, also after the same reader had read a good file;
 // - the writer with no input, no file name, a missing, wrong-sized or integer array, a 3-D
 //   image, or an unwritable folder: one error, Write() returns 0, no file (and no temporary
 //   file) is left; an aborted write leaves an existing file untouched.
@@ -226,6 +226,22 @@ int TestOpenEXRBadInput(int, char*[])
       file,
       { "Cannot read OpenEXR file", file, "corrupt header", "'type' (string)", "1702390128 bytes" },
       "attribute size beyond the file");
+  }
+  // Testing/Data/bad/fuzz/exr_channel_list_shorter_than_declared.exr (FuzzOpenEXRReader): the
+  // channel list declares 77 bytes but ends after 19; OpenEXR reads it by its content and the
+  // next attribute from the wrong place, where `type` then claims 1.7 GB.
+  {
+    const std::string file =
+      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_channel_list_shorter_than_declared.exr";
+    vtkNew<vtkOpenEXRReader> reader;
+    CheckReaderFails(reader,
+      file,
+      { "Cannot read OpenEXR file",
+        file,
+        "corrupt header",
+        "'channels' (chlist)",
+        "declares 77 bytes but its value holds 19" },
+      "channel list shorter than declared");
   }
 
   // Testing/Data/bad/fuzz/exr_window_exceeds_memory.exr: the writer's 8 x 6 file with its data
