@@ -195,7 +195,10 @@ void CheckAttributeSizes(std::istream& in,
       }
       const std::uint64_t width = static_cast<std::uint32_t>(LittleEndian32(dimensions));
       const std::uint64_t height = static_cast<std::uint32_t>(LittleEndian32(dimensions + 4));
-      holds = static_cast<std::int64_t>(8 + 4 * width * height);
+      // 4 bytes per pixel; a product beyond the file cannot match (and must not wrap).
+      holds = width != 0 && height > static_cast<std::uint64_t>(left) / width
+        ? left + 1
+        : static_cast<std::int64_t>(8 + 4 * width * height);
     }
     else if (holds == 0)
     {
