@@ -22,7 +22,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -48,9 +51,189 @@ struct ImageLayout
   double Spacing[3] = { 1, 1, 1 };
 };
 
-/// Throws std::runtime_error unless the file exists, is not empty and starts with the EXR
-/// magic number: these cases get plainer messages than OpenEXR's.
-void CheckFileStart(const std::string& fileName)
+/// Throws std::runtime_error for an empty data window or one beyond `maximumPixels`.
+void CheckWindowSize(long long width, long long height, vtkIdType maximumPixels)
+{
+  if (width <= 0 || height <= 0)
+  {
+    throw std::runtime_error("the data window is empty");
+  }
+  if (width * height > maximumPixels)
+  {
+    std::ostringstream problem;
+    problem << "the data window (" << width << " x " << height << " pixels) exceeds the limit of "
+            << maximumPixels << " pixels (MaximumPixels)";
+    throw std::runtime_error(problem.str());
+  }
+}
+
+std::int32_t LittleEndian32(const unsigned char* bytes)
+{
+  return static_cast<std::int32_t>(
+    bytes[0] | (bytes[1] << 8) | (bytes[2] << 16) | (static_cast<std::uint32_t>(bytes[3]) << 24));
+}
+
+/// The bytes OpenEXR 3.1 reads for a value of a fixed-size attribute type; 0 for the others.
+int FixedAttributeSize(const std::string& type)
+{
+  static const std::map<std::string, int> sizes = { { "box2i", 16 },
+    { "box2f", 16 },
+    { "chromaticities", 32 },
+    { "compression", 1 },
+    { "deepImageState", 1 },
+    { "double", 8 },
+    { "envmap", 1 },
+    { "float", 4 },
+    { "int", 4 },
+    { "keycode", 28 },
+    { "lineOrder", 1 },
+    { "m33f", 36 },
+    { "m33d", 72 },
+    { "m44f", 64 },
+    { "m44d", 128 },
+    { "rational", 8 },
+    { "tiledesc", 9 },
+    { "timecode", 8 },
+    { "v2i", 8 },
+    { "v2f", 8 },
+    { "v2d", 16 },
+    { "v3i", 12 },
+    { "v3f", 12 },
+    { "v3d", 24 } };
+  const auto it = sizes.find(type);
+  return it == sizes.end() ? 0 : it->second;
+}
+
+/**
+ * Walks the attributes of the header(s) that follow the magic number and version field as
+ * OpenEXR 3.1 reads them, and throws std::runtime_error for one whose declared size exceeds
+ * the rest of the file or differs from what its value holds (a channel list, a fixed-size
+ * value, a preview image). OpenEXR allocates and fills what a string, opaque or preview
+ * attribute declares before reading it, and reads a channel list or a fixed-size value by its
+ * content, not its declared size (after a wrong one it reads the next attribute from the wrong
+ * place): 610- and 918-byte files found by FuzzOpenEXRReader made every InputFile cost 1.7 GB
+ * and seconds (Testing/Data/bad/fuzz/exr_attribute_size_beyond_file.exr,
+ * exr_channel_list_shorter_than_declared.exr). In a valid file every declared size is exact.
+ * Anything else wrong with the header (a name that does not end, a file that stops) is left to
+ * OpenEXR's own message. The first header's data window is checked against `maximumPixels`
+ * here too: OpenEXR's InputFile allocates line buffers as wide as the window before the reader
+ * sees the header.
+ */
+void CheckAttributeSizes(std::istream& in,
+  std::streamoff fileSize,
+  bool multiPart,
+  vtkIdType maximumPixels)
+{
+  constexpr std::size_t MaximumNameLength = 256; // with the "long names" flag; 32 without
+  auto readName = [&](std::string& name)
+  {
+    name.clear();
+    char c = 0;
+    while (in.get(c) && c != '\0')
+    {
+      if (name.size() == MaximumNameLength)
+      {
+        return false;
+      }
+      name.push_back(c);
+    }
+    return static_cast<bool>(in);
+  };
+  std::string name;
+  std::string type;
+  bool firstHeader = true;
+  while (readName(name))
+  {
+    if (name.empty()) // the end of a header
+    {
+      if (!multiPart || in.peek() == 0 || in.peek() == EOF) // no more headers
+      {
+        return;
+      }
+      firstHeader = false;
+      continue;
+    }
+    unsigned char size[4];
+    if (!readName(type) || !in.read(reinterpret_cast<char*>(size), 4))
+    {
+      return;
+    }
+    const std::int64_t declared = LittleEndian32(size);
+    const std::streamoff valueStart = in.tellg();
+    const std::int64_t left = fileSize - static_cast<std::int64_t>(valueStart);
+    auto fail = [&](const std::string& problem)
+    {
+      throw std::runtime_error(
+        "corrupt header: the attribute '" + name + "' (" + type + ") " + problem);
+    };
+    if (declared < 0 || declared > left)
+    {
+      fail("claims " + std::to_string(declared) + " bytes, more than the " + std::to_string(left) +
+        " left in the file");
+    }
+    // What OpenEXR will consume for this value; -1 where it reads exactly the declared size.
+    std::int64_t holds = FixedAttributeSize(type);
+    if (holds == 0 && type == "chlist")
+    {
+      // Channels (name, 16 bytes) up to an empty name.
+      std::string channel;
+      while (readName(channel) && !channel.empty() && in.seekg(16, std::ios::cur))
+      {
+      }
+      if (!in)
+      {
+        return;
+      }
+      holds = static_cast<std::int64_t>(in.tellg() - valueStart);
+    }
+    else if (holds == 0 && type == "preview")
+    {
+      unsigned char dimensions[8];
+      if (!in.read(reinterpret_cast<char*>(dimensions), 8))
+      {
+        return;
+      }
+      const std::uint64_t width = static_cast<std::uint32_t>(LittleEndian32(dimensions));
+      const std::uint64_t height = static_cast<std::uint32_t>(LittleEndian32(dimensions + 4));
+      // 4 bytes per pixel; a product beyond the file cannot match (and must not wrap).
+      holds = width != 0 && height > static_cast<std::uint64_t>(left) / width
+        ? left + 1
+        : static_cast<std::int64_t>(8 + 4 * width * height);
+    }
+    else if (holds == 0)
+    {
+      holds = -1;
+    }
+    if (holds >= 0 && holds != declared)
+    {
+      fail("declares " + std::to_string(declared) + " bytes but its value holds " +
+        std::to_string(holds));
+    }
+    in.seekg(valueStart);
+    unsigned char box[16];
+    if (firstHeader && name == "dataWindow" && type == "box2i" &&
+      in.read(reinterpret_cast<char*>(box), 16))
+    {
+      // min.x, min.y, max.x, max.y; an inverted window is left to OpenEXR's message.
+      const long long width =
+        static_cast<long long>(LittleEndian32(box + 8)) - LittleEndian32(box) + 1;
+      const long long height =
+        static_cast<long long>(LittleEndian32(box + 12)) - LittleEndian32(box + 4) + 1;
+      if (width > 0 && height > 0)
+      {
+        CheckWindowSize(width, height, maximumPixels);
+      }
+      continue;
+    }
+    in.seekg(declared, std::ios::cur);
+  }
+}
+
+/// Throws std::runtime_error unless the file exists, is not empty, starts with the EXR
+/// magic number, no header attribute claims more bytes than the file has and the data window
+/// is within `maximumPixels`: these cases get plainer messages than OpenEXR's, and before
+/// OpenEXR allocates anything.
+void CheckFileStart(const std::string& fileName, vtkIdType maximumPixels)
 {
   std::ifstream in(fileName, std::ios::binary);
   if (!in)
@@ -68,6 +251,15 @@ void CheckFileStart(const std::string& fileName)
     throw std::runtime_error(
       "not an OpenEXR file (it does not start with the magic number 76 2f 31 01)");
   }
+  unsigned char version[4];
+  if (in.read(reinterpret_cast<char*>(version), 4))
+  {
+    in.seekg(0, std::ios::end);
+    const std::streamoff fileSize = in.tellg();
+    in.seekg(8);
+    const bool multiPart = (version[1] & 0x10) != 0; // the multi-part flag
+    CheckAttributeSizes(in, fileSize, multiPart, maximumPixels);
+  }
 }
 
 /// Reads the layout from a header; throws std::runtime_error for what this reader refuses.
@@ -78,17 +270,7 @@ ImageLayout ReadLayout(const Imf::Header& header, vtkIdType maximumPixels)
   const Imath::Box2i& window = layout.Window;
   const long long width = static_cast<long long>(window.max.x) - window.min.x + 1;
   const long long height = static_cast<long long>(window.max.y) - window.min.y + 1;
-  if (width <= 0 || height <= 0)
-  {
-    throw std::runtime_error("the data window is empty");
-  }
-  if (width * height > maximumPixels)
-  {
-    std::ostringstream problem;
-    problem << "the data window (" << width << " x " << height << " pixels) exceeds the limit of "
-            << maximumPixels << " pixels (MaximumPixels)";
-    throw std::runtime_error(problem.str());
-  }
+  CheckWindowSize(width, height, maximumPixels);
   layout.Width = static_cast<int>(width);
   layout.Height = static_cast<int>(height);
 
@@ -137,6 +319,30 @@ ImageLayout ReadLayout(const Imf::Header& header, vtkIdType maximumPixels)
   return layout;
 }
 
+/// A float array of `tuples` x `components` values, allocated here so that a failed
+/// allocation is an error (std::runtime_error) rather than VTK's: vtkFloatArray reports it and
+/// goes on with no buffer, where OpenEXR then writes the pixels (a crash on a small file whose
+/// header claims a large image, on a machine or under a limit with less memory than that).
+vtkSmartPointer<vtkFloatArray> NewFloatArray(const std::string& name,
+  int components,
+  vtkIdType tuples)
+{
+  const std::size_t values = static_cast<std::size_t>(components) * tuples;
+  float* buffer = static_cast<float*>(std::malloc(values * sizeof(float)));
+  if (!buffer)
+  {
+    std::ostringstream problem;
+    problem << "not enough memory for the channel '" << name << "' ("
+            << (values * sizeof(float) + (1 << 20) - 1) / (1 << 20) << " MiB)";
+    throw std::runtime_error(problem.str());
+  }
+  auto array = vtkSmartPointer<vtkFloatArray>::New();
+  array->SetName(name.c_str());
+  array->SetNumberOfComponents(components);
+  array->SetArray(buffer, static_cast<vtkIdType>(values), 0, vtkAbstractArray::VTK_DATA_ARRAY_FREE);
+  return array;
+}
+
 /// Reverses the order of the rows of an array of `height` rows of `rowValues` floats.
 void FlipRows(float* values, int height, std::size_t rowValues)
 {
@@ -165,7 +371,8 @@ int vtkOpenEXRReader::CanReadFile(const char* fileName)
   }
   try
   {
-    CheckFileStart(fileName);
+    // Any window size: a file beyond MaximumPixels is still this reader's to refuse clearly.
+    CheckFileStart(fileName, VTK_ID_MAX);
     Imf::InputFile file(fileName);
     return 3;
   }
@@ -190,7 +397,7 @@ int vtkOpenEXRReader::RequestInformation(vtkInformation*,
   {
     if (!this->FileName.empty())
     {
-      CheckFileStart(this->FileName);
+      CheckFileStart(this->FileName, this->MaximumPixels);
       Imf::InputFile file(this->FileName.c_str());
       const ImageLayout layout = ReadLayout(file.header(), this->MaximumPixels);
       extent[0] = layout.Window.min.x;
@@ -228,7 +435,7 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
   try
   {
     // Opened again: the file may have changed since RequestInformation.
-    CheckFileStart(this->FileName);
+    CheckFileStart(this->FileName, this->MaximumPixels);
     Imf::InputFile file(this->FileName.c_str());
     const ImageLayout layout = ReadLayout(file.header(), this->MaximumPixels);
     if (!file.isComplete())
@@ -240,13 +447,11 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
     // OpenEXR writes straight into the arrays (converting half and uint to float) in EXR
     // scanline order; the rows are flipped afterwards.
     Imf::FrameBuffer frameBuffer;
-    vtkNew<vtkFloatArray> radiance;
+    vtkSmartPointer<vtkFloatArray> radiance;
     std::vector<vtkSmartPointer<vtkFloatArray>> others;
     if (layout.HasColor)
     {
-      radiance->SetName("Radiance");
-      radiance->SetNumberOfComponents(3);
-      radiance->SetNumberOfTuples(pixels);
+      radiance = NewFloatArray("Radiance", 3, pixels);
       const char* rgb[3] = { "R", "G", "B" };
       for (int c = 0; c < 3; ++c)
       {
@@ -260,9 +465,7 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
     }
     for (const std::string& name : layout.OtherChannels)
     {
-      auto array = vtkSmartPointer<vtkFloatArray>::New();
-      array->SetName(name.c_str());
-      array->SetNumberOfTuples(pixels);
+      vtkSmartPointer<vtkFloatArray> array = NewFloatArray(name, 1, pixels);
       frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, array->GetPointer(0), layout.Window));
       others.push_back(array);
     }

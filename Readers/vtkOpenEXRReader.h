@@ -13,10 +13,11 @@
  * active scalars. Tiled and multi-part files are read (the first part); deep images and
  * sub-sampled channels are refused.
  *
- * A missing, empty, truncated, corrupt or non-EXR file gives one error naming the file and
- * the problem, a failed request and an empty output (OpenEXR's exceptions are caught). The
- * error comes from the data request; the information request only reports an empty extent
- * (ParaView requests the data even after a failed information request: no second message).
+ * A missing, empty, truncated, corrupt or non-EXR file, or one whose image does not fit in the
+ * memory available, gives one error naming the file and the problem, a failed request and an
+ * empty output (OpenEXR's exceptions are caught). The error comes from the data request; the
+ * information request only reports an empty extent (ParaView requests the data even after a
+ * failed information request: no second message).
  */
 #ifndef vtkOpenEXRReader_h
 #define vtkOpenEXRReader_h

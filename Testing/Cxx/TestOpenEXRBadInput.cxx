@@ -2,7 +2,9 @@
 // Bad input for the OpenEXR reader and writer (SPEC §4.5, bad-input standard):
 // - the reader on an empty file, a text file, truncated files (pixels, header), a corrupt
 //   header, an unsupported version field, corrupt pixel data, a missing file, no file name and
-//   a data window beyond MaximumPixels: one error naming the file and the problem, a failed
+//   a data window beyond MaximumPixels, a header attribute claiming more bytes than the file
+//   holds or than its value has, and a 1 kB file whose data window (within MaximumPixels) needs
+//   more memory than the process may have: one error naming the file and the problem, a failed
 //   request and an empty output, also after the same reader had read a good file;
 // - the writer with no input, no file name, a missing, wrong-sized or integer array, a 3-D
 //   image, or an unwritable folder: one error, Write() returns 0, no file (and no temporary
@@ -19,6 +21,8 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkUnsignedCharArray.h>
+
+#include <sys/resource.h>
 
 #include <filesystem>
 #include <fstream>
@@ -207,6 +211,64 @@ int TestOpenEXRBadInput(int, char*[])
       good.string(),
       { "good.exr", "64 x 200", "MaximumPixels" },
       "data window beyond MaximumPixels");
+  }
+
+  // Testing/Data/bad/fuzz/exr_attribute_size_beyond_file.exr (FuzzOpenEXRReader): 918 bytes
+  // whose `type` attribute claims 1.7 GB; OpenEXR allocates and fills what a string attribute
+  // claims before reading it (1.7 GB and seconds per open). Refused before OpenEXR sees it.
+  {
+    const std::string file =
+      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_attribute_size_beyond_file.exr";
+    vtkNew<vtkOpenEXRReader> reader;
+    Check(
+      reader->CanReadFile(file.c_str()) == 0, "CanReadFile accepts an attribute beyond the file");
+    CheckReaderFails(reader,
+      file,
+      { "Cannot read OpenEXR file", file, "corrupt header", "'type' (string)", "1702390128 bytes" },
+      "attribute size beyond the file");
+  }
+  // Testing/Data/bad/fuzz/exr_channel_list_shorter_than_declared.exr (FuzzOpenEXRReader): the
+  // channel list declares 77 bytes but ends after 19; OpenEXR reads it by its content and the
+  // next attribute from the wrong place, where `type` then claims 1.7 GB.
+  {
+    const std::string file =
+      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_channel_list_shorter_than_declared.exr";
+    vtkNew<vtkOpenEXRReader> reader;
+    CheckReaderFails(reader,
+      file,
+      { "Cannot read OpenEXR file",
+        file,
+        "corrupt header",
+        "'channels' (chlist)",
+        "declares 77 bytes but its value holds 19" },
+      "channel list shorter than declared");
+  }
+
+  // Testing/Data/bad/fuzz/exr_window_exceeds_memory.exr: the writer's 8 x 6 file with its data
+  // window changed to 2^22 x 32 pixels (within MaximumPixels; 1.5 GiB for Radiance alone),
+  // read under an address-space limit 768 MiB above the current size. The failed allocation
+  // is one error (once vtkFloatArray's own failure left no buffer for OpenEXR to write
+  // into: a crash of the process).
+  {
+    const std::string file =
+      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_window_exceeds_memory.exr";
+    unsigned long long pages = 0;
+    std::ifstream("/proc/self/statm") >> pages;
+    rlimit saved{};
+    getrlimit(RLIMIT_AS, &saved);
+    rlimit limited = saved;
+    const unsigned long long wanted = pages * 4096ull + (768ull << 20);
+    if (saved.rlim_cur == RLIM_INFINITY || saved.rlim_cur > wanted)
+    {
+      limited.rlim_cur = wanted;
+    }
+    Check(pages > 0 && setrlimit(RLIMIT_AS, &limited) == 0, "cannot limit the address space");
+    vtkNew<vtkOpenEXRReader> reader;
+    CheckReaderFails(reader,
+      file,
+      { "Cannot read OpenEXR file", file, "not enough memory", "'Radiance'", "1536 MiB" },
+      "data window beyond the memory available");
+    setrlimit(RLIMIT_AS, &saved);
   }
 
   // The writer.
