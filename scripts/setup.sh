@@ -13,6 +13,7 @@ jobs="${SPHCOVER_JOBS:-$(nproc)}"
 
 # ParaView 5.11 bundles its own VTK 9.2; we build against it (libvtk9-dev would conflict with
 # python3-paraview). ParaView's VTK CMake config also needs the -dev packages on the second line.
+# clang and its runtimes build the fuzz harnesses (Testing/Fuzz) that scripts/test.sh runs.
 packages=(
   g++ cmake ninja-build pkg-config
   paraview paraview-dev python3-paraview python3-dev
@@ -21,6 +22,7 @@ packages=(
   libgtest-dev libgmp-dev libeigen3-dev
   openexr
   xvfb xauth
+  clang libclang-rt-14-dev
 )
 
 sudo=()
