@@ -88,8 +88,8 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
   while (true)
   {
     const size_t count = this->Leaves.size();
-    const size_t fresh = static_cast<size_t>(
-      std::count(this->LeafIsNew.begin(), this->LeafIsNew.end(), true));
+    const size_t fresh =
+      static_cast<size_t>(std::count(this->LeafIsNew.begin(), this->LeafIsNew.end(), true));
     // Pairs (receiver, source) with at least one new patch: the sweep's candidates.
     const double candidates =
       static_cast<double>(fresh) * (2.0 * static_cast<double>(count) - static_cast<double>(fresh));

@@ -74,8 +74,8 @@ std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
     problem << name << ": position, focal point, view up and view angle must be finite numbers";
   }
   else if (!(std::max({ std::fabs(camera.Position.x),
-                std::fabs(camera.Position.y),
-                std::fabs(camera.Position.z) }) <= MaxRayCastCoordinate))
+               std::fabs(camera.Position.y),
+               std::fabs(camera.Position.z) }) <= MaxRayCastCoordinate))
   {
     // The eye starts every ray: Embree aborts on an origin beyond its range.
     problem << name << ": the position is beyond the coordinates ray casting can trace (|x| <= "
@@ -122,7 +122,8 @@ std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
       problem << "an image of " << camera.Width << "x" << camera.Height << " pixels at "
               << settings.SamplesPerPixel << " samples per pixel casts " << samples
               << " rays, more than the budget of " << static_cast<double>(settings.MaximumSamples)
-              << " (about " << RenderSecondsPerSample * static_cast<double>(settings.MaximumSamples) / 60.0
+              << " (about "
+              << RenderSecondsPerSample * static_cast<double>(settings.MaximumSamples) / 60.0
               << " minutes on one core)";
     }
   }

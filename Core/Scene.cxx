@@ -39,7 +39,7 @@ struct Fnv1a
       this->Hash = (this->Hash ^ static_cast<const unsigned char*>(data)[k]) * 1099511628211ull;
     }
   }
-  template <typename T>
+  template<typename T>
   void Value(const T& value)
   {
     this->Bytes(&value, sizeof(T));

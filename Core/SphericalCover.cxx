@@ -5,8 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <iomanip>
+#include <limits>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
@@ -511,8 +511,8 @@ std::string SphericalCover::MemoryProblem(const std::vector<Patch>& patches,
   std::size_t limitBytes)
 {
   // Validates the grid (sizes, and a cell count that fits its int indices) without allocating.
-  HemisphereGrid::CheckSizes(options.ThetaBins, options.PhiBins, options.SamplesTheta,
-    options.SamplesPhi);
+  HemisphereGrid::CheckSizes(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
   const auto mib = [](double bytes)
   {
     std::ostringstream text;
@@ -526,10 +526,10 @@ std::string SphericalCover::MemoryProblem(const std::vector<Patch>& patches,
   {
     problem << "building the cover on " << std::max<std::size_t>(threads, 1)
             << " threads needs about " << mib(static_cast<double>(working))
-            << " of R-buffers for a " << options.ThetaBins << " x " << options.PhiBins
-            << " grid (" << options.SamplesTheta * options.SamplesPhi
-            << " samples per cell), more than the limit of "
-            << mib(static_cast<double>(limitBytes)) << "; use a coarser grid or fewer threads";
+            << " of R-buffers for a " << options.ThetaBins << " x " << options.PhiBins << " grid ("
+            << options.SamplesTheta * options.SamplesPhi
+            << " samples per cell), more than the limit of " << mib(static_cast<double>(limitBytes))
+            << "; use a coarser grid or fewer threads";
     return problem.str();
   }
   if (patches.empty())

@@ -140,8 +140,8 @@ void CheckCoverGrid(const sphcover::SceneSettings& settings, const Options& opti
   if (!problem.empty())
   {
     throw std::runtime_error(options.Scene + ": settings theta_bins " +
-      std::to_string(settings.ThetaBins) + ", phi_bins " + std::to_string(settings.PhiBins) +
-      ": " + problem + " (--memory-limit)");
+      std::to_string(settings.ThetaBins) + ", phi_bins " + std::to_string(settings.PhiBins) + ": " +
+      problem + " (--memory-limit)");
   }
 }
 
@@ -438,7 +438,6 @@ int RunSolve(const Options& options)
   return 0;
 }
 
-
 /// "WxH" as two positive integers.
 void ParseSize(const std::string& text, int& width, int& height)
 {
@@ -507,9 +506,10 @@ void CheckFingerprint(const Options& options,
   const std::string expected = sphcover::Fingerprint(scene);
   if (stored->GetValue(0) != expected)
   {
-    throw std::runtime_error("--solution '" + options.SolutionFile + "': solved from another scene than '" +
-      options.Scene + "' (or from an edited one: fingerprint " + stored->GetValue(0) + ", the scene's " +
-      expected + "); solve the scene again");
+    throw std::runtime_error("--solution '" + options.SolutionFile +
+      "': solved from another scene than '" + options.Scene +
+      "' (or from an edited one: fingerprint " + stored->GetValue(0) + ", the scene's " + expected +
+      "); solve the scene again");
   }
 }
 
@@ -835,10 +835,11 @@ int main(int argc, char** argv)
     ->check(CLI::Range(1, 4096));
   render->add_option(
     "--exposure", options.Exposure, "Radiance scale before tone mapping, > 0 (default 1)");
-  render->add_option("--max-samples",
-    options.MaxSamples,
-    "Budget of width x height x spp rays (default 2^30, about 18 minutes on one core); a "
-    "larger image is refused before solving")
+  render
+    ->add_option("--max-samples",
+      options.MaxSamples,
+      "Budget of width x height x spp rays (default 2^30, about 18 minutes on one core); a "
+      "larger image is refused before solving")
     ->check(CLI::Range(1.0, 1e18));
   render->add_option("--solution",
     options.SolutionFile,
