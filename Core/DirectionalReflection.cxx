@@ -4,6 +4,8 @@
 #include "HemisphereGrid.h"
 #include "SphericalCover.h"
 
+#include <algorithm>
+
 namespace sphcover
 {
 
@@ -69,6 +71,25 @@ PointReflectances::PointReflectances(const HemisphereGrid& grid,
     }
     this->ModelOfPoint[i] = static_cast<int>(k);
   }
+}
+
+std::size_t PointReflectances::EstimateBytes(int thetaBins,
+  int phiBins,
+  const std::vector<Material>& materialOfPoint)
+{
+  // The same count of distinct reflectances as the constructor's.
+  std::vector<const Material*> distinct;
+  for (const Material& material : materialOfPoint)
+  {
+    if (material.Type != MaterialType::Diffuse &&
+      std::none_of(distinct.begin(),
+        distinct.end(),
+        [&](const Material* other) { return SameReflectance(*other, material); }))
+    {
+      distinct.push_back(&material);
+    }
+  }
+  return distinct.size() * ReflectanceWeights::EstimateBytes(thetaBins, phiBins);
 }
 
 const Reflectance* PointReflectances::Model(std::size_t point) const

@@ -63,6 +63,11 @@ public:
   /// Throws std::invalid_argument for values out of range and InputError when a tabulated
   /// material's table cannot be read (Reflectance).
   PointReflectances(const HemisphereGrid& grid, const std::vector<Material>& materialOfPoint);
+  /// The bytes of the weight tables the constructor would build (one per distinct non-diffuse
+  /// reflectance, ReflectanceWeights::EstimateBytes each), computed without building them.
+  static std::size_t EstimateBytes(int thetaBins,
+    int phiBins,
+    const std::vector<Material>& materialOfPoint);
 
   /// Index of the point's model, -1 for a Lambertian point.
   int ModelOf(std::size_t point) const { return this->ModelOfPoint[point]; }

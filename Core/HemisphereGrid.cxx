@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -83,11 +84,7 @@ glm::dvec3 HemisphereFrame::ToWorld(const glm::dvec3& local) const
   return local.x * this->Tangent + local.y * this->Bitangent + local.z * this->Normal;
 }
 
-HemisphereGrid::HemisphereGrid(int thetaBins, int phiBins, int samplesTheta, int samplesPhi)
-  : ThetaBinCount(thetaBins)
-  , PhiBinCount(phiBins)
-  , SamplesThetaCount(samplesTheta)
-  , SamplesPhiCount(samplesPhi)
+void HemisphereGrid::CheckSizes(int thetaBins, int phiBins, int samplesTheta, int samplesPhi)
 {
   if (thetaBins < 1 || thetaBins > 65535 || phiBins < 1 || phiBins > 65535)
   {
@@ -95,12 +92,26 @@ HemisphereGrid::HemisphereGrid(int thetaBins, int phiBins, int samplesTheta, int
       "HemisphereGrid: ThetaBins and PhiBins must be in [1, 65535], got " +
       std::to_string(thetaBins) + " x " + std::to_string(phiBins));
   }
+  if (static_cast<long long>(thetaBins) * phiBins > std::numeric_limits<int>::max())
+  {
+    throw std::invalid_argument("HemisphereGrid: " + std::to_string(thetaBins) + " x " +
+      std::to_string(phiBins) + " cells are more than int cell indices can count");
+  }
   if (samplesTheta < 1 || samplesTheta > 16 || samplesPhi < 1 || samplesPhi > 16)
   {
     throw std::invalid_argument("HemisphereGrid: samples per cell must be in [1, 16] x [1, 16], "
                                 "got " +
       std::to_string(samplesTheta) + " x " + std::to_string(samplesPhi));
   }
+}
+
+HemisphereGrid::HemisphereGrid(int thetaBins, int phiBins, int samplesTheta, int samplesPhi)
+  : ThetaBinCount(thetaBins)
+  , PhiBinCount(phiBins)
+  , SamplesThetaCount(samplesTheta)
+  , SamplesPhiCount(samplesPhi)
+{
+  CheckSizes(thetaBins, phiBins, samplesTheta, samplesPhi);
   this->DeltaTheta = HalfPi / thetaBins;
   this->DeltaPhi = TwoPi / phiBins;
 

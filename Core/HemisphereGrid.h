@@ -77,10 +77,13 @@ class HemisphereGrid
 {
 public:
   /**
-   * thetaBins, phiBins in [1, 65535] (strips store rows and columns as uint16); samplesTheta,
-   * samplesPhi in [1, 16]. Throws std::invalid_argument otherwise.
+   * thetaBins, phiBins in [1, 65535] (strips store rows and columns as uint16), at most
+   * 2^31 - 1 cells (cells are indexed by int); samplesTheta, samplesPhi in [1, 16]. Throws
+   * std::invalid_argument otherwise.
    */
   HemisphereGrid(int thetaBins, int phiBins, int samplesTheta = 3, int samplesPhi = 3);
+  /// The constructor's checks alone (nothing allocated): throws std::invalid_argument.
+  static void CheckSizes(int thetaBins, int phiBins, int samplesTheta, int samplesPhi);
 
   int ThetaBins() const { return this->ThetaBinCount; }
   int PhiBins() const { return this->PhiBinCount; }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <atomic>
 #include <climits>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -24,6 +25,14 @@ Box BoxOf(const Patch& patch)
 
 /// Receivers per progress report / abort check.
 constexpr std::size_t BatchSize = 64;
+
+/// Bytes a patch of this geometry holds: the struct and its control and derivative nets.
+std::size_t BytesOfPatch(const BezierPatch& geometry)
+{
+  const std::size_t nets = geometry.ControlPoints().size() + geometry.DerivativeNetU().size() +
+    geometry.DerivativeNetV().size();
+  return sizeof(Patch) + nets * sizeof(glm::dvec3);
+}
 }
 
 IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSettings& settings)
@@ -41,6 +50,7 @@ IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSe
     this->Nodes.emplace_back(static_cast<int>(s), UVRect::Unit(), 0, scene.Surfaces[s].Patch);
     this->Leaves.push_back(static_cast<int>(s));
     this->LeafIsNew.push_back(true);
+    this->NodeBytes += BytesOfPatch(scene.Surfaces[s].Patch);
   }
 }
 
@@ -71,9 +81,19 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
   // Sweeps needed is unknown in advance; every sweep deepens by at most one level.
   const double expectedSweeps = maxLevel + 1.0;
 
+  // The pair tests of the last sweep per pair it could have tested (those with a new patch):
+  // what the bounding-volume culling and the limits leave, to predict the next sweep's cost.
+  // 1 before the first sweep (an upper bound: every pair).
+  double testedShare = 1.0;
   while (true)
   {
     const size_t count = this->Leaves.size();
+    const size_t fresh =
+      static_cast<size_t>(std::count(this->LeafIsNew.begin(), this->LeafIsNew.end(), true));
+    // Pairs (receiver, source) with at least one new patch: the sweep's candidates.
+    const double candidates =
+      static_cast<double>(fresh) * (2.0 * static_cast<double>(count) - static_cast<double>(fresh));
+    this->CheckCost(testedShare * candidates, "would make about");
     std::vector<PatchView> views;
     std::vector<Box> boxes;
     views.reserve(count);
@@ -178,6 +198,8 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
             examineReceiver(first + k);
           }
         });
+      // The prediction can be low: the budget also holds while the sweep runs.
+      this->CheckCost(static_cast<double>(pairTests.load()), "has made");
       if (progress &&
         !progress(
           std::min(1.0, (this->Stats.Sweeps + double(first + batch) / count) / expectedSweeps)))
@@ -186,9 +208,11 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
       }
     }
     this->Stats.PairTests += pairTests.load();
+    testedShare = candidates > 0.0 ? static_cast<double>(pairTests.load()) / candidates : 1.0;
     this->Stats.LimitedPairs += limited.load();
     ++this->Stats.Sweeps;
 
+    this->CheckBudget(requested);
     std::vector<int> nextLeaves;
     std::vector<bool> nextIsNew;
     for (size_t k = 0; k < count; ++k)
@@ -202,6 +226,7 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
       }
       const int firstChild = static_cast<int>(this->Nodes.size());
       this->Split(this->Leaves[k], static_cast<SplitReason>(reason));
+      this->NodeBytes += 3 * BytesOfPatch(this->Nodes.back().Geometry);
       ++this->Stats.Splits[static_cast<size_t>(reason)];
       for (int c = 0; c < 3; ++c)
       {
@@ -222,6 +247,51 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
     progress(1.0);
   }
   return true;
+}
+
+void IntervalSubdivision::CheckCost(double sweepPairTests, const char* verb) const
+{
+  // The pair tests are the subdivision's time (about 0.7 to 1.7 million per second on two
+  // threads in the Cornell box and the teapot room): a budget on them bounds the run.
+  const double total = static_cast<double>(this->Stats.PairTests) + sweepPairTests;
+  if (total > static_cast<double>(this->Settings.MaximumPairTests))
+  {
+    std::ostringstream problem;
+    problem.precision(3);
+    problem << "sweep " << this->Stats.Sweeps << " of " << this->Leaves.size() << " patches "
+            << verb << " " << total << " pair tests in all, more than the budget of "
+            << static_cast<double>(this->Settings.MaximumPairTests)
+            << " (minutes to hours); raise the tolerance or lower MaxLevel";
+    throw std::length_error(problem.str());
+  }
+}
+
+void IntervalSubdivision::CheckBudget(const std::vector<std::atomic<int>>& requested) const
+{
+  // Checked before splitting, so the budget is never exceeded: a tolerance so small that every
+  // pair splits, with a deep MaxLevel, would otherwise triple the patch list sweep after sweep.
+  std::size_t leaves = this->Leaves.size();
+  std::size_t bytes = this->NodeBytes;
+  for (size_t k = 0; k < requested.size(); ++k)
+  {
+    if (requested[k].load() != INT_MAX)
+    {
+      const Patch& parent = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+      leaves += 2;
+      bytes += 3 * BytesOfPatch(parent.Geometry);
+    }
+  }
+  if (leaves > this->Settings.MaximumPatches || bytes > this->Settings.MemoryLimitBytes)
+  {
+    std::ostringstream problem;
+    problem.precision(3);
+    problem << "sweep " << this->Stats.Sweeps << " would make " << leaves << " patches ("
+            << static_cast<double>(bytes) / (1024.0 * 1024.0) << " MiB), more than the budget of "
+            << this->Settings.MaximumPatches << " patches and "
+            << static_cast<double>(this->Settings.MemoryLimitBytes) / (1024.0 * 1024.0)
+            << " MiB; raise the tolerance or lower MaxLevel";
+    throw std::length_error(problem.str());
+  }
 }
 
 std::vector<Patch> IntervalSubdivision::Patches() const

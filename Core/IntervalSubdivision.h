@@ -16,7 +16,9 @@
  * sweep re-examines only pairs with a new patch, since the others have not changed.
  *
  * Limits (§4.3 note 2): no patch goes deeper than MaxLevel, and no patch is split once it
- * projects, from the point that asks, to about one (theta,phi) cell of the cover's grid.
+ * projects, from the point that asks, to about one (theta,phi) cell of the cover's grid. A
+ * budget (MaximumPatches, MemoryLimitBytes, MaximumPairTests) stops a subdivision that would
+ * grow beyond them with an error before the sweep's splits, or the sweep, are made.
  *
  * The pairwise work is culled by a bounding-volume hierarchy of the patches' interval boxes
  * (§4.1): a group of patches whose box lies below the tangent plane of P_i is classified as
@@ -35,6 +37,7 @@
 #include "SubdivisionCriteria.h"
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <vector>
 
@@ -62,7 +65,10 @@ public:
   /**
    * Subdivides to the fixed point. Returns false if `progress` returned false (abort); the
    * patches are then those of the last complete sweep. Throws std::invalid_argument for
-   * unusable settings (SubdivisionSettings::Problem()).
+   * unusable settings (SubdivisionSettings::Problem()), std::length_error when a sweep would
+   * make more patches than MaximumPatches or hold more than MemoryLimitBytes, or when the pair
+   * tests (predicted for the next sweep from the share of its candidate pairs the last sweep
+   * tested, or made so far) would exceed MaximumPairTests.
    */
   bool Run(const ProgressCallback& progress = nullptr,
     const ParallelFor& parallelFor = SequentialFor);
@@ -78,6 +84,11 @@ public:
 private:
   /// Splits a patch in three along u or v (whichever direction is longer in 3-D).
   void Split(int node, SplitReason reason);
+  /// Throws std::length_error when the requested splits would exceed the budget.
+  void CheckBudget(const std::vector<std::atomic<int>>& requested) const;
+  /// Throws std::length_error when the pair tests so far plus `sweepPairTests` (predicted or
+  /// made in this sweep) exceed MaximumPairTests.
+  void CheckCost(double sweepPairTests, const char* verb) const;
 
   const Scene& Environment;
   SubdivisionSettings Settings;
@@ -87,6 +98,8 @@ private:
   std::vector<int> Leaves;
   /// Whether each leaf was made in the last sweep (its pairs still need examining).
   std::vector<bool> LeafIsNew;
+  /// Bytes held by Nodes (the budget's measure).
+  std::size_t NodeBytes = 0;
   SubdivisionStatistics Stats;
 };
 

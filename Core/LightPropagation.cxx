@@ -637,11 +637,26 @@ bool LightPropagation::Converged(double tolerance) const
   return this->UnshotEnergy() / this->TotalEmitted < tolerance;
 }
 
+std::size_t LightPropagation::EstimateBytes(const SphericalCover& cover,
+  const std::vector<Material>& materialOfPatch)
+{
+  const SphericalCoverOptions& options = cover.Options();
+  return cover.EntryCount() * BytesPerEntry + cover.PatchCount() * BytesPerPatch +
+    PointReflectances::EstimateBytes(options.ThetaBins, options.PhiBins, materialOfPatch);
+}
+
 bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCallback& progress)
 {
   if (!(settings.ConvergenceTolerance >= 0.0))
   {
     throw std::invalid_argument("LightPropagation: negative ConvergenceTolerance");
+  }
+  // Finite emissions can still overflow in their power (Le 1e308 x pi x area): the convergence
+  // measure would be inf / inf and the propagation would never end or write inf.
+  if (!std::isfinite(this->TotalEmitted))
+  {
+    throw std::overflow_error("the emitted power (pi x area x emission, summed) overflows double "
+                              "precision; scale the emissions down");
   }
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
@@ -687,6 +702,11 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     record.MeanFallbacks = this->LastMeanFallbacks;
     record.GridShot = this->GridShot;
     brightest = this->Brightest(largest, unshot);
+    if (!std::isfinite(unshot))
+    {
+      throw std::overflow_error("the unshot energy is no longer finite after shot " +
+        std::to_string(record.Shot) + " (an overflow); scale the emissions down");
+    }
     record.MaxUnshotRelative = largest / this->TotalEmitted;
     record.UnshotEnergy = unshot;
     this->ElapsedSeconds =
@@ -705,6 +725,16 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
       {
         return false;
       }
+    }
+  }
+  // The unshot energy stayed finite, but a radiance can overflow on its own (a tiny region's
+  // measure): the result is refused rather than written as inf.
+  for (const glm::dvec3& e : this->Incident)
+  {
+    if (!std::isfinite(e.x) || !std::isfinite(e.y) || !std::isfinite(e.z))
+    {
+      throw std::overflow_error(
+        "an incident radiance is not finite (an overflow); scale the emissions down");
     }
   }
   if (progress)

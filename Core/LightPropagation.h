@@ -280,6 +280,17 @@ public:
   /// for values out of range and InputError when a tabulated material's table cannot be read.
   LightPropagation(const SphericalCover& cover, const std::vector<Material>& materialOfPatch);
 
+  /// Bytes per entry and per patch of the propagation's state in the widest case (non-diffuse
+  /// receivers: E, dE, measures, positions, albedo measures), with the exchange factors and a
+  /// filter's output arrays.
+  static constexpr std::size_t BytesPerEntry = 192;
+  static constexpr std::size_t BytesPerPatch = 256;
+  /// An estimate of the propagation's memory for the cover and one material per patch: the
+  /// state above and the weight tables (PointReflectances::EstimateBytes), computed without
+  /// allocating, so that a caller can refuse before constructing.
+  static std::size_t EstimateBytes(const SphericalCover& cover,
+    const std::vector<Material>& materialOfPatch);
+
   /// The material of every patch: Scene::Materials of its surface.
   static std::vector<Material> MaterialsOfPatches(const Scene& scene,
     const std::vector<Patch>& patches);
@@ -323,7 +334,8 @@ public:
    * Progress is 1 - UnshotEnergy / (UnshotEnergy at the start of the call), clamped to be
    * non-decreasing (in a discretised cover the unshot energy can rise slightly, reciprocity
    * being approximate), and 1 once converged. Throws std::invalid_argument for a negative
-   * tolerance.
+   * tolerance, std::overflow_error when the emitted power, the unshot energy or (once
+   * converged) an incident radiance is not finite.
    */
   bool Run(const PropagationSettings& settings = {}, const ProgressCallback& progress = nullptr);
 

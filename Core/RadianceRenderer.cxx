@@ -73,6 +73,14 @@ std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
   {
     problem << name << ": position, focal point, view up and view angle must be finite numbers";
   }
+  else if (!(std::max({ std::fabs(camera.Position.x),
+               std::fabs(camera.Position.y),
+               std::fabs(camera.Position.z) }) <= MaxRayCastCoordinate))
+  {
+    // The eye starts every ray: Embree aborts on an origin beyond its range.
+    problem << name << ": the position is beyond the coordinates ray casting can trace (|x| <= "
+            << MaxRayCastCoordinate << ")";
+  }
   else if (!(camera.ViewAngle > 0.0 && camera.ViewAngle < 180.0))
   {
     problem << name << ": the view angle " << camera.ViewAngle << " is not in (0, 180) degrees";
@@ -100,12 +108,23 @@ std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
   {
     const double bytes = static_cast<double>(camera.Width) * camera.Height *
       static_cast<double>(RenderedImage::BytesPerPixel);
+    const double samples =
+      static_cast<double>(camera.Width) * camera.Height * settings.SamplesPerPixel;
+    problem.precision(3);
     if (bytes > static_cast<double>(settings.MemoryLimitBytes))
     {
-      problem.precision(3);
       problem << "an image of " << camera.Width << "x" << camera.Height << " pixels needs about "
               << bytes / (1024.0 * 1024.0) << " MiB, more than the limit of "
               << static_cast<double>(settings.MemoryLimitBytes) / (1024.0 * 1024.0) << " MiB";
+    }
+    else if (samples > static_cast<double>(settings.MaximumSamples))
+    {
+      problem << "an image of " << camera.Width << "x" << camera.Height << " pixels at "
+              << settings.SamplesPerPixel << " samples per pixel casts " << samples
+              << " rays, more than the budget of " << static_cast<double>(settings.MaximumSamples)
+              << " (about "
+              << RenderSecondsPerSample * static_cast<double>(settings.MaximumSamples) / 60.0
+              << " minutes on one core)";
     }
   }
   return problem.str();

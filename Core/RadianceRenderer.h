@@ -97,12 +97,21 @@ struct DirectionalIllumination
   std::vector<Material> Materials;
 };
 
+/// Seconds one sample (a ray refined on the exact patch and interpolated) takes on one core,
+/// measured on the Cornell box (see MaximumSamples): the budget's time scale.
+constexpr double RenderSecondsPerSample = 1e-6;
+
 struct RenderSettings
 {
   /// Samples per pixel (stratified, see the file comment), 1 to 4096.
   int SamplesPerPixel = 4;
   /// Largest memory the image may take (RenderedImage::BytesPerPixel per pixel).
   std::size_t MemoryLimitBytes = std::size_t(1024) * 1024 * 1024;
+  /// Largest Width x Height x SamplesPerPixel: 2^30 samples, about 18 minutes on one core at
+  /// RenderSecondsPerSample, more than an hour only in scenes far costlier than the Cornell box
+  /// (a 4K image at 128 samples per pixel); the largest size and spp (32768^2 x 4096) would
+  /// take weeks.
+  std::size_t MaximumSamples = std::size_t(1) << 30;
 };
 
 /// The rendered arrays, pixel (i, j) at index j * Width + i, row 0 at the bottom.
@@ -134,7 +143,8 @@ glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolat
 /// The camera and settings' problem in one sentence, or "" when they can be rendered: a view
 /// angle outside (0, 180) degrees, the eye at the focal point, a view up parallel to the view
 /// direction (or zero), a width or height below 1, SamplesPerPixel outside [1, 4096], a
-/// non-finite number, or an image larger than the memory limit.
+/// non-finite number, an eye beyond MaxRayCastCoordinate, or an image larger than the memory
+/// limit or the sample budget.
 std::string CheckCamera(const Camera& camera, const RenderSettings& settings);
 
 class RadianceRenderer

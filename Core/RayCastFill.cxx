@@ -12,6 +12,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -164,6 +165,28 @@ void FilterHit(const RTCFilterFunctionNArguments* args)
 }
 }
 
+std::string RayCastCoordinateProblem(const std::vector<Patch>& patches)
+{
+  for (size_t p = 0; p < patches.size(); ++p)
+  {
+    for (const glm::dvec3& point : patches[p].Geometry.ControlPoints())
+    {
+      const double largest =
+        std::max({ std::fabs(point.x), std::fabs(point.y), std::fabs(point.z) });
+      if (!(largest <= MaxRayCastCoordinate))
+      {
+        std::ostringstream problem;
+        problem << "patch " << p << " (surface " << patches[p].SurfaceIndex
+                << ") has a control point at " << point.x << ", " << point.y << ", " << point.z
+                << ", beyond the coordinates ray casting (Embree) can trace (|x| <= "
+                << MaxRayCastCoordinate << ")";
+        return problem.str();
+      }
+    }
+  }
+  return std::string();
+}
+
 struct RayCastFiller::Implementation
 {
   const std::vector<Patch>& Patches;
@@ -183,6 +206,13 @@ struct RayCastFiller::Implementation
     , Grid(grid)
     , Options(options)
   {
+    // Every stage that casts rays (the ray fill, the refinement's probes, the renderer) comes
+    // through here, whatever dataset the VTK filters were given: refuse what Embree aborts on.
+    const std::string problem = RayCastCoordinateProblem(patches);
+    if (!problem.empty())
+    {
+      throw std::invalid_argument(problem);
+    }
     this->Device = rtcNewDevice("threads=1");
     if (!this->Device)
     {

@@ -41,14 +41,29 @@
 #include <glm/vec3.hpp>
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace sphcover
 {
 
+/**
+ * The largest coordinate magnitude ray casting accepts. Embree asserts (and aborts the
+ * process) unless every ray's origin and direction lie within its FLT_LARGE, 1.844e18, per
+ * component; the rays start at characteristic points and at the eye, so the patches and the
+ * camera must stay inside, with a margin for the offsets along the rays.
+ */
+constexpr double MaxRayCastCoordinate = 1e18;
+
+/// Why the patches cannot be handed to Embree (a control point beyond MaxRayCastCoordinate,
+/// or not finite: the patches lie in their control nets' convex hulls), or "".
+std::string RayCastCoordinateProblem(const std::vector<Patch>& patches);
+
 class RayCastFiller : public RBufferFiller
 {
 public:
+  /// Throws std::invalid_argument for patches beyond MaxRayCastCoordinate
+  /// (RayCastCoordinateProblem), std::runtime_error if Embree fails.
   RayCastFiller(const std::vector<Patch>& patches,
     const HemisphereGrid& grid,
     const RBufferFillOptions& options);

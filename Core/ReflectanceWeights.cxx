@@ -477,4 +477,13 @@ std::size_t ReflectanceWeights::MemoryBytes() const
     this->Albedos.size() * sizeof(glm::dvec3);
 }
 
+std::size_t ReflectanceWeights::EstimateBytes(int thetaBins, int phiBins)
+{
+  const std::size_t rowPairs = static_cast<std::size_t>(thetaBins) * thetaBins;
+  const std::size_t columns = static_cast<std::size_t>(phiBins);
+  // w and Sums (Stride 2 columns + 2) as dvec3, the spectra as 3 real doubles per frequency.
+  return rowPairs *
+    ((columns + 2 * columns + 2) * sizeof(glm::dvec3) + (columns / 2 + 1) * 3 * sizeof(double));
+}
+
 } // namespace sphcover

@@ -124,6 +124,10 @@ public:
   /// max over rows and bands of |s - 1| of the normalization (0 for the mirror).
   double LargestScaling() const { return this->Scaling; }
   std::size_t MemoryBytes() const;
+  /// The peak bytes of building a table for a thetaBins x phiBins grid (the weights, their
+  /// cumulative sums and at most one spectrum per row pair), computed without allocating: it
+  /// grows as ThetaBins^2 PhiBins (about 11 MB at 32 x 128, 5.6 GB at 256 x 1024).
+  static std::size_t EstimateBytes(int thetaBins, int phiBins);
 
 private:
   const glm::dvec3* Cumulative(int rowOut, int rowIn) const

@@ -67,6 +67,14 @@ struct Scene
   int FindMaterial(const std::string& name) const;
 };
 
+/**
+ * A fingerprint of what a solution depends on: the surfaces (degrees, control points, names,
+ * materials, sidedness), the materials and the settings block, as 16 hex digits (FNV-1a over
+ * the exact bits). The cameras and the source file's name are left out, so that a solution
+ * renders through any camera and from a copy of the scene.
+ */
+std::string Fingerprint(const Scene& scene);
+
 } // namespace sphcover
 
 #endif

@@ -4,6 +4,7 @@
 #include "BptReader.h"
 #include "BrdfTable.h"
 #include "InputError.h"
+#include "SubdivisionCriteria.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -642,18 +643,21 @@ SceneSettings SceneParser::ParseSettings(const Json& j,
   if (j.contains("max_level"))
   {
     const long long level = this->Integer(j["max_level"], Child(pointer, "max_level"));
-    if (level < 0 || level > 64)
+    if (level < 0 || level > MaxSubdivisionLevel)
     {
-      this->Fail(Child(pointer, "max_level"), "must be >= 0 (and at most 64)");
+      this->Fail(Child(pointer, "max_level"),
+        "must be >= 0 and at most " + std::to_string(MaxSubdivisionLevel) +
+          " (deeper patches are narrower than the double precision of the parameter domain)");
     }
     settings.MaxLevel = static_cast<int>(level);
   }
   if (j.contains("tolerance"))
   {
     settings.Tolerance = this->Number(j["tolerance"], Child(pointer, "tolerance"));
-    if (!(settings.Tolerance > 0.0))
+    // Smaller tolerances test only the rounding of the range bounds (MinimumTolerance).
+    if (!(settings.Tolerance >= MinimumTolerance))
     {
-      this->Fail(Child(pointer, "tolerance"), "must be > 0");
+      this->Fail(Child(pointer, "tolerance"), "must be >= 1e-9");
     }
   }
   return settings;

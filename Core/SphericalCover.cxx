@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <numeric>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -492,6 +494,58 @@ std::size_t SphericalCover::WorkingBytesPerThread(const SphericalCoverOptions& o
   const std::size_t projection =
     options.Fill == RBufferFill::Projection ? samples * (4 + 8 + 8 + 4) + cells * 2 : 0;
   return buffer + projection;
+}
+
+std::size_t SphericalCover::WorkingBytes(const SphericalCoverOptions& options, std::size_t threads)
+{
+  // The grid's per-row and per-sample-row/column tables (a few doubles each).
+  const std::size_t grid = 8 *
+    (static_cast<std::size_t>(options.ThetaBins) * (1 + 2 * options.SamplesTheta) +
+      static_cast<std::size_t>(options.PhiBins) * 2 * options.SamplesPhi);
+  return std::max<std::size_t>(threads, 1) * WorkingBytesPerThread(options) + grid;
+}
+
+std::string SphericalCover::MemoryProblem(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  std::size_t threads,
+  std::size_t limitBytes)
+{
+  // Validates the grid (sizes, and a cell count that fits its int indices) without allocating.
+  HemisphereGrid::CheckSizes(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  const auto mib = [](double bytes)
+  {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(bytes < 1024.0 * 1024.0 ? 3 : 0)
+         << bytes / (1024.0 * 1024.0) << " MiB";
+    return text.str();
+  };
+  const std::size_t working = WorkingBytes(options, threads);
+  std::ostringstream problem;
+  if (working > limitBytes)
+  {
+    problem << "building the cover on " << std::max<std::size_t>(threads, 1)
+            << " threads needs about " << mib(static_cast<double>(working))
+            << " of R-buffers for a " << options.ThetaBins << " x " << options.PhiBins << " grid ("
+            << options.SamplesTheta * options.SamplesPhi
+            << " samples per cell), more than the limit of " << mib(static_cast<double>(limitBytes))
+            << "; use a coarser grid or fewer threads";
+    return problem.str();
+  }
+  if (patches.empty())
+  {
+    return std::string();
+  }
+  const std::size_t cover = EstimateBytes(patches, options);
+  if (cover > limitBytes - working)
+  {
+    problem << "the cover of " << patches.size() << " patches would need about "
+            << mib(static_cast<double>(cover) + static_cast<double>(working))
+            << " (with the R-buffers), more than the limit of "
+            << mib(static_cast<double>(limitBytes))
+            << "; use fewer patches (MaxLevel) or a coarser grid";
+  }
+  return problem.str();
 }
 
 } // namespace sphcover

@@ -216,6 +216,20 @@ public:
     std::size_t sampleReceivers = 16);
   /// Working memory of one building thread (its R-buffer and fill scratch), in bytes.
   static std::size_t WorkingBytesPerThread(const SphericalCoverOptions& options);
+  /// Working memory of a build on `threads` threads: their R-buffers and scratch at once, and
+  /// the grid's tables. From the options alone: nothing is allocated.
+  static std::size_t WorkingBytes(const SphericalCoverOptions& options, std::size_t threads);
+  /**
+   * Why building the cover of `patches` on `threads` threads would not fit in `limitBytes`, or
+   * "". The working memory is checked first, from the options alone (a grid too fine for the
+   * limit is refused without allocating anything); only when it fits are a few rows built for
+   * EstimateBytes (none for an empty `patches`: the check of the grid alone, which a caller can
+   * make before the subdivision). Throws std::invalid_argument for a grid HemisphereGrid rejects.
+   */
+  static std::string MemoryProblem(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options,
+    std::size_t threads,
+    std::size_t limitBytes);
 
 private:
   struct Row;

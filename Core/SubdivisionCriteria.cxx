@@ -18,9 +18,16 @@ double SubdivisionSettings::CellAngle() const
 std::string SubdivisionSettings::Problem() const
 {
   std::ostringstream problem;
-  if (this->MaxLevel < 0)
+  if (this->MaxLevel < 0 || this->MaxLevel > MaxSubdivisionLevel)
   {
-    problem << "MaxLevel must be >= 0, got " << this->MaxLevel;
+    problem << "MaxLevel must be >= 0 and at most " << MaxSubdivisionLevel
+            << " (deeper patches are narrower than the double precision of the parameter "
+               "domain), got "
+            << this->MaxLevel;
+  }
+  else if (this->MaximumPatches < 1)
+  {
+    problem << "MaximumPatches must be >= 1";
   }
   else if (this->ThetaBins < 1 || this->PhiBins < 1)
   {
@@ -35,9 +42,11 @@ std::string SubdivisionSettings::Problem() const
       "CharacterisabilityTolerance" };
     for (int c = 0; c < NumberOfCriteria; ++c)
     {
-      if (!(this->Tolerance[c] >= 0.0) || !std::isfinite(this->Tolerance[c]))
+      if (!(this->Tolerance[c] >= MinimumTolerance) || !std::isfinite(this->Tolerance[c]))
       {
-        problem << names[c] << " must be a finite number >= 0, got " << this->Tolerance[c];
+        // Below MinimumTolerance the rounding of the range bounds decides (see its comment).
+        problem << names[c] << " must be a finite number >= " << MinimumTolerance << ", got "
+                << this->Tolerance[c];
         break;
       }
     }

@@ -38,6 +38,7 @@
 #include "BernsteinBounds.h"
 #include "Patch.h"
 
+#include <cstddef>
 #include <string>
 
 namespace sphcover
@@ -53,11 +54,47 @@ enum class Criterion
 };
 constexpr int NumberOfCriteria = 4;
 
+/**
+ * The deepest level the parameter domain can represent: a patch at level L spans 3^-L of its
+ * surface's [0, 1] in one direction, and the doubles just below 1 are 2^-53 apart. At level 32
+ * a patch is 3^-32 = 5.4e-16 wide (about 5 of those steps); one more split would make pieces
+ * of 1.6 steps, whose cut values round to neighbouring doubles or coincide.
+ */
+constexpr int MaxSubdivisionLevel = 32;
+/**
+ * The smallest tolerance of a criterion. The criteria compare ranges bounded in double
+ * precision (relative rounding ~1e-15, growing with the patch degrees) with tolerance x scale;
+ * below 1e-9 the verdict would be decided by that rounding rather than by the geometry, and
+ * every pair would split to the limits.
+ */
+constexpr double MinimumTolerance = 1e-9;
+/**
+ * Default budget of patches. Every later stage grows with the patch count n: the cover holds
+ * n hemispheres (a few MB each at the default grid before compression) and the propagation
+ * shoots n columns; a million patches is 70 times the refined teapot room (13461 points).
+ */
+constexpr std::size_t DefaultMaximumPatches = 1000000;
+/**
+ * Default budget of pair tests, the subdivision's time: 1e9 is about 10 to 25 minutes on two
+ * threads (0.7 to 1.7 million per second measured in the teapot room and the Cornell box, whose
+ * default subdivisions make 5.0 and 1.2 million).
+ */
+constexpr std::size_t DefaultMaximumPairTests = 1000000000;
+/// Default budget of the subdivision's memory (every patch made, with its derivative nets).
+constexpr std::size_t DefaultSubdivisionMemoryBytes = std::size_t(8192) * 1024 * 1024;
+
 struct SubdivisionSettings
 {
   RangeMethod Method = RangeMethod::Bernstein;
-  /// Deepest subdivision level (number of ternary splits from a surface).
+  /// Deepest subdivision level (number of ternary splits from a surface), at most
+  /// MaxSubdivisionLevel.
   int MaxLevel = 5;
+  /// The subdivision stops with an error (std::length_error) rather than make more patches
+  /// than this, or hold more bytes of patches than MemoryLimitBytes.
+  std::size_t MaximumPatches = DefaultMaximumPatches;
+  /// ... or test more pairs than this in all (its time).
+  std::size_t MaximumPairTests = DefaultMaximumPairTests;
+  std::size_t MemoryLimitBytes = DefaultSubdivisionMemoryBytes;
   /// The cover's grid: no patch is split once it projects to about one cell.
   int ThetaBins = 32;
   int PhiBins = 128;

@@ -87,6 +87,9 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
   settings.Method = this->RangeMethod == NATURAL_INTERVAL ? sphcover::RangeMethod::NaturalInterval
                                                           : sphcover::RangeMethod::Bernstein;
   settings.MaxLevel = this->MaxLevel;
+  settings.MaximumPatches = static_cast<size_t>(this->MaximumPatches);
+  settings.MemoryLimitBytes = static_cast<size_t>(this->MemoryLimit * 1024.0 * 1024.0);
+  settings.MaximumPairTests = static_cast<size_t>(this->MaximumPairTests);
   settings.ThetaBins = this->ThetaBins;
   settings.PhiBins = this->PhiBins;
   const bool enabled[4] = { this->SelfShadowing,
@@ -224,6 +227,9 @@ void vtkIntervalSubdivisionFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "RangeMethod: " << (this->RangeMethod == BERNSTEIN ? "Bernstein" : "NaturalInterval")
      << "\n";
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";
+  os << indent << "MaximumPatches: " << this->MaximumPatches << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
+  os << indent << "MaximumPairTests: " << this->MaximumPairTests << "\n";
   os << indent << "ThetaBins: " << this->ThetaBins << "\n";
   os << indent << "PhiBins: " << this->PhiBins << "\n";
   os << indent << "SelfShadowing: " << this->SelfShadowing << " (" << this->SelfShadowingTolerance

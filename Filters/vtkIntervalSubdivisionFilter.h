@@ -68,10 +68,28 @@ public:
 
   ///@{
   /**
-   * The deepest subdivision level (ternary splits from a surface). Default is 5.
+   * The deepest subdivision level (ternary splits from a surface), 0 to 32 (deeper patches are
+   * narrower than the double precision of the parameter domain; another value fails the
+   * request). Default is 5.
    */
   vtkSetMacro(MaxLevel, int);
   vtkGetMacro(MaxLevel, int);
+  ///@}
+
+  ///@{
+  /**
+   * The budget of the subdivision: it fails with an error, before splitting, when a sweep would
+   * make more than MaximumPatches patches or hold more than MemoryLimit MiB of patches (every
+   * later stage grows with the patch count), and before or during a sweep when the pair tests,
+   * its time, would exceed MaximumPairTests (1e9: 10 to 25 minutes on two threads). Defaults
+   * are 1000000, 8192 and 1e9.
+   */
+  vtkSetClampMacro(MaximumPatches, int, 1, VTK_INT_MAX);
+  vtkGetMacro(MaximumPatches, int);
+  vtkSetClampMacro(MemoryLimit, double, 0.0, 1.0e9);
+  vtkGetMacro(MemoryLimit, double);
+  vtkSetClampMacro(MaximumPairTests, double, 1.0, 1.0e18);
+  vtkGetMacro(MaximumPairTests, double);
   ///@}
 
   ///@{
@@ -152,6 +170,9 @@ protected:
 
   int RangeMethod = BERNSTEIN;
   int MaxLevel = 5;
+  int MaximumPatches = 1000000;
+  double MemoryLimit = 8192.0;
+  double MaximumPairTests = 1.0e9;
   int ThetaBins = 32;
   int PhiBins = 128;
   bool SelfShadowing = true;

@@ -99,6 +99,18 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     return 0;
   }
   const vtkIdType count = input->GetNumberOfPoints();
+  const double needed =
+    static_cast<double>(sphcover::LightPropagation::EstimateBytes(cover, materials)) /
+    (1024.0 * 1024.0);
+  if (needed > this->MemoryLimit)
+  {
+    vtkErrorMacro(<< "Cannot propagate light: it would need about " << static_cast<int>(needed)
+                  << " MiB (state of " << cover.EntryCount() << " regions and weight tables of a "
+                  << cover.Options().ThetaBins << " x " << cover.Options().PhiBins
+                  << " grid), more than MemoryLimit (" << this->MemoryLimit
+                  << " MiB); use a coarser grid or fewer patches.");
+    return 0;
+  }
 
   sphcover::PropagationSettings settings;
   settings.ConvergenceTolerance = this->ConvergenceTolerance;
@@ -220,5 +232,6 @@ void vtkLightPropagationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "ShootingOrder: "
      << (this->ShootingOrder == BRIGHTEST_FIRST ? "BrightestFirst" : "FixedOrder") << "\n";
   os << indent << "BalanceExchanges: " << (this->BalanceExchanges ? "On" : "Off") << "\n";
+  os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Shots: " << this->Shots << "\n";
 }

@@ -94,6 +94,16 @@ public:
   vtkBooleanMacro(BalanceExchanges, bool);
   ///@}
 
+  ///@{
+  /**
+   * Largest memory the propagation may take, in MiB (its state per region and the weight tables
+   * of non-diffuse materials, which grow as ThetaBins^2 PhiBins); a larger estimate, made before
+   * anything is allocated, is refused with an error. Default is 8192.
+   */
+  vtkSetClampMacro(MemoryLimit, double, 0.0, 1.0e9);
+  vtkGetMacro(MemoryLimit, double);
+  ///@}
+
   /// Shots of the last update.
   vtkGetMacro(Shots, int);
 
@@ -109,6 +119,7 @@ protected:
   int MaximumShots = 0;
   int ShootingOrder = BRIGHTEST_FIRST;
   bool BalanceExchanges = true;
+  double MemoryLimit = 8192.0;
   int Shots = 0;
 
 private:

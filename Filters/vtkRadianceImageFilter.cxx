@@ -172,6 +172,14 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   settings.SamplesPerPixel = this->SamplesPerPixel;
   settings.MemoryLimitBytes = static_cast<size_t>(
     std::min(this->MemoryLimit * 1024.0 * 1024.0, static_cast<double>(SIZE_MAX / 2)));
+  settings.MaximumSamples =
+    static_cast<size_t>(std::min(this->MaximumSamples, static_cast<double>(SIZE_MAX / 2)));
+  if (!(this->Exposure > 0.0 && std::isfinite(this->Exposure)))
+  {
+    vtkErrorMacro(<< "Cannot render: Exposure " << this->Exposure
+                  << " is not a finite number > 0 (the image would be black or undefined).");
+    return 0;
+  }
   problem = sphcover::CheckCamera(camera, settings);
   if (!problem.empty())
   {
@@ -281,4 +289,5 @@ void vtkRadianceImageFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
   os << indent << "Exposure: " << this->Exposure << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
+  os << indent << "MaximumSamples: " << this->MaximumSamples << "\n";
 }

@@ -106,7 +106,7 @@ public:
   ///@{
   /**
    * Scale applied to the radiance before the display mapping of `RGB`: radiance 1 / Exposure
-   * shows as white. Default is 1.
+   * shows as white. A finite number > 0 (0 would render black: the request fails). Default is 1.
    */
   vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(Exposure, double);
@@ -116,6 +116,15 @@ public:
   /** Largest memory the image may take, in MiB; a larger image is refused. Default is 1024. */
   vtkSetClampMacro(MemoryLimit, double, 0.0, VTK_DOUBLE_MAX);
   vtkGetMacro(MemoryLimit, double);
+  ///@}
+
+  ///@{
+  /**
+   * Largest Width x Height x SamplesPerPixel (rays cast); a larger image is refused, as it
+   * would take hours (sphcover::RenderSettings::MaximumSamples). Default is 1073741824 (2^30).
+   */
+  vtkSetClampMacro(MaximumSamples, double, 1.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(MaximumSamples, double);
   ///@}
 
 protected:
@@ -136,6 +145,7 @@ protected:
   int SamplesPerPixel = 4;
   double Exposure = 1.0;
   double MemoryLimit = 1024.0;
+  double MaximumSamples = 1073741824.0;
 
 private:
   vtkRadianceImageFilter(const vtkRadianceImageFilter&) = delete;

@@ -26,12 +26,11 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSMPTools.h>
 #include <vtkTable.h>
 
 #include <algorithm>
 #include <exception>
-#include <iomanip>
-#include <sstream>
 
 namespace names = vtkSphericalCoverArrayNames;
 
@@ -96,6 +95,28 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   options.Fill = this->FillMethod == RAY_CASTING ? sphcover::RBufferFill::RayCasting
                                                  : sphcover::RBufferFill::Projection;
   options.FillOptions.BackFacesOcclude = this->BackFacesOcclude;
+
+  // Refuse before any R-buffer exists what could not fit: first the working memory of the
+  // grid on every thread (the refinement builds R-buffers too), from the options alone.
+  const std::size_t threads =
+    static_cast<std::size_t>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
+  const std::size_t limitBytes =
+    static_cast<std::size_t>(std::min(this->MemoryLimit * 1024.0 * 1024.0, 1.0e18));
+  try
+  {
+    const std::string memory =
+      sphcover::SphericalCover::MemoryProblem({}, options, threads, limitBytes);
+    if (!memory.empty())
+    {
+      vtkErrorMacro(<< "Cannot build the spherical cover: " << memory << " (MemoryLimit).");
+      return 0;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot build the spherical cover: " << e.what());
+    return 0;
+  }
 
   // Cell of the input each patch was cut from (the identity without refinement).
   std::vector<vtkIdType> cellOfPatch(patches.size());
@@ -184,17 +205,12 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   sphcover::SphericalCover cover;
   try
   {
-    // Refuse before building what would not fit: an estimate from a few rows actually built.
-    const double estimate =
-      static_cast<double>(sphcover::SphericalCover::EstimateBytes(patches, options)) /
-      (1024.0 * 1024.0);
-    if (estimate > this->MemoryLimit)
+    // Then the cover itself: an estimate from a few rows actually built.
+    const std::string memory =
+      sphcover::SphericalCover::MemoryProblem(patches, options, threads, limitBytes);
+    if (!memory.empty())
     {
-      std::ostringstream needed;
-      needed << std::setprecision(3) << estimate;
-      vtkErrorMacro(<< "The cover of " << patches.size() << " patches would need about "
-                    << needed.str() << " MiB, more than MemoryLimit (" << this->MemoryLimit
-                    << " MiB); use fewer patches (MaxLevel) or a coarser grid.");
+      vtkErrorMacro(<< "Cannot build the spherical cover: " << memory << " (MemoryLimit).");
       return 0;
     }
     const bool completed = cover.Build(patches,

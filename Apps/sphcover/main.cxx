@@ -28,6 +28,7 @@
 #include "vtkSphericalCoverFilter.h"
 
 #include "InputError.h"
+#include "RadianceRenderer.h"
 #include "Scene.h"
 #include "SceneLoader.h"
 #include "SphericalCover.h"
@@ -53,6 +54,7 @@
 #include <vtkXMLMultiBlockDataReader.h>
 #include <vtkXMLMultiBlockDataWriter.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -60,7 +62,10 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
+
+#include <unistd.h>
 
 namespace
 {
@@ -80,7 +85,16 @@ struct Options
   double Exposure = 1.0;
   int Threads = 0;
   bool Quiet = false;
+  /// The budgets (see the options' help): what a stage may take before it refuses.
+  double MemoryLimit = 8192.0;
+  int MaxPatches = 1000000;
+  double MaxPairTests = 1.0e9;
+  double MaxSamples = 1073741824.0;
 };
+
+/// The name of the illumination's field data array that holds the scene's fingerprint
+/// (sphcover::Fingerprint) in a solution written by `solve -o`.
+constexpr const char* SceneFingerprintArray = "SceneFingerprint";
 
 /// Updates an algorithm; on failure throws its first error as one line.
 void Run(vtkAlgorithm* algorithm, ErrorCollector& errors)
@@ -112,6 +126,25 @@ sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<st
   return settings;
 }
 
+/// Refuses, before the subdivision, a cover grid whose R-buffers alone (one per thread) exceed
+/// --memory-limit: known from the settings, so nothing is subdivided or allocated in vain.
+void CheckCoverGrid(const sphcover::SceneSettings& settings, const Options& options)
+{
+  sphcover::SphericalCoverOptions cover;
+  cover.ThetaBins = settings.ThetaBins;
+  cover.PhiBins = settings.PhiBins;
+  const std::size_t threads =
+    static_cast<std::size_t>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
+  const std::string problem = sphcover::SphericalCover::MemoryProblem(
+    {}, cover, threads, static_cast<std::size_t>(options.MemoryLimit * 1024.0 * 1024.0));
+  if (!problem.empty())
+  {
+    throw std::runtime_error(options.Scene + ": settings theta_bins " +
+      std::to_string(settings.ThetaBins) + ", phi_bins " + std::to_string(settings.PhiBins) + ": " +
+      problem + " (--memory-limit)");
+  }
+}
+
 /// The stages up to the spherical cover, run with progress bars; errors throw one line.
 struct Solution
 {
@@ -135,7 +168,13 @@ struct Solution
     }
     const sphcover::SceneSettings settings =
       SettingsOf(this->Reader->GetOutput(), options.Settings);
+    CheckCoverGrid(settings, options);
     this->Subdivision->SetInputConnection(this->Reader->GetOutputPort());
+    this->Subdivision->SetMaximumPatches(options.MaxPatches);
+    this->Subdivision->SetMaximumPairTests(options.MaxPairTests);
+    this->Subdivision->SetMemoryLimit(options.MemoryLimit);
+    this->Cover->SetMemoryLimit(options.MemoryLimit);
+    this->Propagation->SetMemoryLimit(options.MemoryLimit);
     this->Subdivision->SetThetaBins(settings.ThetaBins);
     this->Subdivision->SetPhiBins(settings.PhiBins);
     this->Subdivision->SetMaxLevel(settings.MaxLevel);
@@ -169,6 +208,59 @@ struct Solution
     }
   }
 };
+
+/// Lower-case extension of a path, with its dot ("" if none).
+std::string ExtensionOf(const std::string& path)
+{
+  std::string extension = std::filesystem::path(path).extension().string();
+  for (char& c : extension)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return extension;
+}
+
+/**
+ * Checks an output path before any work starts (a solve can take minutes; failing to write
+ * afterwards wastes it): one of `extensions`, not a folder, in an existing folder this process
+ * may write to. An empty path (the option not given) passes. Throws one line naming the option.
+ */
+void CheckOutputPath(const std::string& option,
+  const std::string& path,
+  const std::vector<std::string>& extensions,
+  const std::string& kind)
+{
+  namespace fs = std::filesystem;
+  if (path.empty())
+  {
+    return;
+  }
+  if (std::find(extensions.begin(), extensions.end(), ExtensionOf(path)) == extensions.end())
+  {
+    std::string expected;
+    for (const std::string& extension : extensions)
+    {
+      expected += (expected.empty() ? "" : " or ") + extension;
+    }
+    throw std::runtime_error(
+      option + " '" + path + "': unknown " + kind + " format (expected " + expected + ")");
+  }
+  std::error_code error;
+  if (fs::is_directory(path, error))
+  {
+    throw std::runtime_error("cannot write '" + path + "': it is a folder");
+  }
+  const fs::path folder = fs::absolute(path).parent_path();
+  if (!fs::is_directory(folder, error))
+  {
+    throw std::runtime_error("cannot write '" + path + "': no folder " + folder.string());
+  }
+  if (access(folder.c_str(), W_OK) != 0)
+  {
+    throw std::runtime_error(
+      "cannot write '" + path + "': folder " + folder.string() + ": " + std::strerror(errno));
+  }
+}
 
 /// The report of SPEC §5: per named surface its area and area-weighted mean irradiance and exitant
 /// radiance, form factors between named surfaces (area-weighted over the source surface), the
@@ -312,6 +404,8 @@ nlohmann::json Report(Solution& solution)
 
 int RunSolve(const Options& options)
 {
+  CheckOutputPath("-o", options.Output, { ".vtm" }, "solution");
+  CheckOutputPath("--report", options.Report, { ".json" }, "report");
   Solution solution;
   solution.Run(options);
   if (!options.Report.empty())
@@ -324,7 +418,15 @@ int RunSolve(const Options& options)
     blocks->SetNumberOfBlocks(2);
     blocks->SetBlock(0, solution.Subdivision->GetOutput());
     blocks->GetMetaData(0u)->Set(vtkCompositeDataSet::NAME(), "Patches");
-    blocks->SetBlock(1, solution.Propagation->GetOutput());
+    // The illumination carries the scene's fingerprint, so that `render --solution` can tell
+    // a solution of another (or an edited) scene.
+    vtkNew<vtkPolyData> illumination;
+    illumination->ShallowCopy(solution.Propagation->GetOutput());
+    vtkNew<vtkStringArray> fingerprint;
+    fingerprint->SetName(SceneFingerprintArray);
+    fingerprint->InsertNextValue(sphcover::Fingerprint(vtkSceneFileLoader::Load(options.Scene)));
+    illumination->GetFieldData()->AddArray(fingerprint);
+    blocks->SetBlock(1, illumination);
     blocks->GetMetaData(1u)->Set(vtkCompositeDataSet::NAME(), "Illumination");
     vtkNew<vtkXMLMultiBlockDataWriter> writer;
     sphcover_cli::WriteXmlAtomically(writer, blocks, options.Output);
@@ -334,17 +436,6 @@ int RunSolve(const Options& options)
             << solution.SubdivideSeconds << ", cover " << solution.CoverSeconds << ", propagate "
             << solution.PropagateSeconds << " (" << solution.Propagation->GetShots() << " shots)\n";
   return 0;
-}
-
-/// Lower-case extension of a path, with its dot ("" if none).
-std::string ExtensionOf(const std::string& path)
-{
-  std::string extension = std::filesystem::path(path).extension().string();
-  for (char& c : extension)
-  {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
-  return extension;
 }
 
 /// "WxH" as two positive integers.
@@ -372,36 +463,72 @@ void ParseSize(const std::string& text, int& width, int& height)
   }
 }
 
+/// The render's budgets from the options (--spp, --memory-limit, --max-samples).
+sphcover::RenderSettings RenderBudget(const Options& options)
+{
+  sphcover::RenderSettings settings;
+  settings.SamplesPerPixel = options.SamplesPerPixel;
+  settings.MemoryLimitBytes = static_cast<std::size_t>(options.MemoryLimit * 1024.0 * 1024.0);
+  settings.MaximumSamples = static_cast<std::size_t>(options.MaxSamples);
+  return settings;
+}
+
+/// Refuses, before the solve, an image that exceeds the memory limit or the sample budget (it
+/// would take hours): the same check the render filter makes, made before minutes of solving.
+void CheckRenderBudget(sphcover::Camera camera,
+  int width,
+  int height,
+  const sphcover::RenderSettings& settings)
+{
+  camera.Width = width;
+  camera.Height = height;
+  const std::string problem = sphcover::CheckCamera(camera, settings);
+  if (!problem.empty())
+  {
+    throw std::runtime_error(
+      "--size/--spp: " + problem + " (--memory-limit and --max-samples raise the limits)");
+  }
+}
+
+/// A saved solution renders only with the scene it was solved from: its fingerprint (written
+/// by `solve -o`) must be the scene file's (sphcover::Fingerprint).
+void CheckFingerprint(const Options& options,
+  vtkPolyData* illumination,
+  const sphcover::Scene& scene)
+{
+  auto* stored = vtkStringArray::SafeDownCast(
+    illumination->GetFieldData()->GetAbstractArray(SceneFingerprintArray));
+  if (!stored || stored->GetNumberOfValues() != 1)
+  {
+    throw std::runtime_error("--solution '" + options.SolutionFile +
+      "': has no scene fingerprint (not written by sphcover solve -o); solve the scene again");
+  }
+  const std::string expected = sphcover::Fingerprint(scene);
+  if (stored->GetValue(0) != expected)
+  {
+    throw std::runtime_error("--solution '" + options.SolutionFile +
+      "': solved from another scene than '" + options.Scene +
+      "' (or from an edited one: fingerprint " + stored->GetValue(0) + ", the scene's " + expected +
+      "); solve the scene again");
+  }
+}
+
 /// sphcover render: the whole pipeline (or a saved solution) and the image of paper §5.3.
 int RunRender(const Options& options)
 {
   // The outputs, checked before any work: -o is the HDR image (.exr, Radiance and Depth) or a
   // tone-mapped PNG; --png adds a tone-mapped PNG.
+  CheckOutputPath("-o", options.Output, { ".exr", ".png" }, "image");
+  CheckOutputPath("--png", options.Png, { ".png" }, "image");
+  CheckOutputPath("--report", options.Report, { ".json" }, "report");
   std::string exr;
   std::vector<std::string> pngs;
   if (!options.Output.empty())
   {
-    const std::string extension = ExtensionOf(options.Output);
-    if (extension == ".exr")
-    {
-      exr = options.Output;
-    }
-    else if (extension == ".png")
-    {
-      pngs.push_back(options.Output);
-    }
-    else
-    {
-      throw std::runtime_error(
-        "-o '" + options.Output + "': unknown image format (expected .exr or .png)");
-    }
+    (ExtensionOf(options.Output) == ".exr" ? exr : pngs.emplace_back()) = options.Output;
   }
   if (!options.Png.empty())
   {
-    if (ExtensionOf(options.Png) != ".png")
-    {
-      throw std::runtime_error("--png '" + options.Png + "': the file name must end in .png");
-    }
     pngs.push_back(options.Png);
   }
   if (exr.empty() && pngs.empty())
@@ -413,13 +540,12 @@ int RunRender(const Options& options)
   {
     outputs.push_back(exr);
   }
-  for (const std::string& path : outputs)
+  // A zero, negative or non-finite exposure maps every radiance to black (or NaN).
+  if (!(options.Exposure > 0.0 && std::isfinite(options.Exposure)))
   {
-    const std::filesystem::path folder = std::filesystem::absolute(path).parent_path();
-    if (!std::filesystem::is_directory(folder))
-    {
-      throw std::runtime_error("cannot write '" + path + "': no folder " + folder.string());
-    }
+    std::ostringstream text;
+    text << "--exposure " << options.Exposure << ": must be a finite number > 0";
+    throw std::runtime_error(text.str());
   }
 
   // The camera: --camera or the scene's first, --size or the camera's size.
@@ -451,6 +577,8 @@ int RunRender(const Options& options)
   {
     ParseSize(options.Size, width, height);
   }
+  const sphcover::RenderSettings renderSettings = RenderBudget(options);
+  CheckRenderBudget(*camera, width, height, renderSettings);
 
   Solution solution;
   vtkNew<vtkXMLMultiBlockDataReader> saved;
@@ -496,6 +624,7 @@ int RunRender(const Options& options)
       throw std::runtime_error("--solution '" + options.SolutionFile +
         "': not a solution of sphcover solve -o (two blocks, the patches and the illumination)");
     }
+    CheckFingerprint(options, illumination, scene);
     patchesProducer->SetOutput(patches);
     illuminationProducer->SetOutput(illumination);
     illuminationPort = illuminationProducer->GetOutputPort();
@@ -513,6 +642,8 @@ int RunRender(const Options& options)
   render->SetHeight(height);
   render->SetSamplesPerPixel(options.SamplesPerPixel);
   render->SetExposure(options.Exposure);
+  render->SetMemoryLimit(options.MemoryLimit);
+  render->SetMaximumSamples(options.MaxSamples);
   double renderSeconds = 0.0;
   {
     ProgressBar bar(render, "render", options.Quiet);
@@ -520,6 +651,7 @@ int RunRender(const Options& options)
     renderSeconds = bar.Seconds();
   }
   timings["render"] = renderSeconds;
+
   // The report is computed before any file is written: a solution it cannot read fails the
   // command without leaving an image behind.
   nlohmann::json report;
@@ -574,6 +706,7 @@ int RunInfo(const Options& options)
 
 int RunSubdivide(const Options& options)
 {
+  CheckOutputPath("-o", options.Output, { ".vtm" }, "subdivision");
   ErrorCollector errors;
   vtkNew<vtkPatchSceneReader> reader;
   reader->SetFileName(options.Scene.c_str());
@@ -589,6 +722,9 @@ int RunSubdivide(const Options& options)
   subdivision->SetPhiBins(settings.PhiBins);
   subdivision->SetMaxLevel(settings.MaxLevel);
   subdivision->SetTolerance(settings.Tolerance);
+  subdivision->SetMaximumPatches(options.MaxPatches);
+  subdivision->SetMaximumPairTests(options.MaxPairTests);
+  subdivision->SetMemoryLimit(options.MemoryLimit);
   if (options.RangeMethod == "natural")
   {
     subdivision->SetRangeMethodToNaturalInterval();
@@ -633,6 +769,24 @@ int main(int argc, char** argv)
       "--threads", options.Threads, "Worker threads for the parallel stages (0: one per core)")
     ->check(CLI::Range(0, 4096));
   app.add_flag("--quiet,-q", options.Quiet, "No progress bars");
+  app
+    .add_option("--memory-limit",
+      options.MemoryLimit,
+      "Memory budget of each stage in MiB (default 8192): the subdivision's patches, the cover "
+      "(R-buffers per thread and its arrays), the propagation and the image are estimated "
+      "before allocating and refused beyond it")
+    ->check(CLI::PositiveNumber);
+  app
+    .add_option("--max-patches",
+      options.MaxPatches,
+      "Budget of patches (default 1000000): the subdivision stops with an error beyond it")
+    ->check(CLI::Range(1, 2147483647));
+  app
+    .add_option("--max-pair-tests",
+      options.MaxPairTests,
+      "Budget of the subdivision's pair tests, its time (default 1e9: 10 to 25 minutes on two "
+      "threads): a sweep predicted to exceed it is refused")
+    ->check(CLI::Range(1.0, 1e18));
 
   CLI::App* info = app.add_subcommand("info",
     "Print a scene's summary: surfaces, patch degrees, "
@@ -679,9 +833,14 @@ int main(int argc, char** argv)
   render->add_option("--size", options.Size, "Image size WIDTHxHEIGHT (default: the camera's)");
   render->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
     ->check(CLI::Range(1, 4096));
+  render->add_option(
+    "--exposure", options.Exposure, "Radiance scale before tone mapping, > 0 (default 1)");
   render
-    ->add_option("--exposure", options.Exposure, "Radiance scale before tone mapping (default 1)")
-    ->check(CLI::NonNegativeNumber);
+    ->add_option("--max-samples",
+      options.MaxSamples,
+      "Budget of width x height x spp rays (default 2^30, about 18 minutes on one core); a "
+      "larger image is refused before solving")
+    ->check(CLI::Range(1.0, 1e18));
   render->add_option("--solution",
     options.SolutionFile,
     "A solution written by `sphcover solve -o` (.vtm): only render, no solving");

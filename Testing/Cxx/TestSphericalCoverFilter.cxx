@@ -31,6 +31,7 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <iostream>
@@ -205,6 +206,17 @@ int TestSphericalCoverFilter(int, char*[])
   refused->SetMemoryLimit(0.001);
   TestFailures::Add(
     FailureExpectation::Check(refused, { "MemoryLimit" }, "a memory limit below the estimate"));
+  // A grid whose R-buffers alone (4096 x 16384 cells, 9 samples each, per thread) exceed the
+  // default MemoryLimit: refused from the options, before anything is allocated.
+  vtkNew<vtkSphericalCoverFilter> oversized;
+  oversized->SetInputConnection(boxPatches->GetOutputPort(0));
+  oversized->SetThetaBins(4096);
+  oversized->SetPhiBins(16384);
+  const auto start = std::chrono::steady_clock::now();
+  TestFailures::Add(FailureExpectation::Check(
+    oversized, { "4096 x 16384", "R-buffers", "MemoryLimit" }, "an oversized grid"));
+  Check(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 5.0,
+    "the oversized grid is refused at once");
   vtkNew<vtkUnstructuredGrid> bare;
   bare->ShallowCopy(boxPatches->GetOutput());
   bare->GetCellData()->RemoveArray("Emission");

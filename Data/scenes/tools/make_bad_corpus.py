@@ -337,7 +337,7 @@ def main():
     # remove stale corpus files (never touches support/)
     for f in os.listdir(BAD):
         p = os.path.join(BAD, f)
-        if os.path.isfile(p) and f not in names and f != "expected.json":
+        if os.path.isfile(p) and f not in names and f not in ("expected.json", "commands.json"):
             os.remove(p)
     for name, data, _ in CASES:
         with open(os.path.join(BAD, name), "wb") as f:
