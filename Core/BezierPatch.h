@@ -37,6 +37,10 @@ class BezierPatch
 public:
   /// The largest degree in either direction; fixed-capacity buffers are sized for it.
   static constexpr int MaxDegree = MaxNetDegree;
+  /// The largest coordinate magnitude the readers accept (Data/scenes/FORMAT.md): areas,
+  /// powers and squared distances of such patches stay far inside the double range, and
+  /// Embree, which works in float, aborts on surfaces around 1e19 away.
+  static constexpr double MaxCoordinate = 1e15;
 
   /**
    * Throws std::invalid_argument when a degree is outside [1, MaxDegree], when

@@ -2,11 +2,12 @@
 #include "BptReader.h"
 
 #include "InputError.h"
+#include "InputFile.h"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 
 namespace sphcover
 {
@@ -42,6 +43,11 @@ public:
     this->TokenLine = this->Line;
     while (c != EOF && !std::isspace(c))
     {
+      if (c == '\0')
+      {
+        // strtod would stop at it and accept "1<NUL>garbage" as 1.
+        this->Fail("NUL byte (a binary file, not a .bpt text file?)");
+      }
       token.push_back(static_cast<char>(c));
       c = this->In.get();
     }
@@ -76,23 +82,33 @@ public:
     const long value = std::strtol(token.c_str(), &end, 10);
     if (end == token.c_str() || *end != '\0' || errno == ERANGE)
     {
-      this->Fail(std::string("expected an integer (") + what + "), got '" + token + "'");
+      this->Fail(std::string("expected an integer (") + what + "), got " + Quote(token));
     }
     return value;
   }
 
-  double ReadNumber(const char* what)
+  /// A finite number of magnitude at most `limit`.
+  double ReadNumber(const char* what, double limit)
   {
     const std::string token = this->Require(what);
     char* end = nullptr;
     const double value = std::strtod(token.c_str(), &end);
     if (end == token.c_str() || *end != '\0')
     {
-      this->Fail(std::string("expected a number (") + what + "), got '" + token + "'");
+      this->Fail(std::string("expected a number (") + what + "), got " + Quote(token));
     }
+    // A value below the normal range (1e-310) or underflowing to 0 (1e-400) is harmless: it is
+    // read as strtod rounds it, as in a scene file.
     if (!std::isfinite(value))
     {
-      this->Fail(std::string("not a finite number (") + what + "): '" + token + "'");
+      this->Fail(std::string("not a finite number (") + what + "): " + Quote(token));
+    }
+    if (std::fabs(value) > limit)
+    {
+      std::ostringstream problem;
+      problem << what << " too large: " << Quote(token) << " (the limit is " << limit
+              << " in magnitude)";
+      this->Fail(problem.str());
     }
     return value;
   }
@@ -128,27 +144,24 @@ std::vector<BezierPatch> ParseBpt(std::istream& in, const std::string& displayNa
     std::vector<glm::dvec3> points(static_cast<size_t>((du + 1) * (dv + 1)));
     for (auto& point : points)
     {
-      point.x = tokens.ReadNumber("control point coordinate");
-      point.y = tokens.ReadNumber("control point coordinate");
-      point.z = tokens.ReadNumber("control point coordinate");
+      for (int k = 0; k < 3; ++k)
+      {
+        point[k] = tokens.ReadNumber("control point coordinate", BezierPatch::MaxCoordinate);
+      }
     }
     patches.emplace_back(static_cast<int>(du), static_cast<int>(dv), std::move(points));
   }
   std::string extra;
   if (tokens.Next(extra))
   {
-    tokens.Fail("unexpected data after the last patch: '" + extra + "'");
+    tokens.Fail("unexpected data after the last patch: " + Quote(extra));
   }
   return patches;
 }
 
 std::vector<BezierPatch> ReadBptFile(const std::string& path)
 {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-  {
-    throw InputError(path, "", "cannot open file");
-  }
+  std::ifstream in = OpenInputFile(path);
   return ParseBpt(in, path);
 }
 

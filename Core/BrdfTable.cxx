@@ -2,15 +2,14 @@
 #include "BrdfTable.h"
 
 #include "InputError.h"
+#include "InputFile.h"
 
 #include <algorithm>
-#include <cerrno>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
-#include <fstream>
-#include <map>
 #include <sstream>
-#include <tuple>
 
 namespace sphcover
 {
@@ -87,6 +86,10 @@ BrdfTable BrdfTable::Parse(std::istream& in, const std::string& displayName)
   {
     ++line;
     lastLine = line;
+    if (text.find('\0') != std::string::npos)
+    {
+      fail(line, "NUL byte (a binary file, not a CSV text file?)");
+    }
     const std::string trimmed = Trim(text);
     if (trimmed.empty() || trimmed[0] == '#')
     {
@@ -117,13 +120,14 @@ BrdfTable BrdfTable::Parse(std::istream& in, const std::string& displayName)
     {
       const std::string& field = fields[static_cast<std::size_t>(k)];
       char* end = nullptr;
-      errno = 0;
       const double value = field.empty() ? 0.0 : std::strtod(field.c_str(), &end);
       if (field.empty() || end != field.c_str() + field.size())
       {
         fail(line, "expected a number in column " + std::to_string(k + 1));
       }
-      if (!std::isfinite(value) || errno == ERANGE)
+      // strtod's ERANGE also flags underflow (1e-310 is subnormal, 1e-400 rounds to 0): such
+      // values are harmless and read as rounded; only overflow and nan/inf are errors.
+      if (!std::isfinite(value))
       {
         fail(line, "not a finite number in column " + std::to_string(k + 1));
       }
@@ -166,41 +170,85 @@ BrdfTable BrdfTable::Parse(std::istream& in, const std::string& displayName)
     std::sort(axes[a]->begin(), axes[a]->end());
     axes[a]->erase(std::unique(axes[a]->begin(), axes[a]->end()), axes[a]->end());
   }
+  const std::size_t nIn = table.ThetaInValues.size();
   const std::size_t nOut = table.ThetaOutValues.size();
   const std::size_t nPhi = table.DeltaPhiValues.size();
-  table.Values.assign(table.ThetaInValues.size() * nOut * nPhi, glm::dvec3(0.0));
-  std::vector<int> lineOf(table.Values.size(), 0);
   auto indexOf = [](const std::vector<double>& axis, double v) {
     return static_cast<std::size_t>(std::lower_bound(axis.begin(), axis.end(), v) - axis.begin());
   };
-  for (const Row& row : rows)
+  // The grid's shape is checked from the rows alone, before the grid is allocated: the
+  // distinct values of n scattered rows imply up to n^3 grid points (450 rows: 2.4 GB).
+  // Sorted in grid order, equal neighbours are duplicates, and the first gap is the first
+  // missing point.
+  struct Entry
   {
-    const std::size_t index = (indexOf(table.ThetaInValues, row.Values[0]) * nOut +
-                                indexOf(table.ThetaOutValues, row.Values[1])) *
-        nPhi +
-      indexOf(table.DeltaPhiValues, row.Values[2]);
-    if (lineOf[index] != 0)
-    {
-      fail(row.Line,
-        "duplicate grid point (first given on line " + std::to_string(lineOf[index]) + ")");
-    }
-    lineOf[index] = row.Line;
-    table.Values[index] = glm::dvec3(row.Values[3], row.Values[4], row.Values[5]);
+    std::array<std::size_t, 3> Cell;
+    std::size_t Row;
+  };
+  std::vector<Entry> entries(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+  {
+    entries[r] = { { indexOf(table.ThetaInValues, rows[r].Values[0]),
+                     indexOf(table.ThetaOutValues, rows[r].Values[1]),
+                     indexOf(table.DeltaPhiValues, rows[r].Values[2]) },
+      r };
   }
-  for (std::size_t index = 0; index < lineOf.size(); ++index)
+  std::stable_sort(
+    entries.begin(), entries.end(), [](const Entry& x, const Entry& y) { return x.Cell < y.Cell; });
+  // The duplicate reported is the first row, in file order, that repeats an earlier one; the
+  // stable sort keeps equal cells in file order, so that earlier one starts the run.
+  std::size_t repeat = 0;
+  std::size_t original = 0;
+  for (std::size_t e = 1, runStart = 0; e < entries.size(); ++e)
   {
-    if (lineOf[index] == 0)
+    if (entries[e].Cell != entries[runStart].Cell)
     {
-      const std::size_t c = index % nPhi;
-      const std::size_t b = (index / nPhi) % nOut;
-      const std::size_t a = index / (nPhi * nOut);
-      std::ostringstream problem;
-      problem << "missing grid point theta_in = " << table.ThetaInValues[a]
-              << ", theta_out = " << table.ThetaOutValues[b]
-              << ", delta_phi = " << table.DeltaPhiValues[c]
-              << " (the rows must give every combination of the listed angles)";
-      fail(lastLine, problem.str());
+      runStart = e;
     }
+    else if (repeat == 0 || entries[e].Row < entries[repeat].Row)
+    {
+      repeat = e;
+      original = runStart;
+    }
+  }
+  if (repeat != 0)
+  {
+    fail(rows[entries[repeat].Row].Line,
+      "duplicate grid point (first given on line " +
+        std::to_string(rows[entries[original].Row].Line) + ")");
+  }
+  // Without duplicates the rows fill the grid exactly when their number is nIn * nOut * nPhi
+  // (compared without forming a product that could overflow).
+  if (nOut * nPhi > rows.size() || nIn > rows.size() / (nOut * nPhi) ||
+    nIn * nOut * nPhi != rows.size())
+  {
+    std::array<std::size_t, 3> cell = { 0, 0, 0 }; // the next grid point, in grid order
+    for (std::size_t e = 0; e < entries.size() && entries[e].Cell == cell; ++e)
+    {
+      if (++cell[2] == nPhi)
+      {
+        cell[2] = 0;
+        if (++cell[1] == nOut)
+        {
+          cell[1] = 0;
+          ++cell[0];
+        }
+      }
+    }
+    std::ostringstream problem;
+    problem << "missing grid point theta_in = " << table.ThetaInValues[cell[0]]
+            << ", theta_out = " << table.ThetaOutValues[cell[1]]
+            << ", delta_phi = " << table.DeltaPhiValues[cell[2]]
+            << " (the rows must give every combination of the listed angles: " << nIn << " x "
+            << nOut << " x " << nPhi << " values, " << rows.size() << " rows)";
+    fail(lastLine, problem.str());
+  }
+  table.Values.resize(rows.size());
+  for (const Entry& entry : entries)
+  {
+    const Row& row = rows[entry.Row];
+    table.Values[(entry.Cell[0] * nOut + entry.Cell[1]) * nPhi + entry.Cell[2]] =
+      glm::dvec3(row.Values[3], row.Values[4], row.Values[5]);
   }
   for (int a = 0; a < 3; ++a)
   {
@@ -231,11 +279,7 @@ BrdfTable BrdfTable::Parse(std::istream& in, const std::string& displayName)
 
 BrdfTable BrdfTable::Load(const std::string& path)
 {
-  std::ifstream in(path);
-  if (!in)
-  {
-    throw InputError(path, "", "cannot open file");
-  }
+  std::ifstream in = OpenInputFile(path);
   return Parse(in, path);
 }
 

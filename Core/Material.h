@@ -31,6 +31,11 @@ const char* MaterialTypeName(MaterialType type);
 
 struct Material
 {
+  /// The largest emitted radiance the readers accept, W m^-2 sr^-1 (the sun's disc is about
+  /// 2e7). With coordinates within BezierPatch::MaxCoordinate, emission * area * pi summed
+  /// over a scene stays below 1e50, far from overflowing a double (Data/scenes/FORMAT.md).
+  static constexpr double MaxEmission = 1e12;
+
   std::string Name;
   MaterialType Type = MaterialType::Diffuse;
   /// Lambertian reflectance k_Lambert per band (diffuse, and the diffuse part of phong).

@@ -4,6 +4,7 @@
 #include "BptReader.h"
 #include "BrdfTable.h"
 #include "InputError.h"
+#include "InputFile.h"
 #include "SubdivisionCriteria.h"
 
 #include <glm/geometric.hpp>
@@ -13,7 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <filesystem>
 #include <initializer_list>
 #include <memory>
 #include <set>
@@ -27,6 +28,52 @@ using Json = nlohmann::json;
 
 /// Largest image side a camera may ask for; larger is surely a typo and would exhaust memory.
 constexpr int MaxImageSide = 1 << 15;
+
+/// Deepest nesting of arrays and objects accepted; a scene needs 5. Without a limit a file of
+/// a million '[' is a million-level document (and a 2 MB pointer in the message).
+constexpr size_t MaxJsonDepth = 64;
+
+std::string FormatNumber(double value)
+{
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+std::string TooLarge(const std::string& what, double value, double limit)
+{
+  return what + " too large: " + FormatNumber(value) + " (the limit is " + FormatNumber(limit) +
+    " in magnitude)";
+}
+
+/// The largest coordinate magnitude among `points`, or NaN if there is a NaN.
+double LargestCoordinate(const std::vector<glm::dvec3>& points)
+{
+  double largest = 0.0;
+  for (const glm::dvec3& p : points)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double magnitude = std::fabs(p[k]);
+      if (std::isnan(magnitude))
+      {
+        return magnitude;
+      }
+      largest = std::max(largest, magnitude);
+    }
+  }
+  return largest;
+}
+
+/// The problem of a coordinate `value` beyond BezierPatch::MaxCoordinate (or not finite).
+std::string CoordinateTooLarge(double value)
+{
+  if (!std::isfinite(value))
+  {
+    return "not a finite number (a coordinate)";
+  }
+  return TooLarge("coordinate", value, BezierPatch::MaxCoordinate);
+}
 
 std::string EscapePointerToken(const std::string& key)
 {
@@ -47,7 +94,7 @@ std::string EscapePointerToken(const std::string& key)
       out += c;
     }
   }
-  return out;
+  return Excerpt(out); // a key may be megabytes long; the message names its start
 }
 
 std::string Child(const std::string& pointer, const std::string& key)
@@ -64,20 +111,6 @@ std::string FolderOf(const std::string& path)
 {
   const size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
-std::string LowerExtension(const std::string& path)
-{
-  const size_t dot = path.find_last_of('.');
-  const size_t slash = path.find_last_of('/');
-  if (dot == std::string::npos || (slash != std::string::npos && dot < slash))
-  {
-    return std::string();
-  }
-  std::string ext = path.substr(dot + 1);
-  std::transform(
-    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
 }
 
 /// Typed, located access to the JSON document: every failure names the JSON pointer.
@@ -113,14 +146,14 @@ private:
 
   void CheckKeys(const Json& j,
     const std::string& pointer,
-    std::initializer_list<const char*> allowed) const
+    const std::vector<const char*>& allowed) const
   {
     for (auto it = j.begin(); it != j.end(); ++it)
     {
       if (std::none_of(
             allowed.begin(), allowed.end(), [&](const char* key) { return it.key() == key; }))
       {
-        this->Fail(Child(pointer, it.key()), "unknown key '" + it.key() + "'");
+        this->Fail(Child(pointer, it.key()), "unknown key " + Quote(it.key()));
       }
     }
   }
@@ -193,6 +226,28 @@ private:
     return j.get<std::string>();
   }
 
+  /// A finite number of magnitude at most `limit`; beyond it, "<what> too large".
+  double Bounded(const Json& j, const std::string& pointer, double limit, const char* what) const
+  {
+    const double value = this->Number(j, pointer);
+    if (std::fabs(value) > limit)
+    {
+      this->Fail(pointer, TooLarge(what, value, limit));
+    }
+    return value;
+  }
+
+  /// A point or translation, each coordinate within BezierPatch::MaxCoordinate.
+  glm::dvec3 Position(const Json& j, const std::string& pointer) const
+  {
+    const glm::dvec3 v = this->Vec3(j, pointer);
+    for (size_t k = 0; k < 3; ++k)
+    {
+      this->Bounded(j[k], Child(pointer, k), BezierPatch::MaxCoordinate, "coordinate");
+    }
+    return v;
+  }
+
   glm::dvec3 Vec3(const Json& j, const std::string& pointer) const
   {
     if (!j.is_array() || j.size() != 3)
@@ -231,12 +286,13 @@ private:
   glm::dvec3 Emission(const Json& j, const std::string& pointer) const
   {
     const glm::dvec3 v = this->Vec3(j, pointer);
-    for (int k = 0; k < 3; ++k)
+    for (size_t k = 0; k < 3; ++k)
     {
-      if (v[k] < 0.0)
+      if (v[static_cast<int>(k)] < 0.0)
       {
-        this->Fail(Child(pointer, static_cast<size_t>(k)), "must be >= 0");
+        this->Fail(Child(pointer, k), "must be >= 0");
       }
+      this->Bounded(j[k], Child(pointer, k), Material::MaxEmission, "emission");
     }
     return v;
   }
@@ -261,14 +317,18 @@ private:
     return (!file.empty() && file[0] == '/') ? file : this->Folder + file;
   }
 
+  /// The resolved path of a file the scene refers to, checked by the input file policy
+  /// (InputFile.h) before any reader opens it, whatever reads it.
   std::string ExistingFile(const Json& j, const std::string& pointer) const
   {
     const std::string file = this->String(j, pointer);
     const std::string resolved = this->ResolvePath(file);
-    if (file.empty() || !std::ifstream(resolved, std::ios::binary))
+    std::error_code error;
+    if (file.empty() || !std::filesystem::exists(resolved, error))
     {
-      this->Fail(pointer, "cannot open file '" + resolved + "'");
+      this->Fail(pointer, "cannot open file " + Quote(resolved, 4096));
     }
+    this->Included(pointer, [&] { CheckInputFile(resolved); });
     return resolved;
   }
 
@@ -351,7 +411,7 @@ Material SceneParser::ParseMaterial(const std::string& name,
   }
   else
   {
-    this->Fail(Child(pointer, "type"), "unknown material type '" + type + "'");
+    this->Fail(Child(pointer, "type"), "unknown material type " + Quote(type));
   }
   return material;
 }
@@ -374,7 +434,7 @@ glm::dmat4 SceneParser::ParseTransform(const Json& j, const std::string& pointer
   const glm::dvec3 rotate =
     j.contains("rotate") ? this->Vec3(j["rotate"], Child(pointer, "rotate")) : glm::dvec3(0.0);
   const glm::dvec3 translate = j.contains("translate")
-    ? this->Vec3(j["translate"], Child(pointer, "translate"))
+    ? this->Position(j["translate"], Child(pointer, "translate"))
     : glm::dvec3(0.0);
   // Applied to a point: scale, then rotate about x, y, z (in that order), then translate.
   glm::dmat4 m = glm::translate(glm::dmat4(1.0), translate);
@@ -425,7 +485,7 @@ std::vector<BezierPatch> SceneParser::ParsePoints(const Json& j,
   points.reserve(expected);
   for (size_t k = 0; k < expected; ++k)
   {
-    points.push_back(this->Vec3(j[k], Child(pointer, k)));
+    points.push_back(this->Position(j[k], Child(pointer, k)));
   }
   return { BezierPatch(degreeU, degreeV, std::move(points)) };
 }
@@ -453,28 +513,22 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
   }
   else
   {
-    this->Fail(Child(pointer, "type"), "unknown surface type '" + type + "'");
+    this->Fail(Child(pointer, "type"), "unknown surface type " + Quote(type));
   }
-  for (auto it = j.begin(); it != j.end(); ++it)
-  {
-    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* k) { return it.key() == k; }))
-    {
-      this->Fail(Child(pointer, it.key()), "unknown key '" + it.key() + "'");
-    }
-  }
+  this->CheckKeys(j, pointer, allowed);
 
   const std::string name = this->String(this->Require(j, pointer, "name"), Child(pointer, "name"));
   if (std::find(scene.SurfaceNames.begin(), scene.SurfaceNames.end(), name) !=
     scene.SurfaceNames.end())
   {
-    this->Fail(Child(pointer, "name"), "duplicate surface name '" + name + "'");
+    this->Fail(Child(pointer, "name"), "duplicate surface name " + Quote(name));
   }
   const std::string materialName =
     this->String(this->Require(j, pointer, "material"), Child(pointer, "material"));
   const int materialIndex = scene.FindMaterial(materialName);
   if (materialIndex < 0)
   {
-    this->Fail(Child(pointer, "material"), "unknown material '" + materialName + "'");
+    this->Fail(Child(pointer, "material"), "unknown material " + Quote(materialName));
   }
   const bool twoSided =
     j.contains("two_sided") && this->Boolean(j["two_sided"], Child(pointer, "two_sided"));
@@ -556,6 +610,11 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
               "only triangles and quads are supported, got a face with " +
                 std::to_string(read[f].size()) + " vertices");
           }
+          const double largest = LargestCoordinate(read[f]);
+          if (!(largest <= BezierPatch::MaxCoordinate)) // also NaN, which a PLY may hold
+          {
+            throw InputError(file, "face " + std::to_string(f + 1), CoordinateTooLarge(largest));
+          }
         }
         return read;
       });
@@ -576,6 +635,13 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
   for (size_t p = 0; p < patches.size(); ++p)
   {
     BezierPatch placed = PlacePatch(patches[p], transform, flip);
+    // The geometry read is within the limit; only the transform can carry it beyond.
+    const double largest = LargestCoordinate(placed.ControlPoints());
+    if (largest > BezierPatch::MaxCoordinate)
+    {
+      this->Fail(Child(pointer, "transform"),
+        "moves patch " + std::to_string(p + 1) + " too far: " + CoordinateTooLarge(largest));
+    }
     if (IsDegeneratePatch(placed))
     {
       // Located at the geometry: the points, or the file the patch came from.
@@ -598,10 +664,11 @@ Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
     j, pointer, { "name", "position", "focal_point", "view_up", "view_angle", "width", "height" });
   Camera camera;
   camera.Name = this->String(this->Require(j, pointer, "name"), Child(pointer, "name"));
-  camera.Position = this->Vec3(this->Require(j, pointer, "position"), Child(pointer, "position"));
+  camera.Position =
+    this->Position(this->Require(j, pointer, "position"), Child(pointer, "position"));
   camera.FocalPoint =
-    this->Vec3(this->Require(j, pointer, "focal_point"), Child(pointer, "focal_point"));
-  camera.ViewUp = this->Vec3(this->Require(j, pointer, "view_up"), Child(pointer, "view_up"));
+    this->Position(this->Require(j, pointer, "focal_point"), Child(pointer, "focal_point"));
+  camera.ViewUp = this->Position(this->Require(j, pointer, "view_up"), Child(pointer, "view_up"));
   camera.ViewAngle =
     this->Number(this->Require(j, pointer, "view_angle"), Child(pointer, "view_angle"));
   if (!(camera.ViewAngle > 0.0 && camera.ViewAngle < 180.0))
@@ -669,13 +736,10 @@ Scene SceneParser::Parse(const Json& root)
   this->CheckKeys(root, "", { "version", "materials", "surfaces", "cameras", "settings" });
   Scene scene;
   scene.SourceFile = this->Path;
-  if (root.contains("version"))
+  const long long version = this->Integer(this->Require(root, "", "version"), "/version");
+  if (version != 1)
   {
-    const long long version = this->Integer(root["version"], "/version");
-    if (version != 1)
-    {
-      this->Fail("/version", "unsupported version " + std::to_string(version) + " (expected 1)");
-    }
+    this->Fail("/version", "unsupported version " + std::to_string(version) + " (expected 1)");
   }
   const Json& materials = this->Require(root, "", "materials");
   this->ExpectObject(materials, "/materials");
@@ -718,7 +782,10 @@ Scene SceneParser::Parse(const Json& root)
 
 /// nlohmann/json's DOM builder, told not to throw, remembering where and why parsing failed:
 /// the byte offset and the JSON pointer of the value being read (nlohmann's exceptions lose
-/// both for a number overflow such as 1e999, which is a non-finite number to us).
+/// both for a number overflow such as 1e999, which is a non-finite number to us). It also
+/// stops at what JSON allows but a scene must not have (Problem, at ErrorPointer): a repeated
+/// key (nlohmann would keep the last silently), a NUL character in a key or string (it would
+/// cut a file name short when the path reaches the C library), nesting beyond MaxJsonDepth.
 class LocatingDomParser : public nlohmann::detail::json_sax_dom_parser<Json>
 {
   using Base = nlohmann::detail::json_sax_dom_parser<Json>;
@@ -743,16 +810,36 @@ public:
   {
     return this->Value(Base::number_float(value, text));
   }
-  bool string(Json::string_t& value) { return this->Value(Base::string(value)); }
+  bool string(Json::string_t& value)
+  {
+    if (value.find('\0') != std::string::npos)
+    {
+      return this->Stop("NUL character (\\u0000) in a string");
+    }
+    return this->Value(Base::string(value));
+  }
   bool binary(Json::binary_t& value) { return this->Value(Base::binary(value)); }
   bool start_object(std::size_t size)
   {
-    this->Path.push_back({ false, 0, std::string() });
+    if (this->Path.size() >= MaxJsonDepth)
+    {
+      return this->Stop("nested deeper than " + std::to_string(MaxJsonDepth) + " levels");
+    }
+    this->Path.push_back({ false, 0, std::string(), {} });
     return Base::start_object(size);
   }
   bool key(Json::string_t& name)
   {
-    this->Path.back().Key = name;
+    Level& level = this->Path.back();
+    level.Key = name;
+    if (name.find('\0') != std::string::npos)
+    {
+      return this->Stop("NUL character (\\u0000) in a key");
+    }
+    if (!level.Keys.insert(name).second)
+    {
+      return this->Stop("duplicate key " + Quote(name));
+    }
     return Base::key(name);
   }
   bool end_object()
@@ -762,7 +849,11 @@ public:
   }
   bool start_array(std::size_t size)
   {
-    this->Path.push_back({ true, 0, std::string() });
+    if (this->Path.size() >= MaxJsonDepth)
+    {
+      return this->Stop("nested deeper than " + std::to_string(MaxJsonDepth) + " levels");
+    }
+    this->Path.push_back({ true, 0, std::string(), {} });
     return Base::start_array(size);
   }
   bool end_array()
@@ -778,10 +869,7 @@ public:
     this->ErrorPosition = position;
     this->ErrorMessage = error.what();
     this->ErrorId = error.id;
-    for (const Level& level : this->Path)
-    {
-      this->ErrorPointer += level.IsArray ? Child("", level.Count) : Child("", level.Key);
-    }
+    this->ErrorPointer = this->Pointer();
     return false;
   }
 
@@ -790,14 +878,36 @@ public:
   std::string ErrorMessage;
   std::string ErrorPointer;
   int ErrorId = 0;
+  std::string Problem; // set when the callbacks stopped a syntactically valid document
 
 private:
   struct Level
   {
     bool IsArray;
-    size_t Count;    // elements read so far (arrays)
-    std::string Key; // the current key (objects)
+    size_t Count;               // elements read so far (arrays)
+    std::string Key;            // the current key (objects)
+    std::set<std::string> Keys; // the keys read so far (objects)
   };
+
+  /// The JSON pointer of the value being read.
+  std::string Pointer() const
+  {
+    std::string pointer;
+    for (const Level& level : this->Path)
+    {
+      pointer += level.IsArray ? Child("", level.Count) : Child("", level.Key);
+    }
+    return pointer;
+  }
+
+  /// Ends the parse (a callback returning false) with `problem` at the current value.
+  bool Stop(const std::string& problem)
+  {
+    this->Failed = true;
+    this->ErrorPointer = this->Pointer();
+    this->Problem = problem;
+    return false;
+  }
 
   /// A complete value was read: the enclosing array moves on to its next element.
   bool Value(bool result)
@@ -811,22 +921,6 @@ private:
 
   std::vector<Level> Path;
 };
-
-std::string ReadWholeFile(const std::string& path)
-{
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-  {
-    throw InputError(path, "", "cannot open file");
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad())
-  {
-    throw InputError(path, "", "cannot read file");
-  }
-  return text.str();
-}
 
 } // namespace
 
@@ -867,6 +961,11 @@ Scene ParseScene(const std::string& text, const std::string& path, const MeshFac
   LocatingDomParser dom(root);
   if (!Json::sax_parse(text, &dom) || dom.Failed)
   {
+    if (!dom.Problem.empty())
+    {
+      throw InputError(
+        path, dom.ErrorPointer.empty() ? std::string("/") : dom.ErrorPointer, dom.Problem);
+    }
     // nlohmann reports the byte offset; users want line and column.
     const size_t end =
       std::min(dom.ErrorPosition == 0 ? size_t{ 0 } : dom.ErrorPosition - 1, text.size());
@@ -896,6 +995,21 @@ Scene ParseScene(const std::string& text, const std::string& path, const MeshFac
     {
       detail = detail.substr(colon + 2);
     }
+    // nlohmann quotes the whole token it stopped in ("...; last read: '<token>'", maybe
+    // followed by "; expected ..."), which may be a megabyte-long string.
+    const std::string lastRead = "last read: '";
+    const size_t quoted = detail.find(lastRead);
+    if (quoted != std::string::npos)
+    {
+      const size_t begin = quoted + lastRead.size();
+      size_t end = detail.find("'; expected", begin);
+      end = end != std::string::npos ? end : detail.rfind('\'');
+      if (end != std::string::npos && end >= begin)
+      {
+        detail = detail.substr(0, quoted) +
+          "last read: " + Quote(detail.substr(begin, end - begin)) + detail.substr(end + 1);
+      }
+    }
     const std::string position =
       "line " + std::to_string(line) + ", column " + std::to_string(column);
     if (dom.ErrorId == 406) // a number too large for a double, such as 1e999
@@ -914,7 +1028,7 @@ Scene ParseScene(const std::string& text, const std::string& path, const MeshFac
 
 Scene LoadSceneFile(const std::string& path, const MeshFaceReader& readMesh)
 {
-  return ParseScene(ReadWholeFile(path), path, readMesh);
+  return ParseScene(ReadInputFile(path), path, readMesh);
 }
 
 SceneSettings OverrideSetting(const SceneSettings& base, const std::string& assignment)
@@ -931,7 +1045,7 @@ SceneSettings OverrideSetting(const SceneSettings& base, const std::string& assi
   LocatingDomParser dom(parsed);
   if (!Json::sax_parse(value, &dom) || dom.Failed)
   {
-    throw InputError("--set", key, "not a JSON value: '" + value + "'");
+    throw InputError("--set", key, "not a JSON value: " + Quote(value));
   }
   Json object = Json::object();
   object[key] = parsed;

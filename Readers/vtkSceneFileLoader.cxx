@@ -2,6 +2,8 @@
 #include "vtkSceneFileLoader.h"
 
 #include "InputError.h"
+#include "InputFile.h"
+#include "MeshFileCheck.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
@@ -15,38 +17,51 @@
 #include <vtkSmartPointer.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include <algorithm>
 #include <cctype>
+#include <new>
+#include <stdexcept>
 
 namespace
 {
+/// VTK's message is "ERROR: In <source>, line <n>\n<class> (<address>): <text>\n\n": the
+/// user can act on <text> alone, and the rule is one line, so whitespace runs become a space.
 void RecordError(vtkObject*, unsigned long, void* clientData, void* callData)
 {
   auto* message = static_cast<std::string*>(clientData);
-  if (message->empty() && callData)
+  if (!message->empty() || !callData)
   {
-    *message = static_cast<const char*>(callData);
-    // VTK's messages end with a blank line; keep one line.
-    while (!message->empty() && std::isspace(static_cast<unsigned char>(message->back())))
+    return;
+  }
+  std::string text = static_cast<const char*>(callData);
+  const size_t newline = text.find('\n');
+  const size_t origin = newline == std::string::npos ? newline : text.find("): ", newline);
+  if (origin != std::string::npos)
+  {
+    text = text.substr(origin + 3);
+  }
+  for (const char c : text)
+  {
+    if (!std::isspace(static_cast<unsigned char>(c)))
     {
-      message->pop_back();
+      *message += c;
+    }
+    else if (!message->empty() && message->back() != ' ')
+    {
+      *message += ' ';
     }
   }
-}
-
-std::string LowerExtension(const std::string& path)
-{
-  const size_t dot = path.find_last_of('.');
-  std::string ext = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(
-    ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
+  while (!message->empty() && message->back() == ' ')
+  {
+    message->pop_back();
+  }
 }
 }
 
 std::vector<sphcover::MeshFace> vtkSceneFileLoader::ReadMeshFaces(const std::string& path)
 {
-  const std::string ext = LowerExtension(path);
+  // The file policy and the counts and indices VTK's readers would trust (MeshFileCheck.h).
+  sphcover::CheckMeshFile(path);
+  const std::string ext = sphcover::LowerExtension(path);
   vtkSmartPointer<vtkAlgorithm> reader;
   if (ext == "obj")
   {
@@ -79,7 +94,19 @@ std::vector<sphcover::MeshFace> vtkSceneFileLoader::ReadMeshFaces(const std::str
   onError->SetClientData(&error);
   reader->AddObserver(vtkCommand::ErrorEvent, onError);
   reader->AddObserver(vtkCommand::WarningEvent, onError);
-  reader->Update();
+  try
+  {
+    reader->Update();
+  }
+  catch (const std::bad_alloc&)
+  {
+    // Whatever the checks missed: one line naming the file, not "std::bad_alloc".
+    throw sphcover::InputError(path, "", "cannot read mesh: out of memory");
+  }
+  catch (const std::length_error& e)
+  {
+    throw sphcover::InputError(path, "", std::string("cannot read mesh: ") + e.what());
+  }
   vtkPolyData* mesh = vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0));
   if (!error.empty() || !mesh)
   {
@@ -112,7 +139,7 @@ std::vector<sphcover::MeshFace> vtkSceneFileLoader::ReadMeshFaces(const std::str
 
 sphcover::Scene vtkSceneFileLoader::Load(const std::string& path)
 {
-  const std::string ext = LowerExtension(path);
+  const std::string ext = sphcover::LowerExtension(path);
   if (ext == "bpt")
   {
     return sphcover::LoadBptAsScene(path);

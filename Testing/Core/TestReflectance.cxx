@@ -148,7 +148,7 @@ TEST(BrdfTable, ErrorsNameFileLineAndProblem)
     "t.brdf.csv: line 5: duplicate grid point (first given on line 3)");
   EXPECT_EQ(ParseError(header + "0,0,0,0.1,0.1,0.1\n0,0,90,0.1,0.1,0.1\n90,0,0,0.1,0.1,0.1\n"),
     "t.brdf.csv: line 5: missing grid point theta_in = 90, theta_out = 0, delta_phi = 90 (the "
-    "rows must give every combination of the listed angles)");
+    "rows must give every combination of the listed angles: 2 x 1 x 2 values, 3 rows)");
   EXPECT_EQ(ParseError(header), "t.brdf.csv: line 2: the table has no rows");
   EXPECT_EQ(ParseError(""),
     "t.brdf.csv: line 1: expected the header "

@@ -302,6 +302,155 @@ def bpt_cases():
     raw_case("bpt_trailing_garbage.bpt", VALID_BPT + "end of teapot\n", "line 19", "unexpected data after the last patch")
 
 
+# --------------------------------------------------------------------------- hostile inputs
+
+
+def support(name, data):
+    os.makedirs(SUPPORT, exist_ok=True)
+    with open(os.path.join(SUPPORT, name), "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+
+
+def hostile_cases():
+    """Files that are not what they claim, bytes JSON allows but a scene must not hold, sizes
+    that overflow: each fails with one short line (Data/scenes/FORMAT.md, Errors)."""
+    def add_surface(entry):
+        return lambda s: s["surfaces"].append(entry)
+
+    def with_table(file):
+        def f(s):
+            s["materials"]["table"] = {"type": "tabulated", "file": file}
+            s["surfaces"][2]["material"] = "table"
+        return f
+
+    def named(case, base):
+        CASES[-1][2][0] = base
+
+    # Files that are not regular files (a directory is the only kind git can hold).
+    for kind, entry in [("bpt", {"name": "pot", "type": "bpt", "material": "white"}),
+                        ("mesh", {"name": "part", "type": "mesh", "material": "white"})]:
+        scene_case("%s_file_is_directory.scene" % kind, add_surface(dict(entry, file="support")),
+                   "/surfaces/3/file", "is a directory")
+        scene_case("%s_file_is_device.scene" % kind, add_surface(dict(entry, file="/dev/zero")),
+                   "/surfaces/3/file", "not a regular file (a device)")
+    scene_case("brdf_file_is_directory.scene", with_table("support"), "/materials/table/file", "is a directory")
+    scene_case("brdf_file_is_device.scene", with_table("/dev/zero"), "/materials/table/file",
+               "not a regular file (a device)")
+
+    # BRDF tables: 450 scattered rows imply a 450^3 grid; duplicates; a NUL byte.
+    rows = ["%g,%g,%g,0.1,0.1,0.1" % (i * 0.2, i * 0.19, i * 0.4) for i in range(450)]
+    support("scattered.brdf.csv", "theta_in,theta_out,delta_phi,r,g,b\n" + "\n".join(rows) + "\n")
+    scene_case("brdf_scattered_rows.scene", with_table("support/scattered.brdf.csv"),
+               "line 451", "450 x 450 x 450 values, 450 rows")
+    named(None, "scattered.brdf.csv")
+    header = "theta_in,theta_out,delta_phi,r,g,b\n"
+    support("duplicate.brdf.csv", header + "0,0,0,0.1,0.1,0.1\n0,0,0,0.2,0.1,0.1\n")
+    scene_case("brdf_duplicate_point.scene", with_table("support/duplicate.brdf.csv"),
+               "line 3", "duplicate grid point (first given on line 2)")
+    named(None, "duplicate.brdf.csv")
+    support("nul.brdf.csv", header + "0,0,0,0.1\x00,0.1,0.1\n")
+    scene_case("brdf_nul_byte.scene", with_table("support/nul.brdf.csv"), "line 2", "NUL byte")
+    named(None, "nul.brdf.csv")
+
+    # NUL bytes and control characters.
+    raw_case("bpt_nul_byte.bpt", VALID_BPT.replace("\n0 1 ", "\n0\x00 1 ", 1), "line 7", "NUL byte")
+    raw_case("bpt_nul_in_count.bpt", "1\x00garbage" + VALID_BPT[1:], "line 1", "NUL byte")
+
+    def rename_material(new):
+        def f(s):
+            s["materials"][new] = s["materials"].pop("glossy")
+            s["surfaces"][2]["material"] = new
+        return f
+    scene_case("nul_in_key.scene", rename_material("glo\u0000ssy"), "/materials/glo\\x00ssy",
+               "NUL character (\\u0000) in a key")
+    scene_case("nul_in_string.scene", set_in(["surfaces", 0, "name"], "floor\u0000"),
+               "/surfaces/0/name", "NUL character (\\u0000) in a string")
+    scene_case("nul_in_file_path.scene",
+               add_surface({"name": "pot", "type": "bpt", "material": "white", "file": "support/base.bpt\u0000.txt"}),
+               "/surfaces/3/file", "NUL character")
+    text = BASE_TEXT.replace('"version": 1', '"version": 1\x00', 1)
+    raw_case("raw_nul_byte.scene", text, "line 2, column 15", "JSON syntax error")
+    text = BASE_TEXT.replace('"name": "floor"', '"name": "fl\x00oor"', 1)
+    ln = line_of(text, "fl\x00oor")
+    raw_case("raw_nul_in_string.scene", text, "line %d" % ln, "must be escaped")
+    scene_case("newline_in_material_name.scene", set_in(["surfaces", 1, "material"], "la\nmp"),
+               "/surfaces/1/material", "unknown material 'la\\nmp'")
+
+    # Duplicate keys: nlohmann would keep the last one silently.
+    def duplicate(name, old, new, location, key):
+        assert old in BASE_TEXT, old
+        raw_case(name, BASE_TEXT.replace(old, new, 1), location, "duplicate key '%s'" % key)
+    duplicate("duplicate_top_key.scene", '"version": 1,', '"version": 1,\n  "version": 1,', "/version", "version")
+    duplicate("duplicate_material.scene", '"white": {', '"white": {"type": "mirror", "reflectance": [1, 1, 1]},\n    "white": {',
+              "/materials/white", "white")
+    duplicate("duplicate_surface_key.scene", '"name": "floor",', '"name": "floor",\n      "name": "floor",',
+              "/surfaces/0/name", "name")
+    duplicate("duplicate_settings_key.scene", '"theta_bins": 8,', '"theta_bins": 8,\n    "theta_bins": 8,',
+              "/settings/theta_bins", "theta_bins")
+    duplicate("duplicate_camera_key.scene", '"width": 64,', '"width": 64, "width": 64,', "/cameras/0/width", "width")
+
+    # The version is required.
+    scene_case("missing_version.scene", del_in(["version"]), "/", "missing key 'version'")
+
+    # Meshes that VTK's readers would crash on or allocate for.
+    ply = ("ply\nformat %s 1.0\nelement vertex %s\nproperty float x\nproperty float y\nproperty float z\n"
+           "element face 1\nproperty list uchar int vertex_indices\nend_header\n")
+    support("huge_vertex_count.ply", ply % ("ascii", "4000000000") + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    support("bad_index.ply", ply % ("ascii", "3") + "0 0 0\n1 0 0\n0 1 0\n3 0 1 200000\n")
+    support("truncated.ply", (ply % ("binary_little_endian", "3")).encode() + b"\x00\x00")
+    support("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")
+    support("huge_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4000000000\n")
+    support("far.obj", "v 0 0 0\nv 1e19 0 0\nv 0 1 0\nf 1 2 3\n")
+    vtp = ('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="0.1" byte_order="LittleEndian">\n<PolyData>\n'
+           '<Piece NumberOfPoints="%s" NumberOfPolys="1">\n<Points><DataArray type="Float32" NumberOfComponents="3" '
+           'format="ascii">0 0 0 1 0 0 0 1 0</DataArray></Points>\n<Polys><DataArray type="Int64" Name="connectivity" '
+           'format="ascii">0 1 2</DataArray><DataArray type="Int64" Name="offsets" format="ascii">3</DataArray></Polys>\n'
+           '</Piece>\n</PolyData>\n</VTKFile>\n')
+    support("huge_count.vtp", vtp % "4000000000")
+    support("short_array.vtp", vtp % "10")
+    for case, file, location, phrase in [
+            ("mesh_ply_huge_vertex_count.scene", "huge_vertex_count.ply", "line 3", "declares 4000000000 entries"),
+            ("mesh_ply_bad_index.scene", "bad_index.ply", "face 1", "face refers to vertex 200000"),
+            ("mesh_ply_truncated.scene", "truncated.ply", "element 'vertex' 1", "unexpected end of data"),
+            ("mesh_obj_bad_index.scene", "bad_index.obj", "line 4", "face refers to vertex 7"),
+            ("mesh_obj_huge_index.scene", "huge_index.obj", "line 4", "face refers to vertex 4000000000"),
+            ("mesh_obj_far_vertex.scene", "far.obj", "face 1", "coordinate too large"),
+            ("mesh_vtp_huge_count.scene", "huge_count.vtp", "line 4", "NumberOfPoints declares 4000000000"),
+            ("mesh_vtp_short_array.scene", "short_array.vtp", "cannot read mesh", "Cannot read points array")]:
+        scene_case(case, add_surface({"name": "part", "type": "mesh", "material": "white", "file": "support/" + file}),
+                   location, phrase)
+        named(None, file)
+
+    # Nesting and long excerpts: the message stays short.
+    nested = BASE_TEXT.replace('"settings": {', '"extra": ' + "[" * 100 + "]" * 100 + ',\n  "settings": {', 1)
+    raw_case("deep_nesting.scene", nested, "/extra/0/0/0/0/0/0/0/0", "nested deeper than 64 levels")
+    raw_case("deep_nesting_unterminated.scene", "{\"version\": 1, \"a\": " + "[" * 100000, "/a/0/0/0",
+             "nested deeper than 64 levels")
+    scene_case("long_unknown_key.scene", set_in(["materials", "white", "x" * 100000], 1),
+               "/materials/white/" + "x" * 60, "(100000 bytes)")
+    raw_case("bpt_long_token.bpt", VALID_BPT.replace("\n0 1 ", "\n" + "z" * 100000 + " 1 ", 1), "line 7",
+             "(100000 bytes)")
+    text = BASE_TEXT.replace('"name": "floor"', '"name": "' + "f" * 100000 + '\\q"', 1)
+    raw_case("long_string_syntax_error.scene", text, "JSON syntax error", "(100003 bytes)")
+
+    # Magnitudes whose later arithmetic would overflow.
+    scene_case("huge_coordinate.scene", set_in(["surfaces", 0, "points", 2, 1], 1e19),
+               "/surfaces/0/points/2/1", "coordinate too large")
+    scene_case("huge_translate.scene", set_in(["surfaces", 1, "transform", "translate"], [1e16, 0, 0]),
+               "/surfaces/1/transform/translate/0", "coordinate too large")
+    scene_case("huge_scale.scene", set_in(["surfaces", 1, "transform", "scale"], 1e300),
+               "/surfaces/1/transform", "moves patch 1 too far")
+    scene_case("huge_camera_position.scene", set_in(["cameras", 0, "position"], [0.5, 0.5, -1e300]),
+               "/cameras/0/position/2", "coordinate too large")
+    scene_case("huge_emission.scene", set_in(["materials", "lamp", "emission"], [1e308, 1, 1]),
+               "/materials/lamp/emission/0", "emission too large")
+    scene_case("emission_above_limit.scene", set_in(["materials", "lamp", "emission"], [1, 1, 1e13]),
+               "/materials/lamp/emission/2", "emission too large")
+    lines = VALID_BPT.split("\n")
+    lines[6] = "1 1e19 0"
+    raw_case("bpt_huge_coordinate.bpt", "\n".join(lines), "line 7", "control point coordinate too large")
+
+
 def support_files():
     os.makedirs(SUPPORT, exist_ok=True)
     with open(os.path.join(SUPPORT, "base.scene"), "wb") as f:
@@ -331,6 +480,7 @@ def main():
     json_syntax_cases()
     semantic_cases()
     bpt_cases()
+    hostile_cases()
     os.makedirs(BAD, exist_ok=True)
     names = [c[0] for c in CASES]
     assert len(names) == len(set(names))
