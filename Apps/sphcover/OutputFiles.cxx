@@ -66,8 +66,8 @@ void Announce(char change, const fs::path& prefix)
 
 /// The janitor: a child process that outlives sphcover by a moment. When the pipe closes
 /// (sphcover ended, normally, by a signal, a crash or SIGKILL) it removes the staging folders
-/// whose prefix is still announced. Removing them after the writer is gone is what makes it safe: a writer still
-/// running could create them again.
+/// whose prefix is still announced. Removing them after the writer is gone is what makes it safe: a
+/// writer still running could create them again.
 [[noreturn]] void RunJanitor(int pipe)
 {
   std::set<std::string> prefixes;
@@ -103,8 +103,7 @@ void Announce(char change, const fs::path& prefix)
   for (const fs::path prefix : prefixes)
   {
     const std::string start = prefix.filename().string();
-    for (const fs::directory_entry& entry :
-      fs::directory_iterator(prefix.parent_path(), ignored))
+    for (const fs::directory_entry& entry : fs::directory_iterator(prefix.parent_path(), ignored))
     {
       if (entry.path().filename().string().rfind(start, 0) == 0)
       {
@@ -174,8 +173,8 @@ void RemoveAbandonedStaging(const fs::path& folder)
   for (const fs::directory_entry& entry : fs::directory_iterator(folder, ignored))
   {
     const pid_t owner = StagingOwner(entry.path().filename().string());
-    if (owner != 0 && owner != getpid() && entry.is_directory(ignored) &&
-      kill(owner, 0) == -1 && errno == ESRCH)
+    if (owner != 0 && owner != getpid() && entry.is_directory(ignored) && kill(owner, 0) == -1 &&
+      errno == ESRCH)
     {
       fs::remove_all(entry.path(), ignored);
     }
@@ -231,8 +230,7 @@ void WatchTerminationSignals()
     .detach();
 }
 
-void WriteAtomically(
-  const std::string& path, const std::function<void(const fs::path&)>& write)
+void WriteAtomically(const std::string& path, const std::function<void(const fs::path&)>& write)
 {
   const fs::path target = fs::absolute(path);
   const fs::path folder = target.parent_path();

@@ -34,8 +34,8 @@ void WatchTerminationSignals();
 /// Writes `path` whole: `write` writes the output at the path it is given (inside the staging
 /// folder; it may create a folder of pieces named after the file's stem there). Throws
 /// std::runtime_error("cannot write '<path>': ...") on failure, leaving no trace.
-void WriteAtomically(
-  const std::string& path, const std::function<void(const std::filesystem::path&)>& write);
+void WriteAtomically(const std::string& path,
+  const std::function<void(const std::filesystem::path&)>& write);
 
 /// A dataset through a VTK XML writer (data inline, see the .cxx for why).
 void WriteXmlAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path);

@@ -29,6 +29,16 @@ const Scene& Cornell()
   static const Scene scene = LoadSceneFile(SPHCOVER_DATA_DIR "/scenes/cornell_box.scene");
   return scene;
 }
+
+/// The finest subdivision the settings allow: without a budget it would not end in any
+/// reasonable time.
+SubdivisionSettings Finest()
+{
+  SubdivisionSettings settings;
+  settings.MaxLevel = MaxSubdivisionLevel;
+  std::fill(std::begin(settings.Tolerance), std::end(settings.Tolerance), MinimumTolerance);
+  return settings;
+}
 }
 
 TEST(Limits, MaxLevelAndToleranceBounds)
@@ -58,9 +68,7 @@ TEST(Limits, MaxLevelAndToleranceBounds)
 
 TEST(Limits, SubdivisionStopsAtItsPatchBudget)
 {
-  SubdivisionSettings settings;
-  settings.MaxLevel = MaxSubdivisionLevel;
-  std::fill(std::begin(settings.Tolerance), std::end(settings.Tolerance), MinimumTolerance);
+  SubdivisionSettings settings = Finest();
   settings.MaximumPatches = 500;
   IntervalSubdivision subdivision(Cornell(), settings);
   try
@@ -78,9 +86,7 @@ TEST(Limits, SubdivisionStopsAtItsPatchBudget)
 
 TEST(Limits, SubdivisionRefusesASweepBeyondItsPairTestBudget)
 {
-  SubdivisionSettings settings;
-  settings.MaxLevel = MaxSubdivisionLevel;
-  std::fill(std::begin(settings.Tolerance), std::end(settings.Tolerance), MinimumTolerance);
+  SubdivisionSettings settings = Finest();
   settings.MaximumPairTests = 100000;
   IntervalSubdivision subdivision(Cornell(), settings);
   EXPECT_THROW(subdivision.Run(), std::length_error);

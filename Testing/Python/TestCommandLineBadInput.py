@@ -8,6 +8,8 @@ import shutil
 import sys
 import tempfile
 
+from one_line_error import check_one_line_error
+
 sphcover, bad = sys.argv[1:3]
 expected = json.load(open(os.path.join(bad, "expected.json")))
 failures = []
@@ -15,21 +17,7 @@ failures = []
 
 def check(path, fragments):
     run = subprocess.run([sphcover, "info", path], capture_output=True, text=True, timeout=60)
-    name = os.path.basename(path)
-    if run.returncode <= 0:
-        failures.append(f"{name}: exit status {run.returncode} (expected a failure, not a signal)")
-    lines = run.stderr.strip().splitlines()
-    if len(lines) != 1:
-        failures.append(f"{name}: {len(lines)} lines on stderr, expected one: {run.stderr!r}")
-    message = run.stderr.strip()
-    print(f"{name}: {message[:300]}")
-    if len(message) > 1000:
-        failures.append(f"{name}: a {len(message)}-character message (quoted excerpts are capped)")
-    for fragment in fragments:
-        if fragment not in message:
-            failures.append(f"{name}: message lacks {fragment!r}")
-    if run.stdout:
-        failures.append(f"{name}: printed on stdout: {run.stdout!r}")
+    check_one_line_error(os.path.basename(path), run, fragments, failures)
 
 
 cases = 0

@@ -14,6 +14,8 @@ import subprocess
 import sys
 import tempfile
 
+from one_line_error import check_one_line_error
+
 sphcover, bad = sys.argv[1:3]
 cases = json.load(open(os.path.join(bad, "commands.json")))
 failures = []
@@ -52,16 +54,7 @@ for name, case in sorted(cases.items()):
     except subprocess.TimeoutExpired:
         failures.append(f"{name}: no answer within 60 s")
         continue
-    if run.returncode <= 0:
-        failures.append(f"{name}: exit status {run.returncode} (expected a failure, not a signal)")
-    lines = run.stderr.strip().splitlines()
-    if len(lines) != 1:
-        failures.append(f"{name}: {len(lines)} lines on stderr, expected one: {run.stderr!r}")
-    message = run.stderr.strip()
-    print(f"{name}: {message}")
-    for fragment in case["expect"]:
-        if fragment not in message:
-            failures.append(f"{name}: message lacks {fragment!r}")
+    check_one_line_error(name, run, case["expect"], failures)
     left = set(os.listdir(tmp)) - fixtures
     if left:
         failures.append(f"{name}: left {sorted(left)} behind")
