@@ -4,6 +4,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <stdexcept>
@@ -30,6 +31,24 @@ void CheckParameter(double t, const char* what)
 }
 
 } // namespace
+
+double LargestCoordinate(const std::vector<glm::dvec3>& points)
+{
+  double largest = 0.0;
+  for (const glm::dvec3& p : points)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const double magnitude = std::fabs(p[k]);
+      if (std::isnan(magnitude))
+      {
+        return magnitude;
+      }
+      largest = std::max(largest, magnitude);
+    }
+  }
+  return largest;
+}
 
 BezierPatch::BezierPatch(int degreeU, int degreeV, std::vector<glm::dvec3> controlPoints)
   : DegreeUValue(degreeU)

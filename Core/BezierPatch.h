@@ -32,6 +32,10 @@
 namespace sphcover
 {
 
+/// The largest coordinate magnitude among `points`, or NaN if any coordinate is NaN (so that a
+/// bound written as `!(LargestCoordinate(p) <= limit)` refuses it).
+double LargestCoordinate(const std::vector<glm::dvec3>& points);
+
 class BezierPatch
 {
 public:

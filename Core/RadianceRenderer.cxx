@@ -73,9 +73,7 @@ std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
   {
     problem << name << ": position, focal point, view up and view angle must be finite numbers";
   }
-  else if (!(std::max({ std::fabs(camera.Position.x),
-               std::fabs(camera.Position.y),
-               std::fabs(camera.Position.z) }) <= MaxRayCastCoordinate))
+  else if (!(LargestCoordinate({ camera.Position }) <= MaxRayCastCoordinate))
   {
     // The eye starts every ray: Embree aborts on an origin beyond its range.
     problem << name << ": the position is beyond the coordinates ray casting can trace (|x| <= "

@@ -171,9 +171,7 @@ std::string RayCastCoordinateProblem(const std::vector<Patch>& patches)
   {
     for (const glm::dvec3& point : patches[p].Geometry.ControlPoints())
     {
-      const double largest =
-        std::max({ std::fabs(point.x), std::fabs(point.y), std::fabs(point.z) });
-      if (!(largest <= MaxRayCastCoordinate))
+      if (!(LargestCoordinate({ point }) <= MaxRayCastCoordinate))
       {
         std::ostringstream problem;
         problem << "patch " << p << " (surface " << patches[p].SurfaceIndex

@@ -46,25 +46,6 @@ std::string TooLarge(const std::string& what, double value, double limit)
     " in magnitude)";
 }
 
-/// The largest coordinate magnitude among `points`, or NaN if there is a NaN.
-double LargestCoordinate(const std::vector<glm::dvec3>& points)
-{
-  double largest = 0.0;
-  for (const glm::dvec3& p : points)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const double magnitude = std::fabs(p[k]);
-      if (std::isnan(magnitude))
-      {
-        return magnitude;
-      }
-      largest = std::max(largest, magnitude);
-    }
-  }
-  return largest;
-}
-
 /// The problem of a coordinate `value` beyond BezierPatch::MaxCoordinate (or not finite).
 std::string CoordinateTooLarge(double value)
 {

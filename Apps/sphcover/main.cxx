@@ -525,7 +525,14 @@ int RunRender(const Options& options)
   std::vector<std::string> pngs;
   if (!options.Output.empty())
   {
-    (ExtensionOf(options.Output) == ".exr" ? exr : pngs.emplace_back()) = options.Output;
+    if (ExtensionOf(options.Output) == ".exr")
+    {
+      exr = options.Output;
+    }
+    else
+    {
+      pngs.push_back(options.Output);
+    }
   }
   if (!options.Png.empty())
   {
