@@ -6,8 +6,9 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
-#include "HemisphereGrid.h"
-#include "SphericalCover.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/SphericalCover.h"
+#include "math/Constants.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkCellArray.h>
@@ -36,8 +37,6 @@ vtkStandardNewMacro(vtkHemisphereExtractor);
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
-
 /// The bins of the cover held by `input` (its `CoverGrid` field array), false if it holds none.
 bool CoverBins(vtkDataObject* input, int& thetaBins, int& phiBins)
 {
@@ -129,7 +128,7 @@ int vtkHemisphereExtractor::RequestInformation(vtkInformation*,
   if (CoverBins(input, thetaBins, phiBins))
   {
     const int extent[6] = { 0, phiBins, 0, thetaBins, 0, 0 };
-    const double spacing[3] = { 2.0 * Pi / phiBins, 0.5 * Pi / thetaBins, 1.0 };
+    const double spacing[3] = { sphcover::TwoPi / phiBins, sphcover::HalfPi / thetaBins, 1.0 };
     const double origin[3] = { 0.0, 0.0, 0.0 };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
     outInfo->Set(vtkDataObject::SPACING(), spacing, 3);

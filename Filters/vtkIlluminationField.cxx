@@ -6,9 +6,9 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 
-#include "Patch.h"
-#include "RadianceRenderer.h"
-#include "Scene.h"
+#include "render/RadianceRenderer.h"
+#include "scene/Scene.h"
+#include "subdivision/Patch.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

@@ -8,7 +8,7 @@
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
 
-#include "IntervalSubdivision.h"
+#include "subdivision/IntervalSubdivision.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

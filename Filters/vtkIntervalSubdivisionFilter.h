@@ -15,7 +15,7 @@
  * projects to about one cell of the ThetaBins x PhiBins grid (§4.3 note 2). Pairs fully below
  * the horizon or back-facing are classified, not split. The range estimates use Bernstein
  * (convex hull) bounds or natural interval arithmetic (RangeMethod). See
- * Core/SubdivisionCriteria.h for the exact tests and tolerances.
+ * Core/subdivision/SubdivisionCriteria.h for the exact tests and tolerances.
  *
  * Output 0 (vtkUnstructuredGrid): one cell per patch, its exact geometry (Bezier
  * quadrilateral, quad or triangle), cell data `SurfaceId`, `PatchId`, `Level`, `UVRange`

@@ -7,11 +7,11 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
-#include "ExchangeBalance.h"
-#include "HemisphereGrid.h"
-#include "LightPropagation.h"
-#include "Material.h"
-#include "SphericalCover.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/SphericalCover.h"
+#include "propagation/ExchangeBalance.h"
+#include "propagation/LightPropagation.h"
+#include "scene/Material.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>

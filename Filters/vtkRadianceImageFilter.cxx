@@ -6,10 +6,10 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 
-#include "CharacteristicPointInterpolator.h"
-#include "Patch.h"
-#include "RadianceRenderer.h"
-#include "Scene.h"
+#include "render/CharacteristicPointInterpolator.h"
+#include "render/RadianceRenderer.h"
+#include "scene/Scene.h"
+#include "subdivision/Patch.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>

@@ -9,11 +9,11 @@
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
 
-#include "CoverRefinement.h"
-#include "HemisphereGrid.h"
-#include "Patch.h"
-#include "Scene.h"
-#include "SphericalCover.h"
+#include "cover/CoverRefinement.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/SphericalCover.h"
+#include "scene/Scene.h"
+#include "subdivision/Patch.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkBPTReader.h"
 
-#include "Scene.h"
-#include "SceneLoader.h"
+#include "scene/Scene.h"
+#include "scene/SceneLoader.h"
 
 #include <vtkObjectFactory.h>
 

@@ -5,7 +5,7 @@
 #include "vtkScenePieces.h"
 #include "vtkSurfaceGridBuilder.h"
 
-#include "Scene.h"
+#include "scene/Scene.h"
 
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSceneFileLoader.h"
 
-#include "InputError.h"
-#include "InputFile.h"
-#include "MeshFileCheck.h"
+#include "scene/InputError.h"
+#include "scene/InputFile.h"
+#include "scene/MeshFileCheck.h"
 
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>

@@ -12,7 +12,7 @@
 
 #include "SphericalCoverReadersModule.h" // for export macro
 
-#include "SceneLoader.h" // for sphcover::MeshFace
+#include "scene/SceneLoader.h" // for sphcover::MeshFace
 
 #include <string>
 #include <vector>

@@ -1,4 +1,4 @@
-# The fuzzing build (SPHCOVER_FUZZ=ON): Core and the Readers VTK module, instrumented, linked
+# The fuzzing build (SPHCOVER_FUZZ=ON): Core and the Common and Readers VTK modules, instrumented, linked
 # against the VTK that Debian's ParaView 5.11 bundles (uninstrumented: VTK is not what is
 # fuzzed), and the libFuzzer harnesses of Testing/Fuzz registered as CTest tests (label `fuzz`).
 # Filters, the Python wrapping, the plug-in and the command-line program are not built.
@@ -20,7 +20,9 @@ include(GNUInstallDirs) # vtk_module_build's default destinations
 # Static: the harnesses carry the instrumented reader code themselves.
 set(BUILD_SHARED_LIBS OFF)
 vtk_module_scan(
-  MODULE_FILES "${PROJECT_SOURCE_DIR}/Readers/vtk.module"
+  MODULE_FILES
+    "${PROJECT_SOURCE_DIR}/Common/vtk.module"
+    "${PROJECT_SOURCE_DIR}/Readers/vtk.module"
   REQUEST_MODULES SphericalCover::Readers
   PROVIDES_MODULES sphcover_fuzz_modules
   ENABLE_TESTS OFF)

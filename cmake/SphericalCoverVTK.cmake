@@ -1,4 +1,4 @@
-# VTK modules (Readers/, Filters/), their Python wrapping (package `sphericalcover`), the
+# VTK modules (Common/, Readers/, Filters/), their Python wrapping (package `sphericalcover`), the
 # ParaView plug-in and the command-line program, all built against the VTK that Debian's
 # ParaView 5.11 bundles (SPEC §2): a system VTK would conflict with python3-paraview.
 
@@ -41,6 +41,7 @@ set(CMAKE_INSTALL_RPATH "$ORIGIN/../${CMAKE_INSTALL_LIBDIR};${CMAKE_INSTALL_PREF
 
 vtk_module_scan(
   MODULE_FILES
+    "${PROJECT_SOURCE_DIR}/Common/vtk.module"
     "${PROJECT_SOURCE_DIR}/Readers/vtk.module"
     "${PROJECT_SOURCE_DIR}/Filters/vtk.module"
   REQUEST_MODULES

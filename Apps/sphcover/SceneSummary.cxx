@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "SceneSummary.h"
 
-#include "Scene.h"
+#include "scene/Scene.h"
 
 #include <iomanip>
 #include <map>

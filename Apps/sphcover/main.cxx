@@ -27,11 +27,11 @@
 #include "vtkSphericalCoverArrays.h"
 #include "vtkSphericalCoverFilter.h"
 
-#include "InputError.h"
-#include "RadianceRenderer.h"
-#include "Scene.h"
-#include "SceneLoader.h"
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
+#include "render/RadianceRenderer.h"
+#include "scene/InputError.h"
+#include "scene/Scene.h"
+#include "scene/SceneLoader.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>

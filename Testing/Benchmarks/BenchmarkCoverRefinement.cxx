@@ -25,13 +25,13 @@
  * min(A_a F_ab, A_b F_ba) exceeds 0.1% of the smaller area), with the pair, and the worst
  * |row sum - 1| of the surfaces' form factors.
  */
-#include "CoverRefinement.h"
-#include "IntervalSubdivision.h"
-#include "ParallelFor.h"
-#include "SceneLoader.h"
+#include "cover/CoverRefinement.h"
+#include "math/ParallelFor.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
 
 #include "CoverTestUtilities.h"
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
 
 #include <algorithm>
 #include <chrono>

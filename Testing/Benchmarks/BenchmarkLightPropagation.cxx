@@ -34,13 +34,13 @@
  *    shots the strip pairs per shot and microseconds per shot summing by strip pairs, and the
  *    microseconds per shot by the whole-hemisphere grid (DirectionalMethod).
  */
-#include "CoverRefinement.h"
-#include "ExchangeBalance.h"
-#include "IntervalSubdivision.h"
-#include "LightPropagation.h"
-#include "ParallelFor.h"
-#include "SceneLoader.h"
-#include "SphericalCover.h"
+#include "cover/CoverRefinement.h"
+#include "cover/SphericalCover.h"
+#include "math/ParallelFor.h"
+#include "propagation/ExchangeBalance.h"
+#include "propagation/LightPropagation.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
 
 #include "CoverTestUtilities.h"
 

@@ -22,15 +22,16 @@
  *    the Lambertian part only (`render_ms`): the cost of the BRDF evaluations, O(strips of
  *    the row) per sample and neighbour (DirectionalExitantRadiance).
  */
-#include "CharacteristicPointInterpolator.h"
-#include "HemisphereGrid.h"
-#include "IntervalSubdivision.h"
-#include "LightPropagation.h"
-#include "ParallelFor.h"
-#include "RadianceRenderer.h"
-#include "RayCastFill.h"
-#include "SceneLoader.h"
-#include "SphericalCover.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/RayCastFill.h"
+#include "cover/SphericalCover.h"
+#include "math/Constants.h"
+#include "math/ParallelFor.h"
+#include "propagation/LightPropagation.h"
+#include "render/CharacteristicPointInterpolator.h"
+#include "render/RadianceRenderer.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
@@ -134,7 +135,7 @@ struct RawScene
     const glm::dvec3 forward = glm::normalize(camera.FocalPoint - camera.Position);
     const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.ViewUp));
     const glm::dvec3 up = glm::cross(right, forward);
-    const double halfHeight = std::tan(0.5 * camera.ViewAngle * 3.14159265358979323846 / 180.0);
+    const double halfHeight = std::tan(0.5 * camera.ViewAngle * Pi / 180.0);
     const double halfWidth = halfHeight * camera.Width / camera.Height;
     std::vector<size_t> hitsPerRow(static_cast<size_t>(camera.Height), 0);
     parallelFor(static_cast<size_t>(camera.Height),

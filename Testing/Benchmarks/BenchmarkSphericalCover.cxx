@@ -20,15 +20,15 @@
  * number of rays (N x samples per hemisphere, from the characteristic points along the sample
  * directions, no classification), so the cover's cost reads as a ratio to that limit.
  */
-#include "BezierPatch.h"
-#include "CoverRefinement.h"
-#include "HemisphereGrid.h"
-#include "IntervalSubdivision.h"
-#include "ParallelFor.h"
-#include "Patch.h"
-#include "RayCastFill.h"
-#include "SceneLoader.h"
-#include "SphericalCover.h"
+#include "cover/CoverRefinement.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/RayCastFill.h"
+#include "cover/SphericalCover.h"
+#include "geometry/BezierPatch.h"
+#include "math/ParallelFor.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
+#include "subdivision/Patch.h"
 
 #include <algorithm>
 #include <atomic>

@@ -4,8 +4,8 @@
 // threads, and the patch counts of the two range methods.
 //
 //   BenchmarkSubdivision [--natural]     (--natural adds natural interval runs: minutes)
-#include "IntervalSubdivision.h"
-#include "SceneLoader.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
 
 #include <atomic>
 #include <chrono>

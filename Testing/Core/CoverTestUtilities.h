@@ -9,15 +9,16 @@
 #ifndef SPHCOVER_COVERTESTUTILITIES_H
 #define SPHCOVER_COVERTESTUTILITIES_H
 
-#include "BezierPatch.h"
-#include "CoverRefinement.h"
-#include "IntervalSubdivision.h"
-#include "LightPropagation.h"
-#include "ParallelFor.h"
-#include "Patch.h"
-#include "Scene.h"
-#include "SceneLoader.h"
-#include "SphericalCover.h"
+#include "cover/CoverRefinement.h"
+#include "cover/SphericalCover.h"
+#include "geometry/BezierPatch.h"
+#include "math/Constants.h"
+#include "math/ParallelFor.h"
+#include "propagation/LightPropagation.h"
+#include "scene/Scene.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
+#include "subdivision/Patch.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -200,8 +201,7 @@ inline double HowellParallel(double a, double b, double c)
   const double y = b / c;
   const double x1 = 1 + x * x;
   const double y1 = 1 + y * y;
-  const double pi = 3.14159265358979323846;
-  return 2.0 / (pi * x * y) *
+  return 2.0 / (sphcover::Pi * x * y) *
     (std::log(std::sqrt(x1 * y1 / (x1 + y * y))) +
       x * std::sqrt(y1) * std::atan(x / std::sqrt(y1)) +
       y * std::sqrt(x1) * std::atan(y / std::sqrt(x1)) - x * std::atan(x) - y * std::atan(y));
@@ -218,8 +218,7 @@ inline double HowellPerpendicular(double l, double w, double h)
   const double logTerm = std::log((1 + w2) * (1 + h2) / (1 + w2 + h2)) +
     w2 * std::log(w2 * (1 + w2 + h2) / ((1 + w2) * (w2 + h2))) +
     h2 * std::log(h2 * (1 + h2 + w2) / ((1 + h2) * (h2 + w2)));
-  const double pi = 3.14159265358979323846;
-  return 1.0 / (pi * W) *
+  return 1.0 / (sphcover::Pi * W) *
     (W * std::atan(1 / W) + H * std::atan(1 / H) - s * std::atan(1 / s) + 0.25 * logTerm);
 }
 

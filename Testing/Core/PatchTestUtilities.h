@@ -7,8 +7,8 @@
 #ifndef SPHCOVER_PATCHTESTUTILITIES_H
 #define SPHCOVER_PATCHTESTUTILITIES_H
 
-#include "BezierPatch.h"
-#include "BptReader.h"
+#include "geometry/BezierPatch.h"
+#include "scene/BptReader.h"
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>

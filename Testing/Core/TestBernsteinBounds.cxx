@@ -24,9 +24,9 @@
  *  - convergence: around a critical point of |Q - P|^2, halving the rectangle shrinks the
  *    Bernstein excess width by 4 (quadratic), the natural excess only by 2 (linear).
  */
-#include "BernsteinBounds.h"
-#include "DeCasteljau.h"
 #include "PatchTestUtilities.h"
+#include "geometry/BernsteinBounds.h"
+#include "geometry/DeCasteljau.h"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

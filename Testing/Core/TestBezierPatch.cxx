@@ -9,8 +9,8 @@
  * differences; the unit normal is unit everywhere, and at collapsed edges (teapot poles, a
  * triangle stored as a bilinear patch) it is the limit of the normals next to the edge.
  */
-#include "BezierPatch.h"
 #include "PatchTestUtilities.h"
+#include "geometry/BezierPatch.h"
 
 #include <gtest/gtest.h>
 

@@ -7,8 +7,8 @@
 // wall -1.2 %); RBuffer::Classify's error diffusion along the rows (RBufferFillOptions::
 // DiffuseRounding) brings them within 0.6 %. Both are printed; the diffused one is asserted.
 #include "CoverTestUtilities.h"
-#include "RayCastFill.h"
-#include "SphericalCover.h"
+#include "cover/RayCastFill.h"
+#include "cover/SphericalCover.h"
 
 #include <gtest/gtest.h>
 

@@ -4,11 +4,12 @@
 // scenes (with and without an occluder inside) stay closed, splits are marked RBuffer and are
 // fewer than a uniform refinement, determinism whatever the thread count, progress and abort,
 // settings checks.
-#include "CoverRefinement.h"
+#include "cover/CoverRefinement.h"
 
 #include "CoverTestUtilities.h"
-#include "IntervalSubdivision.h"
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
+#include "math/Constants.h"
+#include "subdivision/IntervalSubdivision.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +25,6 @@ using namespace sphcover_test;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 /// A coarse configuration for the tests: the interval subdivision to `maxLevel` on a
 /// thetaBins x 4 thetaBins grid, the refinement `extraLevels` deeper.

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The exchange balance of a point-sampled cover (Core/ExchangeBalance.h): the balanced
+// The exchange balance of a point-sampled cover (Core/propagation/ExchangeBalance.h): the balanced
 // throughput keeps every row (each hemisphere gathers its covered measure: the white furnace
 // stays exact) and matches every column to it (each source delivers what its own hemisphere
 // sends: a closed scene's equilibrium absorbs what it emits, SPEC §4.4 / issue 5's 0.1%).
-#include "ExchangeBalance.h"
+#include "propagation/ExchangeBalance.h"
 
 #include "CoverTestUtilities.h"
-#include "LightPropagation.h"
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
+#include "propagation/LightPropagation.h"
 
 #include <gtest/gtest.h>
 

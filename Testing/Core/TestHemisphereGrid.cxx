@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // HemisphereGrid: the (theta, phi) cells of paper §3.3, their cosine-weighted measures, the
 // frame of a characteristic point and the stratified sample directions.
-#include "HemisphereGrid.h"
+#include "cover/HemisphereGrid.h"
 
-#include "Patch.h"
+#include "math/Constants.h"
+#include "subdivision/Patch.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -16,7 +17,6 @@ using namespace sphcover;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 /// Sum over the samples of (cell measure / samples per cell) where `inside(direction)`.
 template<typename Inside>

@@ -18,8 +18,8 @@
  * All trials come from fixed seeds, so a failure is reproducible; the failure message prints
  * the operands in hexadecimal floating point so that it can be pasted into a regression test.
  */
-#include "Interval.h"
-#include "IntervalVector.h"
+#include "math/Interval.h"
+#include "math/IntervalVector.h"
 
 #include <gmpxx.h>
 #include <gtest/gtest.h>

@@ -8,9 +8,9 @@
 //   back-facing pieces found at shallow levels;
 // - Bernstein bounds need no more patches than natural interval arithmetic;
 // - limits (MaxLevel, one cell), bad settings, and thread-count independence.
-#include "IntervalSubdivision.h"
-#include "SceneLoader.h"
-#include "SubdivisionCriteria.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
+#include "subdivision/SubdivisionCriteria.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

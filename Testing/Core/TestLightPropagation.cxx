@@ -3,10 +3,11 @@
 // furnace (SPEC §6) in a flat and a curved enclosure, energy balance, independence of the
 // shooting order, Howell's parallel rectangles with one lamp, the O(column) cost of a shot
 // (§5.2), progress, abort and the shot limit, and the material checks.
-#include "LightPropagation.h"
+#include "propagation/LightPropagation.h"
 
 #include "CoverTestUtilities.h"
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
+#include "math/Constants.h"
 
 #include <gtest/gtest.h>
 
@@ -22,7 +23,6 @@ using namespace sphcover_test;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 /// Largest relative deviation, over patches and bands, of the exitant radiance from the
 /// furnace's Le / (1 - rho), both taken from the scene's material of each patch.

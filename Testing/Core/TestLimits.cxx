@@ -3,16 +3,16 @@
 // results: settings bounds, the subdivision's budgets, the cover's and the propagation's memory
 // estimates (made without allocating), the renderer's budgets, Embree's coordinate range, the
 // scene fingerprint.
-#include "DirectionalReflection.h"
-#include "HemisphereGrid.h"
-#include "IntervalSubdivision.h"
-#include "LightPropagation.h"
-#include "RadianceRenderer.h"
-#include "RayCastFill.h"
-#include "Scene.h"
-#include "SceneLoader.h"
-#include "SphericalCover.h"
-#include "SubdivisionCriteria.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/RayCastFill.h"
+#include "cover/SphericalCover.h"
+#include "propagation/LightPropagation.h"
+#include "reflectance/DirectionalReflection.h"
+#include "render/RadianceRenderer.h"
+#include "scene/Scene.h"
+#include "scene/SceneLoader.h"
+#include "subdivision/IntervalSubdivision.h"
+#include "subdivision/SubdivisionCriteria.h"
 
 #include <gtest/gtest.h>
 

@@ -4,12 +4,13 @@
 // order in a closed box of mixed materials; and a mirror carrying light to a patch that cannot
 // see the lamp, against the image-source construction; the two summations of a directional shot
 // (strip pairs, whole-hemisphere grid) agree.
-#include "ExchangeBalance.h"
-#include "LightPropagation.h"
+#include "propagation/ExchangeBalance.h"
+#include "propagation/LightPropagation.h"
 
 #include "CoverTestUtilities.h"
-#include "HemisphereGrid.h"
-#include "SphericalCover.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/SphericalCover.h"
+#include "math/Constants.h"
 
 #include <gtest/gtest.h>
 
@@ -25,7 +26,6 @@ using namespace sphcover_test;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 /// The hemisphere frame of every patch's characteristic point.
 std::vector<HemisphereFrame> FramesOf(const std::vector<Patch>& patches)

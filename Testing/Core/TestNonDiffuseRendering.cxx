@@ -2,11 +2,11 @@
 // The final rendering of non-diffuse surfaces (paper §5.3.1 with the interpolation of §3.4):
 // white furnaces of mirror, phong and tabulated walls render uniform Le / (1 - a) in every
 // pixel, and a flat mirror shows what a camera at the mirrored position sees of the room.
-#include "RadianceRenderer.h"
+#include "render/RadianceRenderer.h"
 
 #include "CoverTestUtilities.h"
-#include "LightPropagation.h"
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
+#include "propagation/LightPropagation.h"
 
 #include <gtest/gtest.h>
 

@@ -2,11 +2,12 @@
 // The R-buffer of paper §4.2.5 and its two fills: coverage classification, the projection
 // fill's pole / seam / horizon / depth handling against Lambert's exact projected solid angle
 // of a polygon, culling, and the agreement of the projection and ray-casting fills.
-#include "RBuffer.h"
+#include "cover/RBuffer.h"
 
-#include "CandidateCulling.h"
 #include "CoverTestUtilities.h"
-#include "RayCastFill.h"
+#include "cover/CandidateCulling.h"
+#include "cover/RayCastFill.h"
+#include "math/Constants.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -20,7 +21,6 @@ using namespace sphcover_test;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 /// Projected solid angle of the samples covered by `source` (sample resolution, no rounding
 /// to cells).

@@ -4,11 +4,12 @@
 // (camera conventions, visible surface, §5.3.2 interpolation and edge extrapolation), with the
 // analytic depth; the image does not depend on the thread count; abort; bad cameras are
 // refused with one clear message.
-#include "RadianceRenderer.h"
+#include "math/Constants.h"
+#include "render/RadianceRenderer.h"
 
 #include "CoverTestUtilities.h"
-#include "LightPropagation.h"
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
+#include "propagation/LightPropagation.h"
 
 #include <gtest/gtest.h>
 
@@ -108,7 +109,7 @@ TEST(RadianceRenderer, LinearFieldOnSquareMatchesAnalyticVisiblePoint)
   settings.SamplesPerPixel = 1; // the pixel centre
   RenderedImage image;
   ASSERT_TRUE(renderer.Render(camera, settings, image));
-  const double halfHeight = std::tan(0.5 * camera.ViewAngle * 3.14159265358979323846 / 180.0);
+  const double halfHeight = std::tan(0.5 * camera.ViewAngle * Pi / 180.0);
   const double halfWidth = halfHeight * camera.Width / camera.Height;
   int inside = 0;
   int outside = 0;

@@ -3,11 +3,12 @@
 // energy-conserving normalization, and the weight tables w(out, in-cell): their rows
 // reproduce the albedo, their columns conserve energy, their strip sums and the whole-hemisphere
 // Reflect agree with cell sums.
-#include "BrdfTable.h"
-#include "HemisphereGrid.h"
-#include "InputError.h"
-#include "Reflectance.h"
-#include "ReflectanceWeights.h"
+#include "cover/HemisphereGrid.h"
+#include "math/Constants.h"
+#include "reflectance/Reflectance.h"
+#include "reflectance/ReflectanceWeights.h"
+#include "scene/BrdfTable.h"
+#include "scene/InputError.h"
 
 #include <gtest/gtest.h>
 
@@ -24,7 +25,6 @@ using namespace sphcover;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 std::string ClayPath()
 {

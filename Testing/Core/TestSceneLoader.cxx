@@ -2,10 +2,10 @@
 // The .bpt reader and the .scene loader of Core: formats (CRLF, tabs, exponent notation),
 // the geometry conventions of SPEC §3 (point order, front side, transforms, flip), defaults,
 // and located error messages.
-#include "BptReader.h"
-#include "InputError.h"
-#include "MeshFileCheck.h"
-#include "SceneLoader.h"
+#include "scene/BptReader.h"
+#include "scene/InputError.h"
+#include "scene/MeshFileCheck.h"
+#include "scene/SceneLoader.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>

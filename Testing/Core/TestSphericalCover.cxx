@@ -2,9 +2,10 @@
 // The spherical cover of paper §3.3: closed scenes are covered completely, form factors match
 // Howell's closed forms, reciprocity, determinism whatever the thread count, the strip and
 // column structures, progress and abort, memory figures.
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
 
 #include "CoverTestUtilities.h"
+#include "math/Constants.h"
 
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
@@ -22,7 +23,6 @@ using namespace sphcover_test;
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
 
 std::vector<int> SurfaceGroups(const std::vector<Patch>& patches)
 {

@@ -5,9 +5,9 @@
 // writes the control points in VTK's ordering and the degrees in HigherOrderDegrees.
 #include "vtkSurfaceGridBuilder.h"
 
-#include "BezierPatch.h"
-#include "Scene.h"
-#include "SceneLoader.h"
+#include "geometry/BezierPatch.h"
+#include "scene/Scene.h"
+#include "scene/SceneLoader.h"
 
 #include <vtkBezierQuadrilateral.h>
 #include <vtkCellType.h>

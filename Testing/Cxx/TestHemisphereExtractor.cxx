@@ -14,8 +14,9 @@
 #include "HemisphereTestScenes.h"
 #include "vtkSphericalCoverArrays.h"
 
-#include "HemisphereGrid.h"
-#include "SphericalCover.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/SphericalCover.h"
+#include "math/Constants.h"
 
 #include <vtkCell.h>
 #include <vtkCellData.h>
@@ -30,7 +31,7 @@
 
 namespace
 {
-constexpr double Pi = 3.14159265358979323846;
+using sphcover::Pi;
 
 int Fail(const std::string& what)
 {

@@ -10,7 +10,7 @@
 #include "vtkPatchSceneReader.h"
 #include "vtkSurfaceGridAdapter.h"
 
-#include "Scene.h"
+#include "scene/Scene.h"
 
 #include <vtkActor.h>
 #include <vtkCallbackCommand.h>

@@ -13,7 +13,7 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 
-#include "Scene.h"
+#include "scene/Scene.h"
 
 #include <vtkCellData.h>
 #include <vtkCellType.h>

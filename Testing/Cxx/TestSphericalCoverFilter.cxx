@@ -15,7 +15,7 @@
 #include "vtkSphericalCoverArrays.h"
 #include "vtkSphericalCoverFilter.h"
 
-#include "SphericalCover.h"
+#include "cover/SphericalCover.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellData.h>

@@ -6,8 +6,8 @@
 // is a finding. With SPHCOVER_FUZZ_INVARIANTS=1, an accepted file must also be text: a NUL
 // byte is neither whitespace nor part of a C number (off by default while that finding is open;
 // Testing/Data/bad/fuzz/README.md).
-#include "BptReader.h"
-#include "InputError.h"
+#include "scene/BptReader.h"
+#include "scene/InputError.h"
 
 #include <cstdint>
 #include <cstdlib>

@@ -4,8 +4,8 @@
 // its grid) and its albedo computed on a coarse rule, so the interpolation runs on whatever
 // grids the parser accepts. Only InputError may leave the reader; anything else (another
 // exception, a sanitizer report, a hang, an allocation beyond the limit) is a finding.
-#include "BrdfTable.h"
-#include "InputError.h"
+#include "scene/BrdfTable.h"
+#include "scene/InputError.h"
 
 #include <cmath>
 #include <cstdint>

@@ -13,8 +13,8 @@
 // non-zero view direction); a broken promise aborts. Off by default (and in CTest) while such
 // findings are open: see Testing/Data/bad/fuzz/README.md.
 #include "FuzzTemporaryFolder.h"
-#include "InputError.h"
-#include "SceneLoader.h"
+#include "scene/InputError.h"
+#include "scene/SceneLoader.h"
 
 #include <glm/geometric.hpp>
 

@@ -202,7 +202,7 @@ if closed:
 # occluding cube. It solves (its tabulated material is first used after others that sort after
 # it: the filters must keep the reader's material ids), every surface's radiance is finite and
 # >= 0, and emitted = absorbed within 1%: directional shots conserve energy only up to the
-# cover's discretisation error (0.41% here, Core/LightPropagation.h), far below what a lost or
+# cover's discretisation error (0.41% here, Core/propagation/LightPropagation.h), far below what a lost or
 # doubled bounce would show.
 mixed = solve(f"{data}/scenes/mixed_box.scene", "--set", "theta_bins=16", "--set", "phi_bins=64")
 if mixed:

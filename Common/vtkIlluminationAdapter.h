@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkIlluminationAdapter
+ * @brief Reads the illuminated characteristic points (vtkLightPropagationFilter's first
+ * output) into what the interpolation of paper §3.4 / §5.3.2 needs: each point's surface, its
+ * patch's rectangle in the surface's parameters and its exitant radiance; shared by the
+ * rendering filters (vtkRadianceImageFilter, vtkIlluminationField). When some point is
+ * non-diffuse it also reads what the directional part of paper §5.3.1 needs: the cover and its
+ * `IncidentRadiance` (field data), the points' frames (`Normals`, `Tangents`) and materials.
+ * The materials are rebuilt from the point arrays as the propagation filter rebuilds them
+ * (ReadMaterials, used by both).
+ */
+#ifndef vtkIlluminationAdapter_h
+#define vtkIlluminationAdapter_h
+
+#include "SphericalCoverCommonModule.h" // for export macro
+
+#include "cover/HemisphereGrid.h"                   // for the frames
+#include "render/CharacteristicPointInterpolator.h" // for the interpolator
+#include "render/RadianceRenderer.h"                // for DirectionalIllumination
+#include "scene/Material.h"                         // for the materials
+
+#include <glm/vec3.hpp> // for the radiance
+
+#include <memory> // for the directional part
+#include <string> // for the error
+#include <vector> // for the arrays
+
+class vtkPolyData;
+
+class SPHERICALCOVERCOMMON_EXPORT vtkIlluminationAdapter
+{
+public:
+  /// The illumination of the characteristic points, ready to interpolate.
+  struct Illumination
+  {
+    sphcover::CharacteristicPointInterpolator Interpolator;
+    /// Exitant radiance (Radiosity: diffuse part plus emission) of every point.
+    std::vector<glm::dvec3> ExitantRadiance;
+    /// Per surface index: whether its back side shows its radiance too (`TwoSided`).
+    std::vector<bool> TwoSidedSurface;
+    /// The directional part of paper §5.3.1 (null when every point is diffuse).
+    std::unique_ptr<sphcover::DirectionalIllumination> Directional;
+  };
+
+  /// False with a message in `error` (one sentence naming what is missing) when the points
+  /// lack Radiosity (3), SurfaceId or UVRange (4), or a rectangle is invalid, or, when
+  /// `directional` is set and some point is non-diffuse, the cover, IncidentRadiance (3 per
+  /// entry), Normals and Tangents. Without `directional` (a view-independent use such as
+  /// vtkIlluminationField) Illumination::Directional stays null.
+  static bool Read(vtkPolyData* points,
+    Illumination& illumination,
+    std::string& error,
+    bool directional = true);
+
+  /// The material of every point from `Diffuse`, `Emission` (3 each), `MaterialType`,
+  /// `Specular`, `PhongExponent`, `MaterialId` and the field arrays `MaterialNames`,
+  /// `MaterialFiles` (tabulated BRDFs); a missing MaterialType means diffuse. False with one
+  /// sentence in `error` for missing arrays, an unknown type or a tabulated material without a
+  /// table file.
+  static bool ReadMaterials(vtkPolyData* points,
+    std::vector<sphcover::Material>& materials,
+    std::string& error);
+
+  /// The hemisphere frame of every point from its position, `Normals` and `Tangents` (the
+  /// cover's frames); false (and no frames) when those arrays are missing.
+  static bool ReadFrames(vtkPolyData* points, std::vector<sphcover::HemisphereFrame>& frames);
+
+private:
+  /// Fills Illumination::Directional when some point is non-diffuse.
+  static bool ReadDirectional(vtkPolyData* points, Illumination& illumination, std::string& error);
+};
+
+#endif

@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @class vtkSphericalCoverArrays
+ * @brief Stores a spherical cover (paper §3.3) in a dataset's field data and reads it back, so
+ * a built cover survives VTK's XML writers and readers bit for bit.
+ *
+ * Field arrays (all raw numbers, no conversion): `CoverGrid` (int: ThetaBins, PhiBins,
+ * SamplesTheta, SamplesPhi, Fill, UnoccludedKnown), `CoverRowOffsets` (uint64, N+1: row i's
+ * entries), `CoverEntries` (uint32 x 2: source, first strip), `CoverUnoccluded` (float, per
+ * entry), `CoverStrips` (uint16 x 3: theta row, phi begin, phi end), `CoverStripDepths`
+ * (float, per strip). Patch areas are the point data `Area`. The columns are rebuilt on load.
+ */
+#ifndef vtkSphericalCoverArrays_h
+#define vtkSphericalCoverArrays_h
+
+#include "SphericalCoverCommonModule.h" // for export macro
+
+#include <string>
+
+class vtkDataSet;
+namespace sphcover
+{
+class SphericalCover;
+}
+
+class SPHERICALCOVERCOMMON_EXPORT vtkSphericalCoverArrays
+{
+public:
+  /// Adds the cover's arrays to `output`'s field data (its point data must hold `Area`).
+  static void Store(const sphcover::SphericalCover& cover, vtkDataSet* output);
+
+  /// Reads the cover of `input`; returns what is missing or inconsistent ("" on success).
+  static std::string Load(vtkDataSet* input, sphcover::SphericalCover& cover);
+};
+
+#endif

@@ -1,0 +1,552 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "cover/SphericalCover.h"
+
+#include "math/Constants.h"
+
+#include "subdivision/Patch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace sphcover
+{
+
+namespace
+{
+constexpr std::size_t DefaultBatchSize = 64;
+}
+
+static_assert(sizeof(SphericalCover::Strip) == 6, "a strip is three uint16");
+static_assert(sizeof(SphericalCover::Entry) == 8, "an entry is two uint32");
+
+/// One hemisphere's strips and entries before they join the cover.
+struct SphericalCover::Row
+{
+  std::vector<uint32_t> Sources;
+  std::vector<uint32_t> StripCounts;
+  std::vector<float> Unoccluded;
+  std::vector<Strip> Strips;
+  std::vector<float> Depths;
+  CullingStatistics Culling;
+};
+
+SphericalCover::SphericalCover() = default;
+SphericalCover::~SphericalCover() = default;
+SphericalCover::SphericalCover(SphericalCover&&) noexcept = default;
+SphericalCover& SphericalCover::operator=(SphericalCover&&) noexcept = default;
+
+void SphericalCover::Clear()
+{
+  this->GridPointer.reset();
+  this->RowOffsets.clear();
+  this->Entries.clear();
+  this->Unoccluded.clear();
+  this->Strips.clear();
+  this->StripDepths.clear();
+  this->ColumnOffsets.clear();
+  this->Columns.clear();
+  this->Areas.clear();
+  this->UnoccludedKnown = false;
+  this->CullingCounts = CullingStatistics();
+}
+
+void SphericalCover::ExtractRow(const RBuffer& buffer, Row& row)
+{
+  const HemisphereGrid& grid = buffer.Grid();
+  struct Run
+  {
+    int32_t Source;
+    Strip Cells;
+    float Depth;
+  };
+  std::vector<Run> runs;
+  for (int theta = 0; theta < grid.ThetaBins(); ++theta)
+  {
+    int column = 0;
+    while (column < grid.PhiBins())
+    {
+      const int32_t source = buffer.CellSource(grid.CellIndex(theta, column));
+      if (source == RBuffer::NoSource)
+      {
+        ++column;
+        continue;
+      }
+      const int begin = column;
+      double depth = 0.0;
+      while (column < grid.PhiBins() && buffer.CellSource(grid.CellIndex(theta, column)) == source)
+      {
+        depth += buffer.CellDepth(grid.CellIndex(theta, column));
+        ++column;
+      }
+      runs.push_back({ source,
+        { static_cast<uint16_t>(theta),
+          static_cast<uint16_t>(begin),
+          static_cast<uint16_t>(column) },
+        static_cast<float>(depth / (column - begin)) });
+    }
+  }
+  // Group by source; within a source the strips stay in row-major order.
+  std::stable_sort(
+    runs.begin(), runs.end(), [](const Run& a, const Run& b) { return a.Source < b.Source; });
+  const auto& unoccluded = buffer.UnoccludedProjectedSolidAngles();
+  size_t next = 0;
+  for (size_t k = 0; k < runs.size(); ++k)
+  {
+    if (k == 0 || runs[k].Source != runs[k - 1].Source)
+    {
+      row.Sources.push_back(static_cast<uint32_t>(runs[k].Source));
+      row.StripCounts.push_back(0);
+      while (next < unoccluded.size() && unoccluded[next].first < runs[k].Source)
+      {
+        ++next;
+      }
+      row.Unoccluded.push_back(next < unoccluded.size() && unoccluded[next].first == runs[k].Source
+          ? unoccluded[next].second
+          : 0.0f);
+    }
+    ++row.StripCounts.back();
+    row.Strips.push_back(runs[k].Cells);
+    row.Depths.push_back(runs[k].Depth);
+  }
+}
+
+void SphericalCover::AppendRow(Row& row)
+{
+  if (this->Strips.size() + row.Strips.size() > std::numeric_limits<uint32_t>::max())
+  {
+    throw std::length_error("SphericalCover: more than 2^32 - 1 strips");
+  }
+  // The strips of entry e are the next StripCounts[e] strips of the row.
+  size_t stripIndex = this->Strips.size();
+  for (size_t e = 0; e < row.Sources.size(); ++e)
+  {
+    this->Entries.push_back({ row.Sources[e], static_cast<uint32_t>(stripIndex) });
+    this->Unoccluded.push_back(row.Unoccluded[e]);
+    stripIndex += row.StripCounts[e];
+  }
+  this->Strips.insert(this->Strips.end(), row.Strips.begin(), row.Strips.end());
+  this->StripDepths.insert(this->StripDepths.end(), row.Depths.begin(), row.Depths.end());
+  this->RowOffsets.push_back(this->Entries.size());
+  this->CullingCounts += row.Culling;
+}
+
+bool SphericalCover::Build(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress)
+{
+  this->Clear();
+  if (patches.size() >= std::numeric_limits<uint32_t>::max())
+  {
+    throw std::invalid_argument("SphericalCover: more than 2^32 - 2 patches");
+  }
+  this->BuildOptions = options;
+  this->GridPointer = std::make_unique<HemisphereGrid>(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  const HemisphereGrid& grid = *this->GridPointer;
+  const std::unique_ptr<RBufferFiller> filler =
+    RBufferFiller::Create(options.Fill, patches, grid, options.FillOptions);
+  const ParallelFor& run = parallelFor ? parallelFor : ParallelFor(SequentialFor);
+
+  const size_t count = patches.size();
+  this->RowOffsets.reserve(count + 1);
+  this->RowOffsets.push_back(0);
+  this->Areas.resize(count);
+  for (size_t i = 0; i < count; ++i)
+  {
+    this->Areas[i] = patches[i].Area;
+  }
+  const size_t batchSize = options.BatchSize > 0 ? options.BatchSize : DefaultBatchSize;
+  std::vector<Row> rows;
+  for (size_t batchBegin = 0; batchBegin < count; batchBegin += batchSize)
+  {
+    const size_t batchCount = std::min(batchSize, count - batchBegin);
+    rows.assign(batchCount, Row());
+    run(batchCount,
+      [&](size_t begin, size_t end)
+      {
+        RBuffer buffer(grid);
+        for (size_t k = begin; k < end; ++k)
+        {
+          filler->Fill(batchBegin + k, buffer, &rows[k].Culling);
+          ExtractRow(buffer, rows[k]);
+        }
+      });
+    for (Row& row : rows)
+    {
+      this->AppendRow(row);
+    }
+    if (progress && !progress(static_cast<double>(batchBegin + batchCount) / count))
+    {
+      this->Clear();
+      return false;
+    }
+  }
+  this->UnoccludedKnown = filler->Kind() == RBufferFill::Projection;
+
+  this->BuildColumns();
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+void SphericalCover::BuildColumns()
+{
+  // Count, prefix sums, then fill in receiver order (receivers ascending per column).
+  const size_t count = this->PatchCount();
+  this->ColumnOffsets.assign(count + 1, 0);
+  for (const Entry& entry : this->Entries)
+  {
+    ++this->ColumnOffsets[entry.Source + 1];
+  }
+  std::partial_sum(
+    this->ColumnOffsets.begin(), this->ColumnOffsets.end(), this->ColumnOffsets.begin());
+  this->Columns.resize(this->Entries.size());
+  std::vector<uint64_t> cursor(this->ColumnOffsets.begin(), this->ColumnOffsets.end() - 1);
+  for (size_t i = 0; i < count; ++i)
+  {
+    for (size_t e = this->EntryBegin(i); e < this->EntryEnd(i); ++e)
+    {
+      this->Columns[cursor[this->Entries[e].Source]++] = { static_cast<uint32_t>(i),
+        static_cast<uint32_t>(e) };
+    }
+  }
+}
+
+SphericalCover::Arrays SphericalCover::ExportArrays() const
+{
+  Arrays arrays;
+  arrays.ThetaBins = this->BuildOptions.ThetaBins;
+  arrays.PhiBins = this->BuildOptions.PhiBins;
+  arrays.SamplesTheta = this->BuildOptions.SamplesTheta;
+  arrays.SamplesPhi = this->BuildOptions.SamplesPhi;
+  arrays.Fill = static_cast<int>(this->BuildOptions.Fill);
+  arrays.RowOffsets = this->RowOffsets;
+  arrays.Entries = this->Entries;
+  arrays.Unoccluded = this->Unoccluded;
+  arrays.UnoccludedKnown = this->UnoccludedKnown;
+  arrays.Strips = this->Strips;
+  arrays.StripDepths = this->StripDepths;
+  arrays.Areas = this->Areas;
+  return arrays;
+}
+
+std::string SphericalCover::ImportArrays(Arrays arrays)
+{
+  this->Clear();
+  if (arrays.ThetaBins < 1 || arrays.PhiBins < 1 || arrays.ThetaBins > 65535 ||
+    arrays.PhiBins > 65535 || arrays.SamplesTheta < 1 || arrays.SamplesPhi < 1)
+  {
+    return "the grid sizes are invalid";
+  }
+  const size_t count = arrays.Areas.size();
+  if (arrays.RowOffsets.size() != count + 1 || arrays.RowOffsets.front() != 0 ||
+    arrays.RowOffsets.back() != arrays.Entries.size())
+  {
+    return "the row offsets do not match the entries";
+  }
+  for (size_t i = 0; i < count; ++i)
+  {
+    if (arrays.RowOffsets[i] > arrays.RowOffsets[i + 1])
+    {
+      return "the row offsets decrease";
+    }
+  }
+  if (arrays.Unoccluded.size() != arrays.Entries.size() ||
+    arrays.StripDepths.size() != arrays.Strips.size())
+  {
+    return "the entry or strip arrays have different lengths";
+  }
+  for (size_t e = 0; e < arrays.Entries.size(); ++e)
+  {
+    const Entry& entry = arrays.Entries[e];
+    const size_t next =
+      e + 1 < arrays.Entries.size() ? arrays.Entries[e + 1].FirstStrip : arrays.Strips.size();
+    if (entry.Source >= count || entry.FirstStrip > next || next > arrays.Strips.size())
+    {
+      return "entry " + std::to_string(e) + " refers to a missing source or strip";
+    }
+  }
+  for (const Strip& strip : arrays.Strips)
+  {
+    if (strip.Row >= arrays.ThetaBins || strip.PhiBegin >= strip.PhiEnd ||
+      strip.PhiEnd > arrays.PhiBins)
+    {
+      return "a strip lies outside the grid";
+    }
+  }
+  this->BuildOptions = SphericalCoverOptions();
+  this->BuildOptions.ThetaBins = arrays.ThetaBins;
+  this->BuildOptions.PhiBins = arrays.PhiBins;
+  this->BuildOptions.SamplesTheta = arrays.SamplesTheta;
+  this->BuildOptions.SamplesPhi = arrays.SamplesPhi;
+  this->BuildOptions.Fill = static_cast<RBufferFill>(arrays.Fill);
+  this->GridPointer = std::make_unique<HemisphereGrid>(
+    arrays.ThetaBins, arrays.PhiBins, arrays.SamplesTheta, arrays.SamplesPhi);
+  this->RowOffsets = std::move(arrays.RowOffsets);
+  this->Entries = std::move(arrays.Entries);
+  this->Unoccluded = std::move(arrays.Unoccluded);
+  this->UnoccludedKnown = arrays.UnoccludedKnown;
+  this->Strips = std::move(arrays.Strips);
+  this->StripDepths = std::move(arrays.StripDepths);
+  this->Areas = std::move(arrays.Areas);
+  this->BuildColumns();
+  return std::string();
+}
+
+std::size_t SphericalCover::StripEnd(std::size_t entry) const
+{
+  return entry + 1 < this->Entries.size() ? this->Entries[entry + 1].FirstStrip
+                                          : this->Strips.size();
+}
+
+std::ptrdiff_t SphericalCover::FindEntry(std::size_t receiver, std::size_t source) const
+{
+  const auto begin =
+    this->Entries.begin() + static_cast<std::ptrdiff_t>(this->EntryBegin(receiver));
+  const auto end = this->Entries.begin() + static_cast<std::ptrdiff_t>(this->EntryEnd(receiver));
+  const auto found = std::lower_bound(
+    begin, end, source, [](const Entry& e, std::size_t s) { return e.Source < s; });
+  if (found == end || found->Source != source)
+  {
+    return -1;
+  }
+  return found - this->Entries.begin();
+}
+
+uint32_t SphericalCover::VisibleCells(std::size_t entry) const
+{
+  uint32_t cells = 0;
+  for (size_t s = this->StripBegin(entry); s < this->StripEnd(entry); ++s)
+  {
+    cells += static_cast<uint32_t>(this->Strips[s].PhiEnd - this->Strips[s].PhiBegin);
+  }
+  return cells;
+}
+
+std::vector<int32_t> SphericalCover::ExpandRow(std::size_t receiver) const
+{
+  const HemisphereGrid& grid = this->Grid();
+  std::vector<int32_t> cells(static_cast<size_t>(grid.CellCount()), RBuffer::NoSource);
+  for (size_t e = this->EntryBegin(receiver); e < this->EntryEnd(receiver); ++e)
+  {
+    for (size_t s = this->StripBegin(e); s < this->StripEnd(e); ++s)
+    {
+      const Strip& strip = this->Strips[s];
+      for (int column = strip.PhiBegin; column < strip.PhiEnd; ++column)
+      {
+        cells[static_cast<size_t>(grid.CellIndex(strip.Row, column))] =
+          static_cast<int32_t>(this->Entries[e].Source);
+      }
+    }
+  }
+  return cells;
+}
+
+double SphericalCover::ProjectedSolidAngle(std::size_t entry) const
+{
+  const HemisphereGrid& grid = this->Grid();
+  double sum = 0.0;
+  for (size_t s = this->StripBegin(entry); s < this->StripEnd(entry); ++s)
+  {
+    const Strip& strip = this->Strips[s];
+    sum += (strip.PhiEnd - strip.PhiBegin) * grid.CellMeasure(strip.Row);
+  }
+  return sum;
+}
+
+double SphericalCover::ProjectedSolidAngle(std::size_t receiver, std::size_t source) const
+{
+  const std::ptrdiff_t entry = this->FindEntry(receiver, source);
+  return entry < 0 ? 0.0 : this->ProjectedSolidAngle(static_cast<size_t>(entry));
+}
+
+double SphericalCover::CoveredProjectedSolidAngle(std::size_t receiver) const
+{
+  // Summed per theta row (cells of a row share a measure) to keep the rounding small.
+  const HemisphereGrid& grid = this->Grid();
+  std::vector<uint32_t> cellsPerRow(static_cast<size_t>(grid.ThetaBins()), 0);
+  for (size_t e = this->EntryBegin(receiver); e < this->EntryEnd(receiver); ++e)
+  {
+    for (size_t s = this->StripBegin(e); s < this->StripEnd(e); ++s)
+    {
+      cellsPerRow[this->Strips[s].Row] += this->Strips[s].PhiEnd - this->Strips[s].PhiBegin;
+    }
+  }
+  double sum = 0.0;
+  for (int row = 0; row < grid.ThetaBins(); ++row)
+  {
+    sum += cellsPerRow[static_cast<size_t>(row)] * grid.CellMeasure(row);
+  }
+  return sum;
+}
+
+std::vector<double> SphericalCover::FormFactors(const std::vector<int>& groupOfPatch,
+  int groupCount) const
+{
+  if (groupOfPatch.size() != this->PatchCount() || groupCount < 0)
+  {
+    throw std::invalid_argument("SphericalCover::FormFactors: need one group per patch (" +
+      std::to_string(this->PatchCount()) + "), got " + std::to_string(groupOfPatch.size()));
+  }
+  const size_t g = static_cast<size_t>(groupCount);
+  std::vector<double> matrix(g * g, 0.0);
+  std::vector<double> groupArea(g, 0.0);
+  for (size_t i = 0; i < this->PatchCount(); ++i)
+  {
+    const int a = groupOfPatch[i];
+    if (a < 0)
+    {
+      continue;
+    }
+    if (a >= groupCount)
+    {
+      throw std::invalid_argument("SphericalCover::FormFactors: group out of range");
+    }
+    groupArea[static_cast<size_t>(a)] += this->Areas[i];
+    for (size_t e = this->EntryBegin(i); e < this->EntryEnd(i); ++e)
+    {
+      const int b = groupOfPatch[this->Entries[e].Source];
+      if (b >= 0)
+      {
+        matrix[static_cast<size_t>(a) * g + static_cast<size_t>(b)] +=
+          this->Areas[i] * this->ProjectedSolidAngle(e) / Pi;
+      }
+    }
+  }
+  for (size_t a = 0; a < g; ++a)
+  {
+    for (size_t b = 0; b < g; ++b)
+    {
+      matrix[a * g + b] = groupArea[a] > 0.0 ? matrix[a * g + b] / groupArea[a] : 0.0;
+    }
+  }
+  return matrix;
+}
+
+std::size_t SphericalCover::MemoryBytes() const
+{
+  return this->RowOffsets.size() * sizeof(uint64_t) + this->Entries.size() * sizeof(Entry) +
+    this->Unoccluded.size() * sizeof(float) + this->Strips.size() * sizeof(Strip) +
+    this->StripDepths.size() * sizeof(float) + this->ColumnOffsets.size() * sizeof(uint64_t) +
+    this->Columns.size() * sizeof(ColumnEntry) + this->Areas.size() * sizeof(double);
+}
+
+std::size_t SphericalCover::UpperBoundBytes(std::size_t patches,
+  const SphericalCoverOptions& options)
+{
+  const std::size_t cells =
+    static_cast<std::size_t>(options.ThetaBins) * static_cast<std::size_t>(options.PhiBins);
+  const std::size_t entriesPerRow = std::min(patches, cells);
+  return patches * (BytesPerPatch + cells * BytesPerStrip + entriesPerRow * BytesPerEntry) +
+    2 * sizeof(uint64_t);
+}
+
+std::size_t SphericalCover::EstimateBytes(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  std::size_t sampleReceivers)
+{
+  const std::size_t count = patches.size();
+  if (count == 0)
+  {
+    return 0;
+  }
+  const std::size_t samples = std::max<std::size_t>(1, std::min(sampleReceivers, count));
+  const HemisphereGrid grid(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  const std::unique_ptr<RBufferFiller> filler =
+    RBufferFiller::Create(options.Fill, patches, grid, options.FillOptions);
+  RBuffer buffer(grid);
+  std::size_t strips = 0;
+  std::size_t entries = 0;
+  for (std::size_t k = 0; k < samples; ++k)
+  {
+    // Evenly spread receivers: k (n - 1) / (samples - 1), or the middle one for one sample.
+    const std::size_t receiver = samples == 1 ? count / 2 : k * (count - 1) / (samples - 1);
+    filler->Fill(receiver, buffer, nullptr);
+    Row row;
+    ExtractRow(buffer, row);
+    strips += row.Strips.size();
+    entries += row.Sources.size();
+  }
+  const double scale = static_cast<double>(count) / samples;
+  return static_cast<std::size_t>(
+           std::ceil(scale * (strips * BytesPerStrip + entries * BytesPerEntry))) +
+    count * BytesPerPatch + 2 * sizeof(uint64_t);
+}
+
+std::size_t SphericalCover::WorkingBytesPerThread(const SphericalCoverOptions& options)
+{
+  const std::size_t cells =
+    static_cast<std::size_t>(options.ThetaBins) * static_cast<std::size_t>(options.PhiBins);
+  const std::size_t samples = cells * static_cast<std::size_t>(options.SamplesTheta) *
+    static_cast<std::size_t>(options.SamplesPhi);
+  // RBuffer: per sample source, depth, flag; per cell source, depth, flags, votes. The
+  // projection fill adds per sample a piece index, two depths and a stamp, per cell a count.
+  const std::size_t buffer = samples * (4 + 4 + 1) + cells * (4 + 4 + 1 + 1);
+  const std::size_t projection =
+    options.Fill == RBufferFill::Projection ? samples * (4 + 8 + 8 + 4) + cells * 2 : 0;
+  return buffer + projection;
+}
+
+std::size_t SphericalCover::WorkingBytes(const SphericalCoverOptions& options, std::size_t threads)
+{
+  // The grid's per-row and per-sample-row/column tables (a few doubles each).
+  const std::size_t grid = 8 *
+    (static_cast<std::size_t>(options.ThetaBins) * (1 + 2 * options.SamplesTheta) +
+      static_cast<std::size_t>(options.PhiBins) * 2 * options.SamplesPhi);
+  return std::max<std::size_t>(threads, 1) * WorkingBytesPerThread(options) + grid;
+}
+
+std::string SphericalCover::MemoryProblem(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  std::size_t threads,
+  std::size_t limitBytes)
+{
+  // Validates the grid (sizes, and a cell count that fits its int indices) without allocating.
+  HemisphereGrid::CheckSizes(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  const auto mib = [](double bytes)
+  {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(bytes < 1024.0 * 1024.0 ? 3 : 0)
+         << bytes / (1024.0 * 1024.0) << " MiB";
+    return text.str();
+  };
+  const std::size_t working = WorkingBytes(options, threads);
+  std::ostringstream problem;
+  if (working > limitBytes)
+  {
+    problem << "building the cover on " << std::max<std::size_t>(threads, 1)
+            << " threads needs about " << mib(static_cast<double>(working))
+            << " of R-buffers for a " << options.ThetaBins << " x " << options.PhiBins << " grid ("
+            << options.SamplesTheta * options.SamplesPhi
+            << " samples per cell), more than the limit of " << mib(static_cast<double>(limitBytes))
+            << "; use a coarser grid or fewer threads";
+    return problem.str();
+  }
+  if (patches.empty())
+  {
+    return std::string();
+  }
+  const std::size_t cover = EstimateBytes(patches, options);
+  if (cover > limitBytes - working)
+  {
+    problem << "the cover of " << patches.size() << " patches would need about "
+            << mib(static_cast<double>(cover) + static_cast<double>(working))
+            << " (with the R-buffers), more than the limit of "
+            << mib(static_cast<double>(limitBytes))
+            << "; use fewer patches (MaxLevel) or a coarser grid";
+  }
+  return problem.str();
+}
+
+} // namespace sphcover

@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SphericalCover.h
+ * @brief The spherical cover of paper §3.3: for every characteristic point P_i its tessellated
+ * hemisphere H_i = union_j h_ij, where h_ij is the region of H_i through which P_i sees patch
+ * Q_j, stored as the sparse N x N matrix whose row i is H_i and whose column j lists the
+ * hemispheres Q_j appears in ("Each row represents a hemisphere ... Each column j gives all
+ * the spherical covers to which the j-th characteristic point contributes").
+ *
+ * Each H_i is the R-buffer of P_i (RBuffer, filled by projection or by ray casting, paper
+ * §4.2.5 / §4.3 Step 2), turned into strips (§3.3: "we store the subregion as a sequence of
+ * strips ranging from phi_1 to phi_2 in a row of the (theta, phi) cell array"); §4.3 Step 4:
+ * "Extract h_ij for each j as a collection of strips from the R buffer".
+ *
+ * Storage (compressed sparse rows, one allocation per array; bytes per item):
+ *  - Strip: uint16 theta row, uint16 phi begin, uint16 phi end (exclusive): 6 bytes, plus its
+ *    mean R as a float in a parallel array: 10 bytes per strip. A strip never wraps across the
+ *    phi seam (a run through phi = 0 is two strips). Strips of one h_ij are consecutive, by
+ *    row then phi.
+ *  - Entry (a non-null H(i, j)): uint32 source j, uint32 index of its first strip (its strips
+ *    run to the next entry's first strip): 8 bytes; plus a float unoccluded projected solid
+ *    angle (below) and the column index (uint32 receiver, uint32 entry): 20 bytes per entry. A
+ * row's entries are sorted by source.
+ *  - Per patch: row offset, column offset (uint64 each) and area (double): 24 bytes.
+ * The source index is stored once per h_ij, not per strip.
+ *
+ * For paper §4.3 Steps 3 and 5 (refining patches that are substantially hidden or whose h_ij
+ * is disconnected, and interpolating hemispheres per §3.4), not done here: each entry carries
+ * the cells h_ij keeps (VisibleCells, ProjectedSolidAngle) and, with the projection fill, the
+ * projected solid angle the unoccluded projection of Q_j would take
+ * (UnoccludedProjectedSolidAngle, at sample resolution); their ratio tells how much of Q_j is
+ * hidden (up to the rounding of boundary cells), and the strips tell whether h_ij is
+ * connected. Rows are rebuilt independently
+ * (BuildRows with a receiver list would replace them), and the strips' row-major order is the
+ * one the row-by-row interpolation of §3.4 walks.
+ *
+ * Building runs the receivers through a ParallelFor in batches; progress is reported, and
+ * abort honoured, from the calling thread between batches. Each row is computed by one call
+ * with no shared mutable state, and batches are appended in receiver order, so the cover does
+ * not depend on the thread count or chunking.
+ */
+#ifndef SPHCOVER_SPHERICALCOVER_H
+#define SPHCOVER_SPHERICALCOVER_H
+
+#include "cover/CandidateCulling.h"
+#include "cover/HemisphereGrid.h"
+#include "cover/RBuffer.h"
+#include "math/ParallelFor.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sphcover
+{
+
+struct Patch;
+
+struct SphericalCoverOptions
+{
+  int ThetaBins = 32;
+  int PhiBins = 128;
+  /// Samples per cell along theta and phi for the coverage classification.
+  int SamplesTheta = 3;
+  int SamplesPhi = 3;
+  RBufferFill Fill = RBufferFill::Projection;
+  RBufferFillOptions FillOptions;
+  /// Receivers per ParallelFor call; progress and abort are checked between calls. 0: 64.
+  std::size_t BatchSize = 0;
+};
+
+class SphericalCover
+{
+public:
+  /// One run of cells of a theta row held by one source: columns [PhiBegin, PhiEnd).
+  struct Strip
+  {
+    uint16_t Row;
+    uint16_t PhiBegin;
+    uint16_t PhiEnd;
+  };
+  /// A non-null element H(i, j) of the matrix.
+  struct Entry
+  {
+    uint32_t Source;
+    uint32_t FirstStrip;
+  };
+  /// An element of column j: the receiver i whose hemisphere holds Q_j, and the entry.
+  struct ColumnEntry
+  {
+    uint32_t Receiver;
+    uint32_t EntryIndex;
+  };
+
+  SphericalCover();
+  ~SphericalCover();
+  SphericalCover(SphericalCover&&) noexcept;
+  SphericalCover& operator=(SphericalCover&&) noexcept;
+
+  /**
+   * Builds the cover of the patches (every patch is both a receiver and a source). Returns
+   * false, leaving the cover empty, when `progress` returned false. Throws
+   * std::invalid_argument for bad options or more than 2^32 - 1 patches, std::runtime_error if
+   * the ray fill cannot initialise Embree.
+   */
+  bool Build(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options = {},
+    const ParallelFor& parallelFor = SequentialFor,
+    const ProgressCallback& progress = nullptr);
+
+  bool Empty() const { return this->RowOffsets.size() < 2; }
+  std::size_t PatchCount() const
+  {
+    return this->RowOffsets.empty() ? 0 : this->RowOffsets.size() - 1;
+  }
+  std::size_t EntryCount() const { return this->Entries.size(); }
+  std::size_t StripCount() const { return this->Strips.size(); }
+  const SphericalCoverOptions& Options() const { return this->BuildOptions; }
+  /// The grid of every hemisphere (valid after Build).
+  const HemisphereGrid& Grid() const { return *this->GridPointer; }
+
+  // --- rows (hemispheres) ----------------------------------------------------------------------
+  /// Entries [EntryBegin(i), EntryEnd(i)) form row i, sorted by source.
+  std::size_t EntryBegin(std::size_t receiver) const { return this->RowOffsets[receiver]; }
+  std::size_t EntryEnd(std::size_t receiver) const { return this->RowOffsets[receiver + 1]; }
+  const Entry& EntryAt(std::size_t entry) const { return this->Entries[entry]; }
+  /// The entry H(i, j), or -1 when h_ij is null.
+  std::ptrdiff_t FindEntry(std::size_t receiver, std::size_t source) const;
+  /// Strips [StripBegin(e), StripEnd(e)) of entry e.
+  std::size_t StripBegin(std::size_t entry) const { return this->Entries[entry].FirstStrip; }
+  std::size_t StripEnd(std::size_t entry) const;
+  const Strip& StripAt(std::size_t strip) const { return this->Strips[strip]; }
+  /// Mean distance R over the strip's cells.
+  float StripDepth(std::size_t strip) const { return this->StripDepths[strip]; }
+  /// Cells of h_ij.
+  uint32_t VisibleCells(std::size_t entry) const;
+  /// Projected solid angle of the unoccluded projection of Q_j in H_i (see the file comment);
+  /// 0 when !HasUnoccluded().
+  float UnoccludedProjectedSolidAngle(std::size_t entry) const { return this->Unoccluded[entry]; }
+  bool HasUnoccluded() const { return this->UnoccludedKnown; }
+  /// The source of every cell of H_i (RBuffer::NoSource where none), index row*PhiBins+column.
+  std::vector<int32_t> ExpandRow(std::size_t receiver) const;
+
+  // --- columns ---------------------------------------------------------------------------------
+  /// Column j: [ColumnBegin(j), ColumnEnd(j)) index ColumnAt, receivers ascending.
+  std::size_t ColumnBegin(std::size_t source) const { return this->ColumnOffsets[source]; }
+  std::size_t ColumnEnd(std::size_t source) const { return this->ColumnOffsets[source + 1]; }
+  const ColumnEntry& ColumnAt(std::size_t k) const { return this->Columns[k]; }
+
+  // --- measures --------------------------------------------------------------------------------
+  /// Projected solid angle of h_ij for entry e: the sum of its cells' measures.
+  double ProjectedSolidAngle(std::size_t entry) const;
+  /// Projected solid angle of h_ij (0 when null).
+  double ProjectedSolidAngle(std::size_t receiver, std::size_t source) const;
+  /// Sum over the covered cells of H_i (pi inside a closed scene).
+  double CoveredProjectedSolidAngle(std::size_t receiver) const;
+  /// Number of non-null h_ij in row i.
+  std::size_t VisibleSourceCount(std::size_t receiver) const
+  {
+    return this->EntryEnd(receiver) - this->EntryBegin(receiver);
+  }
+  double PatchArea(std::size_t patch) const { return this->Areas[patch]; }
+  /**
+   * Area-weighted form factors between groups of patches (e.g. surfaces):
+   * F_ab = (1 / A_a) sum_{i in a} A_i sum_{j in b} Omega(h_ij) / pi, A_a = sum_{i in a} A_i.
+   * groupOfPatch[i] in [0, groupCount) (or negative: patch ignored as a receiver and a
+   * source). Returns the groupCount x groupCount matrix, row-major (row a: from group a).
+   */
+  std::vector<double> FormFactors(const std::vector<int>& groupOfPatch, int groupCount) const;
+
+  // --- storage ---------------------------------------------------------------------------------
+  /// The cover's own arrays, for saving and loading it (the columns are derived from the rows).
+  struct Arrays
+  {
+    int ThetaBins = 0;
+    int PhiBins = 0;
+    int SamplesTheta = 0;
+    int SamplesPhi = 0;
+    int Fill = 0;
+    std::vector<uint64_t> RowOffsets;
+    std::vector<Entry> Entries;
+    std::vector<float> Unoccluded;
+    bool UnoccludedKnown = false;
+    std::vector<Strip> Strips;
+    std::vector<float> StripDepths;
+    std::vector<double> Areas;
+  };
+  Arrays ExportArrays() const;
+  /// Replaces the cover with saved arrays after checking that they are consistent (offsets,
+  /// indices and cell ranges); returns an explanation (and leaves the cover empty) if not.
+  std::string ImportArrays(Arrays arrays);
+
+  // --- statistics and memory -------------------------------------------------------------------
+  /// Candidate culling counts summed over all receivers (projection fill only).
+  const CullingStatistics& Culling() const { return this->CullingCounts; }
+  /// Bytes held by the cover's arrays.
+  std::size_t MemoryBytes() const;
+  /// Bytes per strip, per entry and per patch (see the file comment).
+  static constexpr std::size_t BytesPerStrip = sizeof(Strip) + sizeof(float);
+  static constexpr std::size_t BytesPerEntry = sizeof(Entry) + sizeof(float) + sizeof(ColumnEntry);
+  static constexpr std::size_t BytesPerPatch = 2 * sizeof(uint64_t) + sizeof(double);
+  /**
+   * An upper bound of MemoryBytes() for n patches, known before building: every cell a strip
+   * of its own and an entry of its own (at most min(n, cells) entries per row).
+   */
+  static std::size_t UpperBoundBytes(std::size_t patches, const SphericalCoverOptions& options);
+  /**
+   * An estimate of MemoryBytes() from a few rows actually built (sampleReceivers of them,
+   * spread evenly over the patches) scaled to all n rows; costs sampleReceivers / n of a
+   * build.
+   */
+  static std::size_t EstimateBytes(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options,
+    std::size_t sampleReceivers = 16);
+  /// Working memory of one building thread (its R-buffer and fill scratch), in bytes.
+  static std::size_t WorkingBytesPerThread(const SphericalCoverOptions& options);
+  /// Working memory of a build on `threads` threads: their R-buffers and scratch at once, and
+  /// the grid's tables. From the options alone: nothing is allocated.
+  static std::size_t WorkingBytes(const SphericalCoverOptions& options, std::size_t threads);
+  /**
+   * Why building the cover of `patches` on `threads` threads would not fit in `limitBytes`, or
+   * "". The working memory is checked first, from the options alone (a grid too fine for the
+   * limit is refused without allocating anything); only when it fits are a few rows built for
+   * EstimateBytes (none for an empty `patches`: the check of the grid alone, which a caller can
+   * make before the subdivision). Throws std::invalid_argument for a grid HemisphereGrid rejects.
+   */
+  static std::string MemoryProblem(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options,
+    std::size_t threads,
+    std::size_t limitBytes);
+
+private:
+  struct Row;
+  static void ExtractRow(const RBuffer& buffer, Row& row);
+  void AppendRow(Row& row);
+  /// Derives the columns (which rows contain each source) from the rows.
+  void BuildColumns();
+  void Clear();
+
+  SphericalCoverOptions BuildOptions;
+  std::unique_ptr<HemisphereGrid> GridPointer;
+  std::vector<uint64_t> RowOffsets;
+  std::vector<Entry> Entries;
+  std::vector<float> Unoccluded;
+  std::vector<Strip> Strips;
+  std::vector<float> StripDepths;
+  std::vector<uint64_t> ColumnOffsets;
+  std::vector<ColumnEntry> Columns;
+  std::vector<double> Areas;
+  bool UnoccludedKnown = false;
+  CullingStatistics CullingCounts;
+};
+
+} // namespace sphcover
+
+#endif

@@ -1,0 +1,405 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "render/RadianceRenderer.h"
+
+#include "math/Constants.h"
+
+#include "cover/HemisphereGrid.h"
+#include "cover/RayCastFill.h"
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace sphcover
+{
+
+namespace
+{
+
+bool Finite(const glm::dvec3& v)
+{
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// The base-2 radical inverse of k (van der Corput): the second coordinate of Hammersley's set.
+double RadicalInverse(unsigned k)
+{
+  double result = 0.0;
+  double digit = 0.5;
+  for (; k != 0; k >>= 1, digit *= 0.5)
+  {
+    if (k & 1u)
+    {
+      result += digit;
+    }
+  }
+  return result;
+}
+
+/// The camera's frame: the unit view direction and the right and up vectors scaled to the half
+/// extents of the image plane at distance 1.
+struct ViewFrame
+{
+  glm::dvec3 Eye;
+  glm::dvec3 Forward;
+  glm::dvec3 Right;
+  glm::dvec3 Up;
+};
+
+ViewFrame FrameOf(const Camera& camera)
+{
+  ViewFrame frame;
+  frame.Eye = camera.Position;
+  frame.Forward = glm::normalize(camera.FocalPoint - camera.Position);
+  const glm::dvec3 right = glm::normalize(glm::cross(frame.Forward, camera.ViewUp));
+  const glm::dvec3 up = glm::cross(right, frame.Forward);
+  const double halfHeight = std::tan(0.5 * camera.ViewAngle * Pi / 180.0);
+  const double halfWidth = halfHeight * camera.Width / camera.Height;
+  frame.Right = halfWidth * right;
+  frame.Up = halfHeight * up;
+  return frame;
+}
+}
+
+std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
+{
+  std::ostringstream problem;
+  const std::string name = camera.Name.empty() ? "the camera" : "camera '" + camera.Name + "'";
+  if (!Finite(camera.Position) || !Finite(camera.FocalPoint) || !Finite(camera.ViewUp) ||
+    !std::isfinite(camera.ViewAngle))
+  {
+    problem << name << ": position, focal point, view up and view angle must be finite numbers";
+  }
+  else if (!(LargestCoordinate({ camera.Position }) <= MaxRayCastCoordinate))
+  {
+    // The eye starts every ray: Embree aborts on an origin beyond its range.
+    problem << name << ": the position is beyond the coordinates ray casting can trace (|x| <= "
+            << MaxRayCastCoordinate << ")";
+  }
+  else if (!(camera.ViewAngle > 0.0 && camera.ViewAngle < 180.0))
+  {
+    problem << name << ": the view angle " << camera.ViewAngle << " is not in (0, 180) degrees";
+  }
+  else if (!(glm::length(camera.FocalPoint - camera.Position) > 0.0))
+  {
+    problem << name << ": the position is the focal point (no view direction)";
+  }
+  else if (!(glm::length(camera.ViewUp) > 0.0) ||
+    !(glm::length(glm::cross(glm::normalize(camera.FocalPoint - camera.Position),
+        glm::normalize(camera.ViewUp))) > 1e-6))
+  {
+    problem << name << ": the view up is zero or parallel to the view direction";
+  }
+  else if (camera.Width < 1 || camera.Height < 1)
+  {
+    problem << name << ": the image size " << camera.Width << "x" << camera.Height
+            << " is not at least 1x1";
+  }
+  else if (settings.SamplesPerPixel < 1 || settings.SamplesPerPixel > 4096)
+  {
+    problem << "samples per pixel " << settings.SamplesPerPixel << " is not in [1, 4096]";
+  }
+  else
+  {
+    const double bytes = static_cast<double>(camera.Width) * camera.Height *
+      static_cast<double>(RenderedImage::BytesPerPixel);
+    const double samples =
+      static_cast<double>(camera.Width) * camera.Height * settings.SamplesPerPixel;
+    problem.precision(3);
+    if (bytes > static_cast<double>(settings.MemoryLimitBytes))
+    {
+      problem << "an image of " << camera.Width << "x" << camera.Height << " pixels needs about "
+              << bytes / (1024.0 * 1024.0) << " MiB, more than the limit of "
+              << static_cast<double>(settings.MemoryLimitBytes) / (1024.0 * 1024.0) << " MiB";
+    }
+    else if (samples > static_cast<double>(settings.MaximumSamples))
+    {
+      problem << "an image of " << camera.Width << "x" << camera.Height << " pixels at "
+              << settings.SamplesPerPixel << " samples per pixel casts " << samples
+              << " rays, more than the budget of " << static_cast<double>(settings.MaximumSamples)
+              << " (about "
+              << RenderSecondsPerSample * static_cast<double>(settings.MaximumSamples) / 60.0
+              << " minutes on one core)";
+    }
+  }
+  return problem.str();
+}
+
+RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
+  CharacteristicPointInterpolator interpolator,
+  std::vector<glm::dvec3> exitantRadiance,
+  std::vector<bool> twoSidedSurface)
+  : Patches(std::move(patches))
+  , Interpolator(std::move(interpolator))
+  , Exitant(std::move(exitantRadiance))
+  , TwoSided(std::move(twoSidedSurface))
+  // The ray caster needs a hemisphere grid only for the R-buffer fills, never for CastRay.
+  , Grid(std::make_unique<HemisphereGrid>(1, 1, 1, 1))
+{
+  if (this->Exitant.size() != this->Interpolator.PointCount())
+  {
+    throw std::invalid_argument("RadianceRenderer: " + std::to_string(this->Exitant.size()) +
+      " radiance values for " + std::to_string(this->Interpolator.PointCount()) +
+      " characteristic points");
+  }
+  this->Caster = std::make_unique<RayCastFiller>(this->Patches, *this->Grid, RBufferFillOptions());
+}
+
+RadianceRenderer::~RadianceRenderer() = default;
+
+std::size_t RadianceRenderer::TriangleCount() const
+{
+  return this->Caster->TriangleCount();
+}
+
+glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolator,
+  const std::vector<glm::dvec3>& exitantRadiance,
+  int surface,
+  double u,
+  double v)
+{
+  InterpolationStencil stencil;
+  if (!interpolator.Stencil(surface, u, v, stencil))
+  {
+    return glm::dvec3(0.0);
+  }
+  glm::dvec3 radiance(0.0);
+  for (int k = 0; k < stencil.Count; ++k)
+  {
+    radiance += stencil.Weights[static_cast<size_t>(k)] *
+      exitantRadiance[stencil.Points[static_cast<size_t>(k)]];
+  }
+  return glm::max(radiance, glm::dvec3(0.0));
+}
+
+glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) const
+{
+  return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v);
+}
+
+void RadianceRenderer::SetDirectionalIllumination(DirectionalIllumination illumination)
+{
+  const std::size_t points = this->Interpolator.PointCount();
+  if (illumination.Cover.PatchCount() != points || illumination.Frames.size() != points ||
+    illumination.Materials.size() != points)
+  {
+    throw std::invalid_argument("RadianceRenderer: the directional illumination has a cover of " +
+      std::to_string(illumination.Cover.PatchCount()) + " points, " +
+      std::to_string(illumination.Frames.size()) + " frames and " +
+      std::to_string(illumination.Materials.size()) + " materials for " + std::to_string(points) +
+      " characteristic points");
+  }
+  if (illumination.IncidentRadiance.size() != illumination.Cover.EntryCount())
+  {
+    throw std::invalid_argument(
+      "RadianceRenderer: " + std::to_string(illumination.IncidentRadiance.size()) +
+      " incident radiance values for a cover of " +
+      std::to_string(illumination.Cover.EntryCount()) + " entries");
+  }
+  this->Reflectances = PointReflectances(illumination.Cover.Grid(), illumination.Materials);
+  this->Directional = std::make_unique<DirectionalIllumination>(std::move(illumination));
+}
+
+glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
+  double u,
+  double v,
+  const glm::dvec3& towardEye) const
+{
+  return this->RadianceToward(surface, u, v, towardEye, nullptr);
+}
+
+glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
+  const ReflectanceWeights& table,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
+  const DirectionalIllumination& lit = *this->Directional;
+  const glm::dvec3 local = lit.Frames[point].ToLocal(towardEye);
+  if (!cache)
+  {
+    return DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+  }
+  // DirectionalExitantRadiance depends on the direction through its cell only.
+  const HemisphereGrid& grid = lit.Cover.Grid();
+  const int cell = grid.CellOfLocalDirection(local);
+  if (cell < 0 || !(local.z > 0.0))
+  {
+    return glm::dvec3(0.0);
+  }
+  const uint64_t key = static_cast<uint64_t>(point) * static_cast<uint64_t>(grid.CellCount()) +
+    static_cast<uint64_t>(cell);
+  const std::size_t slot =
+    static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 52) % DirectionalCache::Size;
+  if (cache->Keys[slot] != key)
+  {
+    cache->Keys[slot] = key;
+    cache->Values[slot] =
+      DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+  }
+  return cache->Values[slot];
+}
+
+glm::dvec3 RadianceRenderer::RadianceToward(int surface,
+  double u,
+  double v,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
+  InterpolationStencil stencil;
+  if (!this->Interpolator.Stencil(surface, u, v, stencil))
+  {
+    return glm::dvec3(0.0);
+  }
+  // Paper §5.3.1 with §3.4: each neighbour's exitant radiance toward the eye (the eye's
+  // direction in its own hemisphere frame), blended with the interpolation weights; the same
+  // as the BRDF applied to the interpolated E, the BRDF being linear in E.
+  glm::dvec3 radiance(0.0);
+  for (int k = 0; k < stencil.Count; ++k)
+  {
+    const std::size_t point = stencil.Points[static_cast<size_t>(k)];
+    glm::dvec3 value = this->Exitant[point];
+    const ReflectanceWeights* table = this->Directional ? this->Reflectances.Table(point) : nullptr;
+    if (table)
+    {
+      value += this->DirectionalPart(point, *table, towardEye, cache);
+    }
+    radiance += stencil.Weights[static_cast<size_t>(k)] * value;
+  }
+  return glm::max(radiance, glm::dvec3(0.0));
+}
+
+bool RadianceRenderer::Render(const Camera& camera,
+  const RenderSettings& settings,
+  RenderedImage& image,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress) const
+{
+  const std::string problem = CheckCamera(camera, settings);
+  if (!problem.empty())
+  {
+    throw std::invalid_argument(problem);
+  }
+  const int width = camera.Width;
+  const int height = camera.Height;
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  image.Width = width;
+  image.Height = height;
+  image.Radiance.assign(3 * pixels, 0.0f);
+  image.Depth.assign(pixels, -1.0f);
+  image.SurfaceId.assign(pixels, -1);
+
+  const ViewFrame frame = FrameOf(camera);
+  const int samples = settings.SamplesPerPixel;
+  std::vector<double> offsetX(static_cast<size_t>(samples));
+  std::vector<double> offsetY(static_cast<size_t>(samples));
+  for (int k = 0; k < samples; ++k)
+  {
+    offsetX[static_cast<size_t>(k)] = (k + 0.5) / samples;
+    // Shifted by half a stratum so that one sample sits at the pixel's centre.
+    offsetY[static_cast<size_t>(k)] = RadicalInverse(static_cast<unsigned>(k)) + 0.5 / samples;
+  }
+
+  auto renderRow = [&](int j)
+  {
+    struct Sample
+    {
+      int Surface;
+      double Distance;
+    };
+    std::vector<Sample> hits;
+    std::unique_ptr<DirectionalCache> cache =
+      this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
+    for (int i = 0; i < width; ++i)
+    {
+      hits.clear();
+      glm::dvec3 sum(0.0);
+      for (int k = 0; k < samples; ++k)
+      {
+        const double x = 2.0 * (i + offsetX[static_cast<size_t>(k)]) / width - 1.0;
+        const double y = 2.0 * (j + offsetY[static_cast<size_t>(k)]) / height - 1.0;
+        const glm::dvec3 direction = glm::normalize(frame.Forward + x * frame.Right + y * frame.Up);
+        RayCastFiller::RayHit hit;
+        if (!this->Caster->CastRay(frame.Eye, direction, hit))
+        {
+          continue;
+        }
+        const Patch& patch = this->Patches[hit.Patch];
+        const int surface = patch.SurfaceIndex;
+        hits.push_back({ surface, hit.T });
+        const bool twoSided = static_cast<size_t>(surface) < this->TwoSided.size() &&
+          this->TwoSided[static_cast<size_t>(surface)];
+        if (!hit.FrontSide && !twoSided)
+        {
+          continue; // a back side sends no light
+        }
+        const double u = patch.Domain.U0 + hit.U * (patch.Domain.U1 - patch.Domain.U0);
+        const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
+        // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
+        // its Lambertian part (one hemisphere per point, on the front).
+        sum += hit.FrontSide ? this->RadianceToward(surface, u, v, -direction, cache.get())
+                             : this->SurfaceRadiance(surface, u, v);
+      }
+      const size_t pixel = static_cast<size_t>(j) * static_cast<size_t>(width) + i;
+      const glm::dvec3 mean = sum / static_cast<double>(samples);
+      image.Radiance[3 * pixel + 0] = static_cast<float>(mean.x);
+      image.Radiance[3 * pixel + 1] = static_cast<float>(mean.y);
+      image.Radiance[3 * pixel + 2] = static_cast<float>(mean.z);
+      if (hits.empty())
+      {
+        continue;
+      }
+      // The surface most samples hit (ties: the lowest index) and their mean distance: sort
+      // the few samples by surface and count the runs.
+      std::stable_sort(hits.begin(),
+        hits.end(),
+        [](const Sample& a, const Sample& b) { return a.Surface < b.Surface; });
+      int best = -1;
+      size_t bestCount = 0;
+      double bestDistance = 0.0;
+      for (size_t first = 0; first < hits.size();)
+      {
+        size_t last = first;
+        double distance = 0.0;
+        for (; last < hits.size() && hits[last].Surface == hits[first].Surface; ++last)
+        {
+          distance += hits[last].Distance;
+        }
+        if (last - first > bestCount)
+        {
+          best = hits[first].Surface;
+          bestCount = last - first;
+          bestDistance = distance / static_cast<double>(bestCount);
+        }
+        first = last;
+      }
+      image.SurfaceId[pixel] = best;
+      image.Depth[pixel] = static_cast<float>(bestDistance);
+    }
+  };
+
+  // Ten batches of rows, each run in parallel; progress and abort between batches.
+  const int batch = std::max(1, (height + 9) / 10);
+  for (int first = 0; first < height; first += batch)
+  {
+    const int last = std::min(height, first + batch);
+    parallelFor(static_cast<size_t>(last - first),
+      [&](size_t begin, size_t end)
+      {
+        for (size_t r = begin; r < end; ++r)
+        {
+          renderRow(first + static_cast<int>(r));
+        }
+      });
+    if (progress && !progress(static_cast<double>(last) / height))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+} // namespace sphcover

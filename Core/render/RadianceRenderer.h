@@ -1,0 +1,238 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file RadianceRenderer.h
+ * @brief The final rendering of paper §5.3: a view of the equilibrium illumination through a
+ * pinhole camera, as an HDR radiance image.
+ *
+ * "Any standard visible surface algorithm may be used to carry out the final rendering
+ * process. The brightness assigned to a visible point is dependent on the illumination
+ * function of the surface on which this point lies. For any intermediate visible point, the
+ * illumination function has to be obtained by interpolation/extrapolation of neighbouring
+ * characteristic points." (paper §5.3)
+ *
+ * Visible surface: primary rays from the camera cast with Embree against the tessellation of
+ * the exact patches that the R-buffer's ray fill uses (RayCastFiller::CastRay), the hit refined
+ * by Newton's method on the exact Bezier patch, so the visible point's (surface, u, v) is the
+ * exact one (up to the refinement's tolerance).
+ *
+ * Brightness: paper §5.3.2, "we can also directly obtain it by bilinearly interpolating the
+ * I's in that direction": for a diffuse surface the exitant radiance I of every characteristic
+ * point is the same in all directions (the Radiosity of the propagation, emission included),
+ * so the visible point's radiance is the bilinear interpolation of the I's of the
+ * characteristic points around (u, v), extrapolated near the edges
+ * (CharacteristicPointInterpolator, §3.4 Fig. 6), clamped at zero per band. Emitters show their
+ * emission (it is part of I).
+ *
+ * Non-diffuse surfaces (paper §5.3.1, with the interpolation of §3.4 Fig. 7): "the
+ * illumination function E is interpolated between the neighbouring characteristic points and
+ * the BRDF evaluated toward the eye". Given DirectionalIllumination (the cover, the incident
+ * radiance E_e of every entry, the hemisphere frame and material of every point), the radiance
+ * toward the eye of a visible point on a non-diffuse surface is
+ *     L = sum_k w_k (I_k + I_dir,k(eye_k)),
+ * the sum over the stencil's characteristic points k with their interpolation weights w_k,
+ * I_k the Lambertian part as above (emission + k_d / pi E, `Radiosity`) and I_dir,k the
+ * directional part of point k toward the eye direction expressed in k's hemisphere frame
+ * (normal, phi from the tangent dP/du, SPEC §4.3), evaluated by DirectionalExitantRadiance
+ * (the same function the propagation uses): the weight table of the BRDF at the eye's cell
+ * applied to E_k. The BRDF is linear in E, so the blend of the evaluated points is the BRDF
+ * applied to the blended E: interpolating the hemispherical tessellations strip by strip
+ * (Fig. 7) and then applying the BRDF gives the same value, without building the interpolated
+ * tessellation per pixel. For an ideal mirror I_dir,k is k_s times E of the region of k's
+ * hemisphere holding the mirror direction of the eye's cell; for phong and tabulated BRDFs it
+ * is sum over the row's strips of w(eye cell, strip) E. The directional part is resolved to
+ * the cells of the HemisphereGrid (what the cover stores): a mirror shows the scene at the
+ * resolution of its points' hemispheres. The back side of a two-sided non-diffuse surface
+ * shows its Lambertian part only (the cover has one hemisphere per point, on the front).
+ * Without DirectionalIllumination every surface shows its Lambertian part only.
+ * One evaluation costs O(strips of the point's row); the samples of a row of pixels share a
+ * cache of the evaluations per (point, eye cell), as neighbouring samples mostly repeat them.
+ *
+ * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, the image's row 0
+ * at the bottom (vtkImageData's order). Each pixel is sampled at SamplesPerPixel stratified,
+ * deterministic positions (the Hammersley set: one sample in each of the N columns of width 1/N,
+ * the rows by the base-2 radical inverse), and Radiance is the mean over the samples (a ray that
+ * escapes counts 0). SurfaceId is the surface most samples hit (ties: the lowest index; -1 when
+ * none hit) and Depth the mean distance from the eye of the samples on that surface (-1 when
+ * none). A back side of a one-sided surface has radiance 0 (it sends no light, SPEC §3).
+ *
+ * Pixels are computed independently, in batches of rows run through a ParallelFor; progress is
+ * reported and abort honoured between batches. The image does not depend on the thread count.
+ */
+#ifndef SPHCOVER_RADIANCERENDERER_H
+#define SPHCOVER_RADIANCERENDERER_H
+
+#include "cover/HemisphereGrid.h"
+#include "cover/SphericalCover.h"
+#include "math/ParallelFor.h"
+#include "reflectance/DirectionalReflection.h"
+#include "render/CharacteristicPointInterpolator.h"
+#include "scene/Camera.h"
+#include "scene/Material.h"
+#include "subdivision/Patch.h"
+
+#include <glm/vec3.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sphcover
+{
+
+class RayCastFiller;
+
+/// What the directional part of non-diffuse surfaces needs (paper §5.3.1; see the file comment):
+/// the propagation's result on the cover.
+struct DirectionalIllumination
+{
+  /// The spherical cover of the characteristic points (the interpolator's points, same order).
+  SphericalCover Cover;
+  /// Incident radiance E_e of every entry of the cover (RGB, W m^-2 sr^-1).
+  std::vector<glm::dvec3> IncidentRadiance;
+  /// The hemisphere frame of every point (the cover's frames, HemisphereFrame::OfPatch).
+  std::vector<HemisphereFrame> Frames;
+  /// The material of every point.
+  std::vector<Material> Materials;
+};
+
+/// Seconds one sample (a ray refined on the exact patch and interpolated) takes on one core,
+/// measured on the Cornell box (see MaximumSamples): the budget's time scale.
+constexpr double RenderSecondsPerSample = 1e-6;
+
+struct RenderSettings
+{
+  /// Samples per pixel (stratified, see the file comment), 1 to 4096.
+  int SamplesPerPixel = 4;
+  /// Largest memory the image may take (RenderedImage::BytesPerPixel per pixel).
+  std::size_t MemoryLimitBytes = std::size_t(1024) * 1024 * 1024;
+  /// Largest Width x Height x SamplesPerPixel: 2^30 samples, about 18 minutes on one core at
+  /// RenderSecondsPerSample, more than an hour only in scenes far costlier than the Cornell box
+  /// (a 4K image at 128 samples per pixel); the largest size and spp (32768^2 x 4096) would
+  /// take weeks.
+  std::size_t MaximumSamples = std::size_t(1) << 30;
+};
+
+/// The rendered arrays, pixel (i, j) at index j * Width + i, row 0 at the bottom.
+struct RenderedImage
+{
+  int Width = 0;
+  int Height = 0;
+  /// RGB radiance, W m^-2 sr^-1, 3 per pixel.
+  std::vector<float> Radiance;
+  /// Distance from the eye to the visible point (-1: nothing visible).
+  std::vector<float> Depth;
+  /// Index of the visible surface (-1: nothing visible).
+  std::vector<int32_t> SurfaceId;
+
+  /// Bytes per pixel of the arrays above plus an 8-bit RGB copy for display.
+  static constexpr std::size_t BytesPerPixel =
+    3 * sizeof(float) + sizeof(float) + sizeof(int32_t) + 3;
+};
+
+/// The brightness of paper §5.3.2 at (u, v) of a surface: the interpolation of the
+/// characteristic points' exitant radiance, clamped at zero per band (extrapolation near an
+/// edge can undershoot); zero where the surface has no characteristic points.
+glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolator,
+  const std::vector<glm::dvec3>& exitantRadiance,
+  int surface,
+  double u,
+  double v);
+
+/// The camera and settings' problem in one sentence, or "" when they can be rendered: a view
+/// angle outside (0, 180) degrees, the eye at the focal point, a view up parallel to the view
+/// direction (or zero), a width or height below 1, SamplesPerPixel outside [1, 4096], a
+/// non-finite number, an eye beyond MaxRayCastCoordinate, or an image larger than the memory
+/// limit or the sample budget.
+std::string CheckCamera(const Camera& camera, const RenderSettings& settings);
+
+class RadianceRenderer
+{
+public:
+  /**
+   * @param patches the patches whose tessellation is ray cast (any patches tiling the
+   * surfaces: the subdivision's); Patch::SurfaceIndex and Domain map a hit to its surface's
+   * (u, v).
+   * @param interpolator the layout of the characteristic points over the surfaces.
+   * @param exitantRadiance I of every characteristic point (RGB, W m^-2 sr^-1).
+   * @param twoSidedSurface per surface index, whether its back side shows its radiance too
+   * (missing entries: one-sided).
+   * Throws std::invalid_argument when the sizes differ, std::runtime_error if Embree fails.
+   */
+  RadianceRenderer(std::vector<Patch> patches,
+    CharacteristicPointInterpolator interpolator,
+    std::vector<glm::dvec3> exitantRadiance,
+    std::vector<bool> twoSidedSurface = {});
+  ~RadianceRenderer();
+  RadianceRenderer(const RadianceRenderer&) = delete;
+  RadianceRenderer& operator=(const RadianceRenderer&) = delete;
+
+  /**
+   * Renders the view. Throws std::invalid_argument with CheckCamera's message for a bad camera.
+   * Returns false (the image incomplete) when `progress` returned false.
+   */
+  bool Render(const Camera& camera,
+    const RenderSettings& settings,
+    RenderedImage& image,
+    const ParallelFor& parallelFor = SequentialFor,
+    const ProgressCallback& progress = nullptr) const;
+
+  /**
+   * Adds the directional part of non-diffuse surfaces (see the file comment). Throws
+   * std::invalid_argument when the cover's point count, the frames or the materials differ
+   * from the characteristic points or IncidentRadiance from the cover's entries, and what
+   * Reflectance throws for a bad material (InputError for an unreadable BRDF table).
+   */
+  void SetDirectionalIllumination(DirectionalIllumination illumination);
+  bool HasDirectionalIllumination() const { return this->Directional != nullptr; }
+
+  /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
+  /// §5.3.2); zero where the surface has no characteristic points. The Lambertian part only.
+  glm::dvec3 SurfaceRadiance(int surface, double u, double v) const;
+  /// The radiance of the front side at (u, v) toward the unit world direction `towardEye`:
+  /// SurfaceRadiance plus, with DirectionalIllumination, the interpolated directional part of
+  /// a non-diffuse surface (paper §5.3.1), clamped at zero per band.
+  glm::dvec3 SurfaceRadianceToward(int surface,
+    double u,
+    double v,
+    const glm::dvec3& towardEye) const;
+
+  /// Directional exitant radiance already evaluated, per (point, out cell): neighbouring
+  /// samples share their characteristic points and mostly the eye's cell, so a row of pixels
+  /// evaluates each pair once (a direct-mapped table; a value is the same whether it comes
+  /// from the table or is evaluated, so the image does not depend on the cache).
+  struct DirectionalCache
+  {
+    static constexpr std::size_t Size = 4096;
+    std::vector<uint64_t> Keys = std::vector<uint64_t>(Size, ~uint64_t(0));
+    std::vector<glm::dvec3> Values = std::vector<glm::dvec3>(Size);
+  };
+
+  std::size_t TriangleCount() const;
+
+private:
+  glm::dvec3 RadianceToward(int surface,
+    double u,
+    double v,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+  /// I_dir of point toward the world direction, through the cache when given.
+  glm::dvec3 DirectionalPart(std::size_t point,
+    const ReflectanceWeights& table,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+
+  std::vector<Patch> Patches;
+  CharacteristicPointInterpolator Interpolator;
+  std::vector<glm::dvec3> Exitant;
+  std::vector<bool> TwoSided;
+  std::unique_ptr<HemisphereGrid> Grid;
+  std::unique_ptr<RayCastFiller> Caster;
+  std::unique_ptr<DirectionalIllumination> Directional;
+  PointReflectances Reflectances;
+};
+
+} // namespace sphcover
+
+#endif

@@ -1,0 +1,302 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "subdivision/IntervalSubdivision.h"
+
+#include "geometry/BoundingBoxTree.h"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <climits>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+namespace sphcover
+{
+namespace
+{
+Box BoxOf(const Patch& patch)
+{
+  // The control net's box encloses the patch (convex hull property): the interval box of §4.1.
+  const IntervalVec3& bounds = patch.Geometry.Bounds();
+  return { bounds.Lower(), bounds.Upper() };
+}
+
+/// Receivers per progress report / abort check.
+constexpr std::size_t BatchSize = 64;
+
+/// Bytes a patch of this geometry holds: the struct and its control and derivative nets.
+std::size_t BytesOfPatch(const BezierPatch& geometry)
+{
+  const std::size_t nets = geometry.ControlPoints().size() + geometry.DerivativeNetU().size() +
+    geometry.DerivativeNetV().size();
+  return sizeof(Patch) + nets * sizeof(glm::dvec3);
+}
+}
+
+IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSettings& settings)
+  : Environment(scene)
+  , Settings(settings)
+{
+  const std::string problem = settings.Problem();
+  if (!problem.empty())
+  {
+    throw std::invalid_argument(problem);
+  }
+  // Step 0: Q = S, each surface one patch over its whole domain.
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    this->Nodes.emplace_back(static_cast<int>(s), UVRect::Unit(), 0, scene.Surfaces[s].Patch);
+    this->Leaves.push_back(static_cast<int>(s));
+    this->LeafIsNew.push_back(true);
+    this->NodeBytes += BytesOfPatch(scene.Surfaces[s].Patch);
+  }
+}
+
+PatchView IntervalSubdivision::ViewOfPatch(const Patch& patch) const
+{
+  const Surface& surface = this->Environment.Surfaces[static_cast<size_t>(patch.SurfaceIndex)];
+  const Material& material =
+    this->Environment.Materials[static_cast<size_t>(surface.MaterialIndex)];
+  return ViewOf(patch, material.Type == MaterialType::Diffuse, surface.TwoSided);
+}
+
+void IntervalSubdivision::Split(int node, SplitReason reason)
+{
+  const Patch& parent = this->Nodes[static_cast<size_t>(node)];
+  const BezierPatch& whole =
+    this->Environment.Surfaces[static_cast<size_t>(parent.SurfaceIndex)].Patch;
+  // SplitInThree returns copies, so appending to Nodes cannot invalidate `parent` mid-split.
+  for (Patch& piece : SplitInThree(parent, whole, reason))
+  {
+    this->Nodes.push_back(std::move(piece));
+  }
+}
+
+bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFor& parallelFor)
+{
+  const double cellAngle = this->Settings.CellAngle();
+  const int maxLevel = this->Settings.MaxLevel;
+  // Sweeps needed is unknown in advance; every sweep deepens by at most one level.
+  const double expectedSweeps = maxLevel + 1.0;
+
+  // The pair tests of the last sweep per pair it could have tested (those with a new patch):
+  // what the bounding-volume culling and the limits leave, to predict the next sweep's cost.
+  // 1 before the first sweep (an upper bound: every pair).
+  double testedShare = 1.0;
+  while (true)
+  {
+    const size_t count = this->Leaves.size();
+    const size_t fresh =
+      static_cast<size_t>(std::count(this->LeafIsNew.begin(), this->LeafIsNew.end(), true));
+    // Pairs (receiver, source) with at least one new patch: the sweep's candidates.
+    const double candidates =
+      static_cast<double>(fresh) * (2.0 * static_cast<double>(count) - static_cast<double>(fresh));
+    this->CheckCost(testedShare * candidates, "would make about");
+    std::vector<PatchView> views;
+    std::vector<Box> boxes;
+    views.reserve(count);
+    boxes.reserve(count);
+    for (int node : this->Leaves)
+    {
+      views.push_back(this->ViewOfPatch(this->Nodes[static_cast<size_t>(node)]));
+      boxes.push_back(BoxOf(this->Nodes[static_cast<size_t>(node)]));
+    }
+    BoundingBoxTree tree(boxes);
+    tree.MarkItems(this->LeafIsNew);
+
+    // A split of patch k is allowed when it is not at MaxLevel and projects, from the point
+    // that asks, to more than about one cell (§4.3 note 2).
+    auto canSplit = [&](size_t k, const glm::dvec3& from)
+    {
+      if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= maxLevel)
+      {
+        return false;
+      }
+      const double distance = boxes[k].DistanceTo(from);
+      return distance <= 0.0 || boxes[k].Diagonal() > cellAngle * distance;
+    };
+
+    // Split requests: the highest-priority (lowest) reason per leaf, so that the merge does not
+    // depend on the order in which threads report.
+    std::vector<std::atomic<int>> requested(count);
+    for (auto& r : requested)
+    {
+      r.store(INT_MAX, std::memory_order_relaxed);
+    }
+    auto request = [&](size_t k, SplitReason reason)
+    {
+      int current = requested[k].load(std::memory_order_relaxed);
+      const int value = static_cast<int>(reason);
+      while (value < current &&
+        !requested[k].compare_exchange_weak(current, value, std::memory_order_relaxed))
+      {
+      }
+    };
+    std::atomic<size_t> pairTests{ 0 };
+    std::atomic<size_t> limited{ 0 };
+
+    auto examineReceiver = [&](size_t i)
+    {
+      const PatchView& receiver = views[i];
+      const bool receiverIsNew = this->LeafIsNew[i];
+      size_t localPairs = 0;
+      size_t localLimited = 0;
+      tree.Traverse(
+        [&](const BoundingBoxTree::Node& node)
+        {
+          // Pairs of two old patches were settled in an earlier sweep.
+          if (!receiverIsNew && !node.Flag)
+          {
+            return false;
+          }
+          // A group wholly below the tangent plane sends no light to P_i: classified at once.
+          return receiver.TwoSided ||
+            node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
+        },
+        [&](int32_t item)
+        {
+          const size_t j = static_cast<size_t>(item);
+          if (j == i || (!receiverIsNew && !this->LeafIsNew[j]))
+          {
+            return;
+          }
+          // The limits first: a pair whose patches may not be split either way cannot change Q.
+          const bool sourceMaySplit = canSplit(j, receiver.Point);
+          const bool receiverMaySplit = canSplit(i, views[j].Point);
+          if (!sourceMaySplit && !receiverMaySplit)
+          {
+            ++localLimited;
+            return;
+          }
+          ++localPairs;
+          const PairAssessment assessment =
+            AssessPair(receiver, views[j], this->Settings, sourceMaySplit, receiverMaySplit);
+          if (assessment.SplitSource != SplitReason::None)
+          {
+            request(j, assessment.SplitSource);
+          }
+          if (assessment.SplitReceiver != SplitReason::None)
+          {
+            request(i, assessment.SplitReceiver);
+          }
+        });
+      pairTests.fetch_add(localPairs, std::memory_order_relaxed);
+      limited.fetch_add(localLimited, std::memory_order_relaxed);
+    };
+
+    // Receivers in batches, so progress is reported (and abort honoured) from this thread.
+    for (size_t first = 0; first < count; first += BatchSize)
+    {
+      const size_t batch = std::min(BatchSize, count - first);
+      parallelFor(batch,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = begin; k < end; ++k)
+          {
+            examineReceiver(first + k);
+          }
+        });
+      // The prediction can be low: the budget also holds while the sweep runs.
+      this->CheckCost(static_cast<double>(pairTests.load()), "has made");
+      if (progress &&
+        !progress(
+          std::min(1.0, (this->Stats.Sweeps + double(first + batch) / count) / expectedSweeps)))
+      {
+        return false;
+      }
+    }
+    this->Stats.PairTests += pairTests.load();
+    testedShare = candidates > 0.0 ? static_cast<double>(pairTests.load()) / candidates : 1.0;
+    this->Stats.LimitedPairs += limited.load();
+    ++this->Stats.Sweeps;
+
+    this->CheckBudget(requested);
+    std::vector<int> nextLeaves;
+    std::vector<bool> nextIsNew;
+    for (size_t k = 0; k < count; ++k)
+    {
+      const int reason = requested[k].load();
+      if (reason == INT_MAX)
+      {
+        nextLeaves.push_back(this->Leaves[k]);
+        nextIsNew.push_back(false);
+        continue;
+      }
+      const int firstChild = static_cast<int>(this->Nodes.size());
+      this->Split(this->Leaves[k], static_cast<SplitReason>(reason));
+      this->NodeBytes += 3 * BytesOfPatch(this->Nodes.back().Geometry);
+      ++this->Stats.Splits[static_cast<size_t>(reason)];
+      for (int c = 0; c < 3; ++c)
+      {
+        nextLeaves.push_back(firstChild + c);
+        nextIsNew.push_back(true);
+      }
+    }
+    const bool splitAny = nextLeaves.size() != count;
+    this->Leaves = std::move(nextLeaves);
+    this->LeafIsNew = std::move(nextIsNew);
+    if (!splitAny)
+    {
+      break;
+    }
+  }
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+void IntervalSubdivision::CheckCost(double sweepPairTests, const char* verb) const
+{
+  // The pair tests are the subdivision's time (about 0.7 to 1.7 million per second on two
+  // threads in the Cornell box and the teapot room): a budget on them bounds the run.
+  const double total = static_cast<double>(this->Stats.PairTests) + sweepPairTests;
+  if (total > static_cast<double>(this->Settings.MaximumPairTests))
+  {
+    std::ostringstream problem;
+    problem.precision(3);
+    problem << "sweep " << this->Stats.Sweeps << " of " << this->Leaves.size() << " patches "
+            << verb << " " << total << " pair tests in all, more than the budget of "
+            << static_cast<double>(this->Settings.MaximumPairTests)
+            << " (minutes to hours); raise the tolerance or lower MaxLevel";
+    throw std::length_error(problem.str());
+  }
+}
+
+void IntervalSubdivision::CheckBudget(const std::vector<std::atomic<int>>& requested) const
+{
+  // Checked before splitting, so the budget is never exceeded: a tolerance so small that every
+  // pair splits, with a deep MaxLevel, would otherwise triple the patch list sweep after sweep.
+  std::size_t leaves = this->Leaves.size();
+  std::size_t bytes = this->NodeBytes;
+  for (size_t k = 0; k < requested.size(); ++k)
+  {
+    if (requested[k].load() != INT_MAX)
+    {
+      const Patch& parent = this->Nodes[static_cast<size_t>(this->Leaves[k])];
+      leaves += 2;
+      bytes += 3 * BytesOfPatch(parent.Geometry);
+    }
+  }
+  if (leaves > this->Settings.MaximumPatches || bytes > this->Settings.MemoryLimitBytes)
+  {
+    std::ostringstream problem;
+    problem.precision(3);
+    problem << "sweep " << this->Stats.Sweeps << " would make " << leaves << " patches ("
+            << static_cast<double>(bytes) / (1024.0 * 1024.0) << " MiB), more than the budget of "
+            << this->Settings.MaximumPatches << " patches and "
+            << static_cast<double>(this->Settings.MemoryLimitBytes) / (1024.0 * 1024.0)
+            << " MiB; raise the tolerance or lower MaxLevel";
+    throw std::length_error(problem.str());
+  }
+}
+
+std::vector<Patch> IntervalSubdivision::Patches() const
+{
+  return CollectPatches(this->Nodes, this->Leaves);
+}
+
+} // namespace sphcover
