@@ -17,6 +17,8 @@
  * bounds, so that a patch lying exactly in the tangent plane (a coplanar neighbour) or a
  * collapsed edge (where N_j = 0 and f = 0) is decided rather than left undecided forever. The
  * same tests drive the piece quadtree of the projection fill.
+ *
+ * Complexity: two range bounds per call, O(m^2 n^2) for a source of degree (m, n).
  */
 #ifndef SPHCOVER_CANDIDATECULLING_H
 #define SPHCOVER_CANDIDATECULLING_H

@@ -14,7 +14,8 @@
  *
  * Measure: the projected solid angle (cosine-weighted) of a cell,
  *   integral cos(theta) sin(theta) dtheta dphi = dphi (cos 2 theta0 - cos 2 theta1) / 4,
- * (SPEC §4.3), so that the cells sum to pi and sum_cells L cos dw is the irradiance.
+ * (Documentation/Pipeline.md#spherical-cover), so that the cells sum to pi and sum_cells L cos dw
+ * is the irradiance.
  *
  * Samples: each cell carries SamplesTheta x SamplesPhi sample directions on the midpoints of
  * strata of equal projected solid angle: uniform in s = sin^2(theta) (since
@@ -44,11 +45,12 @@ struct Patch;
  * @brief The local frame of a hemisphere: origin P_i, unit normal N (theta = 0), unit tangent
  * T (phi = 0) and B = N x T (phi = pi/2), a right-handed frame (T, B, N).
  *
- * T is dP/du at the characteristic point projected onto the tangent plane and normalised (SPEC
- * §4.3). Where that projection vanishes (dP/du = 0 at a collapsed edge; a characteristic point
- * at a parametric centre of a regular patch never has it) T is dP/dv x N normalised, which is
- * the direction dP/du would have; where that vanishes too, T is the world axis (x, then y,
- * then z) least parallel to N, projected onto the tangent plane: a fixed tangent.
+ * T is dP/du at the characteristic point projected onto the tangent plane and normalised
+ * (Documentation/Pipeline.md#spherical-cover). Where that projection vanishes (dP/du = 0 at a
+ * collapsed edge; a characteristic point at a parametric centre of a regular patch never has it) T
+ * is dP/dv x N normalised, which is the direction dP/du would have; where that vanishes too, T is
+ * the world axis (x, then y, then z) least parallel to N, projected onto the tangent plane: a fixed
+ * tangent.
  */
 struct HemisphereFrame
 {

@@ -6,53 +6,36 @@
  * (or none) and its distance R, "a Z-buffer like algorithm ... in which the distance R in
  * spherical coordinates is used in place of Z".
  *
- * The buffer has two levels:
+ * Two levels:
  *  - samples: the fine grid of HemisphereGrid sample directions (SamplesTheta x SamplesPhi per
- *    cell). A fill writes, per sample, the nearest front-facing source along the sample ray
- *    and, where it knows it, the exact distance R and whether the ray meets that surface at a
- *    grazing angle;
- *  - cells: Classify() gives every cell by coverage, in two rounds of votes over its samples:
- *    first the group (the surface of the source patch; uncovered samples are a group of their
- *    own) wins, then, within that group, one of its patches. A single round over patches would
- *    be biased wherever a surface is split into patches: a cell three-ninths patch j1,
- *    two-ninths patch j2 of the same surface and four-ninths empty would go empty although the
- *    surface covers five ninths: a bias against finely split surfaces that grows with the
- *    number of patches meeting in a cell.
- *    Each round is a plurality vote; with RBufferFillOptions::DiffuseRounding the vote diffuses
- *    its rounding error along the theta row (as Floyd-Steinberg dithering rounds grey
- *    levels): walking the row in phi, every group and every patch carries the samples it
- *    covered minus perCell for every cell it won, and the candidate of largest count + carry
- *    among those present in the cell wins ("no source" carries nothing). The plain vote rounds
- *    every cell on its own, which is biased wherever a source's boundary is not straight: at a
- *    convex corner the source covers less than half of the cell far more often than more, so
- *    a small convex source (the Cornell lamp seen from a wall, a few hundred cells) loses 1-2 %
- *    of its projected solid angle (against Lambert's contour integral: -2.15 % on the back
- *    wall at 27 x 27 wall patches), and everything it lights is as much darker. With the carry
- *    each source's cells in a row sum to its covered samples within the rounding of the last
- *    carry (-0.3 % on the back wall). The carries restart at each row (a one-sample difference
- *    between two fills changes at
- *    most the rest of its row). A tie between the top scores goes to the tied candidate met
- *    first in HemisphereGrid::SamplesFromCentre() order (the one covering the sample nearest
- *    the cell's centre), so ties need no depth and favour neither side of a boundary. The
- *    cell's R is the distance to the winner along its first sample in centre order (the
- *    representative sample).
+ *    cell). A fill (RBufferFiller: projection or ray casting) writes, per sample, the nearest
+ *    front-facing source along the sample ray and, where it knows it, the exact distance R and
+ *    whether the ray meets that surface at a grazing angle;
+ *  - cells: Classify() gives every cell by coverage, in two rounds of plurality votes over its
+ *    samples: first the group (the surface of the source patch; uncovered samples are a group
+ *    of their own), then one patch of the winning group. With DiffuseRounding the vote carries
+ *    its rounding error along the theta row (every group and patch carries the samples it
+ *    covered minus perCell for every cell it won, the largest count + carry among the
+ *    candidates present in the cell wins, "no source" carries nothing, the carries restart at
+ *    each row), so a source's cells in a row sum to its covered samples. A tie goes to the
+ *    candidate met first in HemisphereGrid::SamplesFromCentre() order; the cell's R is the
+ *    winner's distance along its first sample in that order. Why two rounds and the carry,
+ *    with measurements: Documentation/notes/r-buffer-vote.md.
  *
- * Visibility semantics shared by both fills (RBufferFiller): surfaces are opaque and one-sided
- * (SPEC §3). A sample is covered by Q_j if the first surface the ray P_i + t w, t > 0, meets is
- * Q_j and it meets its FRONT side. A back side met first hides what lies behind it but sends
- * no light: the sample stays empty (RBufferFillOptions::BackFacesOcclude, the default). Paper
- * §4.2.1 instead drops patches that turn their back on P_i altogether; that is what
- * BackFacesOcclude = false does (back sides are then transparent), which changes nothing in a
- * closed, consistently oriented scene (the first surface along any ray is met from the front)
- * but lets points that see back sides (the floor under the Cornell box's bottomless blocks, the
- * teapot's open lid gap) see through them, breaking reciprocity A_i F_ij = A_j F_ji.
- * The receiver's own patch: a flat or convex patch never meets the rays of its own hemisphere;
- * a concave one (the inside of a sphere) does, near the horizon, and those directions do
- * receive light from Q_i. RBufferFillOptions::CountSelfVisibility chooses whether such
- * directions record i (h_ii, needed for energy conservation and for the covered projected
- * solid angle to be pi in a curved closed scene) or stay empty (paper §3.3's convention "a
- * patch is not visible to itself"). Hits closer than SelfExclusionFraction * Size() of the
- * receiver patch are never its own (that is P_i itself).
+ * Visibility, shared by both fills: surfaces are opaque and one-sided (Data/scenes/FORMAT.md).
+ * A sample is covered by Q_j if the first surface the ray P_i + t w, t > 0, meets is Q_j and
+ * it meets its front side. A back side met first hides what lies behind it but sends no light
+ * (BackFacesOcclude, the default); BackFacesOcclude = false is paper §4.2.1's dropping of
+ * back-facing patches (back sides transparent): the same in a closed, consistently oriented
+ * scene, but it breaks reciprocity A_i F_ij = A_j F_ji where points see back sides (the floor
+ * under the Cornell box's bottomless blocks, the teapot's open lid gap). A concave receiver
+ * patch (the inside of a sphere) meets rays of its own hemisphere near the horizon:
+ * CountSelfVisibility records them as h_ii (needed for energy conservation and for the covered
+ * projected solid angle to be pi in a curved closed scene) or leaves them empty (paper §3.3:
+ * "a patch is not visible to itself"). Hits closer than SelfExclusionFraction * Size() of the
+ * receiver patch are P_i itself, never its own patch.
+ *
+ * Complexity: Classify() is O(samples x distinct sources per cell); memory O(samples).
  */
 #ifndef SPHCOVER_RBUFFER_H
 #define SPHCOVER_RBUFFER_H
@@ -72,7 +55,8 @@ namespace sphcover
 struct Patch;
 struct CullingStatistics;
 
-/// How an R-buffer is filled (SPEC §4.3: two fills of the same R-buffer).
+/// How an R-buffer is filled (two fills of the same R-buffer,
+/// Documentation/Pipeline.md#spherical-cover).
 enum class RBufferFill
 {
   /// Paper §4.3 Step 2: project each candidate patch into (theta, phi) with a depth test.
@@ -106,8 +90,8 @@ struct RBufferFillOptions
   /// back-facing patches, which makes them transparent. See the file comment.
   bool BackFacesOcclude = true;
   /// Classify() diffuses the cell vote's rounding error along each theta row (see the file
-  /// comment): each source keeps its sampled coverage instead of losing 1-2 % of a small convex
-  /// source. Off: the plain plurality vote, cell by cell (exactly reciprocal in symmetric
+  /// comment): each source keeps its sampled coverage (Documentation/notes/r-buffer-vote.md).
+  /// Off: the plain plurality vote, cell by cell (exactly reciprocal in symmetric
   /// configurations, the cells of CountSelfVisibility on and off complementary).
   bool DiffuseRounding = false;
 };

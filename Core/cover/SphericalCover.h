@@ -24,20 +24,18 @@
  *  - Per patch: row offset, column offset (uint64 each) and area (double): 24 bytes.
  * The source index is stored once per h_ij, not per strip.
  *
- * For paper §4.3 Steps 3 and 5 (refining patches that are substantially hidden or whose h_ij
- * is disconnected, and interpolating hemispheres per §3.4), not done here: each entry carries
- * the cells h_ij keeps (VisibleCells, ProjectedSolidAngle) and, with the projection fill, the
- * projected solid angle the unoccluded projection of Q_j would take
- * (UnoccludedProjectedSolidAngle, at sample resolution); their ratio tells how much of Q_j is
- * hidden (up to the rounding of boundary cells), and the strips tell whether h_ij is
- * connected. Rows are rebuilt independently
- * (BuildRows with a receiver list would replace them), and the strips' row-major order is the
+ * For paper §4.3 Steps 3 and 5 (done by CoverRefinement, not here) each entry carries the
+ * cells h_ij keeps (VisibleCells, ProjectedSolidAngle) and, with the projection fill, the
+ * projected solid angle of Q_j's unoccluded projection (UnoccludedProjectedSolidAngle, at
+ * sample resolution): their ratio tells how much of Q_j is hidden (up to the rounding of
+ * boundary cells), the strips whether h_ij is connected. The strips' row-major order is the
  * one the row-by-row interpolation of §3.4 walks.
  *
  * Building runs the receivers through a ParallelFor in batches; progress is reported, and
- * abort honoured, from the calling thread between batches. Each row is computed by one call
- * with no shared mutable state, and batches are appended in receiver order, so the cover does
- * not depend on the thread count or chunking.
+ * abort honoured, from the calling thread between batches. Rows are computed independently
+ * and appended in receiver order, so the cover does not depend on the thread count.
+ * Complexity: one R-buffer fill per receiver over the candidates CandidateCulling keeps
+ * (O(N^2) pairs at worst, the paper's O(N^2) cover); memory as above, O(entries + strips).
  */
 #ifndef SPHCOVER_SPHERICALCOVER_H
 #define SPHCOVER_SPHERICALCOVER_H

@@ -16,30 +16,16 @@
  *  - height above a plane h(u,v) = M . (Q(u,v) - P) for a fixed vector M through a point P,
  *    degree (m, n) (paper §4.2.2 containment with M = N_i, and §4.2.4 characterisability).
  *
- * RangeMethod::NaturalInterval evaluates the defining formula with interval arguments
- * U = [u0,u1], V = [v0,v1]: Q = sum_i B_i^m(U) sum_j B_j^n(V) P_ij with
- * B_i^m(U) = C(m,i) U^i (1-U)^(m-i), likewise the hodographs for Qu and Qv, then the cross and
- * dot products of paper §4.2 in Interval arithmetic. Q - P is evaluated as the Bezier form with
- * control points P_ij - P, which keeps the bounds of f, g and h independent of where the origin
- * lies. It is cheap but overestimates: its excess width shrinks only linearly with the
- * rectangle, and over the whole patch (U = [0,1]) the basis alone is overestimated up to 2^m.
- *
- * RangeMethod::Bernstein restricts the control net and the derivative nets exactly to the
- * rectangle (de Casteljau), multiplies the Bernstein polynomials by the product formula
- * B_a^p B_b^q = C(p,a) C(q,b) / C(p+q,a+b) B_{a+b}^{p+q}, and bounds the polynomial by the
- * smallest and largest of its Bernstein coefficients (convex hull property). The excess width
- * shrinks quadratically with the rectangle, and each Bernstein coefficient is a convex
- * combination of values the natural evaluation encloses, so the Bernstein bounds are never
- * wider than the natural ones (up to rounding). This is the default (SPEC §4.2).
- *
- * Rigour: the natural bounds are rigorous (outward-rounded Interval arithmetic throughout). The
- * Bernstein coefficients are computed in double arithmetic and the final min/max is widened by
- * an a-priori bound on their rounding error (Higham's gamma_k analysis, see the .cxx), which
- * encloses the exact coefficients of the restricted nets as surely as Interval arithmetic
- * would, about 50 times faster; the tests check this against exact rational arithmetic. The
- * restriction of the nets to the rectangle is done in doubles and its rounding (a few ulps of
- * the coordinates, from convex combinations only) is not enclosed; on the whole patch
- * (UVRect::Unit()) there is none.
+ * RangeMethod::NaturalInterval evaluates the defining Bernstein sums with interval arguments
+ * U = [u0,u1], V = [v0,v1] in outward-rounded Interval arithmetic (rigorous; its excess width
+ * shrinks linearly with the rectangle). RangeMethod::Bernstein, the default, restricts the
+ * nets exactly to the rectangle (de Casteljau), forms the polynomial's Bernstein coefficients
+ * by the product formula and takes their min/max (convex hull property), widened by an
+ * a-priori bound on their rounding error (the restriction's own rounding, a few ulps, is not
+ * enclosed except on UVRect::Unit()); its excess width shrinks quadratically and it is never
+ * wider than the natural bound (up to rounding). Q - P is always evaluated with control
+ * points P_ij - P, so no bound depends on where the origin lies. Details, rigour and
+ * measurements: Documentation/notes/range-bounds.md.
  *
  * Sign convention of f: f < 0 over the whole rectangle means P lies on the front side
  * (the side of N) of every tangent plane there, i.e. the front of the whole sub-patch faces P;
@@ -47,13 +33,11 @@
  * holds with the opposite orientation of N, so callers test the sign they need.)
  *
  * All functions throw std::invalid_argument unless rect.IsValid() (0 <= U0 <= U1 <= 1,
- * 0 <= V0 <= V1 <= 1; zero-width rectangles are allowed). They do not allocate: the
- * coefficient buffers are fixed-capacity arrays on the stack, sized for the smallest of the
- * maximum degrees 3, 7, 15 that holds the patch (about 3 KB for bicubic patches, at most
- * about 60 KB for degree 15), so they are safe to call concurrently from many threads.
+ * 0 <= V0 <= V1 <= 1; zero-width rectangles are allowed). They do not allocate (fixed-capacity
+ * stack buffers), so they are safe to call concurrently from many threads.
  *
- * Cost per call (Release, one core, bicubic patch): Bernstein f about 1.4 us, natural f about
- * 6 us; Bernstein grows as O(m^2 n^2) and is slower than natural from degree 7 on.
+ * Complexity: Bernstein O(m^2 n^2) per call, natural O(m n); measured costs:
+ * Documentation/notes/range-bounds.md.
  */
 #ifndef SPHCOVER_BERNSTEINBOUNDS_H
 #define SPHCOVER_BERNSTEINBOUNDS_H
@@ -68,7 +52,8 @@
 namespace sphcover
 {
 
-/// How a range over a parametric rectangle is bounded (SPEC §4.2: both selectable).
+/// How a range over a parametric rectangle is bounded (both selectable,
+/// Documentation/Pipeline.md#interval-subdivision).
 enum class RangeMethod
 {
   Bernstein,      ///< min/max of the Bernstein coefficients over the exact sub-patch

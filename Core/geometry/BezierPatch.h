@@ -13,7 +13,7 @@
  * DeCasteljau.h); the derivative nets (hodographs) are computed once at construction, so
  * partial derivatives are evaluated as Bezier patches of lower degree. Sub-patches
  * (SplitU/SplitV/SubPatch) are exact: they are the same polynomial surface reparametrised,
- * not a tessellation (SPEC §4.2).
+ * not a tessellation (Documentation/Pipeline.md#interval-subdivision).
  *
  * Normal() handles degenerate points, where dQ/du x dQ/dv vanishes: see its documentation.
  */

@@ -4,6 +4,10 @@
  * @brief A bounding-volume hierarchy over axis-aligned boxes, for culling the pairwise work
  * of the subdivision: whole groups of patches below a tangent plane are skipped at once
  * (paper §4.1 uses interval boxes of patches in the same way).
+ *
+ * Input: one box per item; the tree splits at the median of the box centres along the longest
+ * axis (std::nth_element) down to leaves of at most leafSize items. Complexity: building
+ * O(n log n), a traversal O(nodes entered).
  */
 #ifndef SPHCOVER_BOUNDINGBOXTREE_H
 #define SPHCOVER_BOUNDINGBOXTREE_H

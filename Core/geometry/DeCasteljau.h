@@ -12,6 +12,9 @@
  *
  * Nets are stored row-major with u fastest: point j*(degreeU+1)+i is P_ij. No function here
  * allocates; buffers of MaxNetDegree+1 points per row suffice.
+ *
+ * Complexity: a curve of degree d costs O(d^2); a net of degree (m, n) O(m^2 n + n^2) to
+ * evaluate and O(m^2 n + n^2 m) to restrict (every row, then every column).
  */
 #ifndef SPHCOVER_DECASTELJAU_H
 #define SPHCOVER_DECASTELJAU_H

@@ -5,6 +5,10 @@
  * R of paper §4.2.5 where the R-buffer fills need it exactly (the projection fill's depth test
  * between patches whose depth ranges overlap, the ray fill's refinement of a hit on the
  * tessellation).
+ *
+ * Input: a patch, a ray and an initial guess (u, v, t); output: the converged (u, v, t) or
+ * failure. Complexity: O(m^2 n + n^2) per Newton step (EvaluatePointAndPartials), a few steps
+ * from a nearby guess.
  */
 #ifndef SPHCOVER_RAYPATCHINTERSECTION_H
 #define SPHCOVER_RAYPATCHINTERSECTION_H

@@ -26,8 +26,8 @@ namespace sphcover
 {
 
 /// The next double above x (one ulp towards plus infinity); +inf and NaN pass through.
-/// A bit step instead of std::nextafter: a libm call per end point made interval arithmetic
-/// several times slower, and the range tests of the subdivision make millions of them.
+/// A bit step, not std::nextafter: the range tests make millions of these (why:
+/// Documentation/notes/interval-arithmetic.md).
 inline double RoundUp(double x)
 {
   if (!(x < std::numeric_limits<double>::infinity())) // +inf or NaN

@@ -36,6 +36,8 @@
  * linear fields).
  *
  * Extrapolated weights can be negative; the renderer clamps interpolated radiance at zero.
+ * Complexity: building O(points) (per surface a bucket grid of about one patch per bucket); a
+ * query visits the patches of a few buckets, O(1) on a uniform layout.
  */
 #ifndef SPHCOVER_CHARACTERISTICPOINTINTERPOLATOR_H
 #define SPHCOVER_CHARACTERISTICPOINTINTERPOLATOR_H

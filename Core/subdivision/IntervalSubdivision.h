@@ -27,6 +27,10 @@
  * The R-buffer criterion of §4.2.5 (visibility, hiding by other patches) belongs to the
  * spherical cover stage. The result does not depend on the number of threads: the split
  * requests of a sweep are merged by criterion priority, not by arrival order.
+ *
+ * Complexity: the pair tests (SubdivisionStatistics::PairTests, at most N^2 per sweep for N
+ * patches, far fewer after the hierarchy's culling), each a few range bounds of
+ * SubdivisionCriteria.h; memory O(patches made), with their derivative nets.
  */
 #ifndef SPHCOVER_INTERVALSUBDIVISION_H
 #define SPHCOVER_INTERVALSUBDIVISION_H

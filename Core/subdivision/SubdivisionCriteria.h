@@ -31,6 +31,9 @@
  * A pair classified below the horizon or back-facing is never split (the paper's "fully facing
  * the other way"). Splits are further limited by the caller (MaxLevel, and no patch is split
  * once it projects to about one (theta,phi) cell: paper §4.3 note 2).
+ *
+ * Complexity: one pair costs at most four range bounds, O(m^2 n^2) each with Bernstein bounds
+ * for patches of degree (m, n) (BernsteinBounds.h).
  */
 #ifndef SPHCOVER_SUBDIVISIONCRITERIA_H
 #define SPHCOVER_SUBDIVISIONCRITERIA_H
@@ -55,17 +58,12 @@ enum class Criterion
 };
 constexpr int NumberOfCriteria = 4;
 
-/**
- * Default budget of patches. Every later stage grows with the patch count n: the cover holds
- * n hemispheres (a few MB each at the default grid before compression) and the propagation
- * shoots n columns; a million patches is 70 times the refined teapot room (13461 points).
- */
+/// Default budget of patches: every later stage grows with the patch count (the cover holds
+/// one hemisphere per patch, the propagation shoots one column per patch). Why this value:
+/// Documentation/notes/subdivision-budgets.md.
 constexpr std::size_t DefaultMaximumPatches = 1000000;
-/**
- * Default budget of pair tests, the subdivision's time: 1e9 is about 10 to 25 minutes on two
- * threads (0.7 to 1.7 million per second measured in the teapot room and the Cornell box, whose
- * default subdivisions make 5.0 and 1.2 million).
- */
+/// Default budget of pair tests, the subdivision's time (about 10 to 25 minutes on two threads;
+/// the rates behind it: Documentation/notes/subdivision-budgets.md).
 constexpr std::size_t DefaultMaximumPairTests = 1000000000;
 /// Default budget of the subdivision's memory (every patch made, with its derivative nets).
 constexpr std::size_t DefaultSubdivisionMemoryBytes = std::size_t(8192) * 1024 * 1024;
