@@ -33,6 +33,9 @@ constexpr const char* CameraParameters = "CameraParameters";
 /// 4 named components: theta_bins, phi_bins, max_level, tolerance.
 constexpr const char* SceneSettings = "SceneSettings";
 constexpr const char* SourceFile = "SourceFile";
+/// One string: the scene's fingerprint (sphcover::Fingerprint), carried to every stage's output
+/// so that a saved solution can tell the scene it was solved from.
+constexpr const char* SceneFingerprint = "SceneFingerprint";
 
 // Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
 constexpr const char* PatchId = "PatchId";
