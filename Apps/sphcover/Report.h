@@ -5,7 +5,7 @@
  * area-weighted mean irradiance and exitant radiance, the form factors between named surfaces
  * (area-weighted over the source surface), the energy balance and the counts. The figures are
  * vtkLightPropagationFilter's (its output's field data, Core's SolutionFigures); this only
- * formats them. The caller adds `timings_s` (and `image`).
+ * formats them, with the timings the commands measure (`timings_s`; render adds `image`).
  */
 #ifndef SPHCOVER_REPORT_H
 #define SPHCOVER_REPORT_H
