@@ -33,6 +33,9 @@ constexpr const char* CameraParameters = "CameraParameters";
 /// 4 named components: theta_bins, phi_bins, max_level, tolerance.
 constexpr const char* SceneSettings = "SceneSettings";
 constexpr const char* SourceFile = "SourceFile";
+/// One string: the scene's fingerprint (sphcover::Fingerprint), carried to every stage's output
+/// so that a saved solution can tell the scene it was solved from.
+constexpr const char* SceneFingerprint = "SceneFingerprint";
 
 // Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
 constexpr const char* PatchId = "PatchId";
@@ -84,6 +87,17 @@ constexpr const char* Shooter = "Shooter";
 constexpr const char* MaxChange = "MaxChange";
 constexpr const char* UnshotEnergy = "UnshotEnergy";
 constexpr const char* Seconds = "Seconds";
+/// Field data, named components: Shots, Seconds (of the propagation).
+constexpr const char* PropagationStatistics = "PropagationStatistics";
+/// Field data, the figures of the solution (Core's SolutionFigures), one tuple per entry of
+/// SurfaceNames: area (m^2), area-weighted mean irradiance (3) and exitant radiance (3), and
+/// the form factors to every named surface (one component per name).
+constexpr const char* SurfaceArea = "SurfaceArea";
+constexpr const char* SurfaceMeanIrradiance = "SurfaceMeanIrradiance";
+constexpr const char* SurfaceMeanExitantRadiance = "SurfaceMeanExitantRadiance";
+constexpr const char* SurfaceFormFactors = "SurfaceFormFactors";
+/// Field data, named components: CharacteristicPoints, Strips, RelativeImbalance.
+constexpr const char* SolutionStatistics = "SolutionStatistics";
 
 // Rendering (SPEC §4.5): point data of the image (with SurfaceId).
 constexpr const char* Radiance = "Radiance";

@@ -268,4 +268,10 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   auto sourceFile = vtkNamedArrays::String(names::SourceFile, 1);
   sourceFile->SetValue(0, scene.SourceFile);
   fd->AddArray(sourceFile);
+
+  // Passed on by every stage, so that a solution written to a file names the scene it was
+  // solved from (sphcover render --solution refuses another one).
+  auto fingerprint = vtkNamedArrays::String(names::SceneFingerprint, 1);
+  fingerprint->SetValue(0, sphcover::Fingerprint(scene));
+  fd->AddArray(fingerprint);
 }

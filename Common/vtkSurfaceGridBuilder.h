@@ -43,7 +43,8 @@ public:
     const std::vector<int>& surfaceOfCell,
     vtkUnstructuredGrid* output);
 
-  /// Adds the field data: surface and material names, cameras, settings, source file.
+  /// Adds the field data: surface and material names, cameras, settings, source file and the
+  /// scene's fingerprint (sphcover::Fingerprint).
   static void AddFieldData(const sphcover::Scene& scene, vtkUnstructuredGrid* output);
 
   /// Replaces the contents of `output` with the characteristic points of the patches (paper

@@ -11,6 +11,7 @@
 #include "cover/SphericalCover.h"
 #include "propagation/ExchangeBalance.h"
 #include "propagation/LightPropagation.h"
+#include "propagation/SolutionFigures.h"
 #include "scene/Material.h"
 
 #include <vtkDataArray.h>
@@ -25,11 +26,142 @@
 
 #include <glm/geometric.hpp>
 
+#include <chrono>
 #include <exception>
+#include <sstream>
+#include <string>
 
 namespace names = vtkSphericalCoverArrayNames;
 
+namespace
+{
+/// True when the points name their surfaces (SurfaceNames, SurfaceNameId): the solution's
+/// figures are per named surface.
+bool HasSurfaceNames(vtkPolyData* points)
+{
+  return points->GetFieldData()->GetAbstractArray(names::SurfaceNames) &&
+    points->GetPointData()->GetArray(names::SurfaceNameId);
+}
+
+/// Per point its named surface (SurfaceNameId, an index of SurfaceNames) and its area; "" or
+/// the problem.
+std::string ReadSurfaces(vtkPolyData* points, sphcover::PointIllumination& illumination)
+{
+  auto* surfaceNames =
+    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::SurfaceNames));
+  vtkDataArray* nameId = points->GetPointData()->GetArray(names::SurfaceNameId);
+  vtkDataArray* area = points->GetPointData()->GetArray(names::Area);
+  if (!surfaceNames || !nameId || !area)
+  {
+    return "the cover lacks the surface names or areas";
+  }
+  const int groups = static_cast<int>(surfaceNames->GetNumberOfValues());
+  const vtkIdType count = points->GetNumberOfPoints();
+  illumination.SurfaceCount = groups;
+  illumination.SurfaceOfPoint.resize(static_cast<size_t>(count));
+  illumination.Area.resize(static_cast<size_t>(count));
+  for (vtkIdType k = 0; k < count; ++k)
+  {
+    const double id = nameId->GetComponent(k, 0);
+    if (!(id >= 0.0 && id < groups))
+    {
+      std::ostringstream text;
+      text << "point " << k << " has SurfaceNameId " << id << ", not an index of the " << groups
+           << " surface names";
+      return text.str();
+    }
+    illumination.SurfaceOfPoint[static_cast<size_t>(k)] = static_cast<int>(id);
+    illumination.Area[static_cast<size_t>(k)] = area->GetComponent(k, 0);
+  }
+  return std::string();
+}
+
+/// Computes the figures of the solution `points` holds (with `cover`, its cover) and adds them
+/// to its field data; "" or the problem.
+std::string StoreFigures(const sphcover::SphericalCover& cover, vtkPolyData* points)
+{
+  sphcover::PointIllumination illumination;
+  const std::string problem = ReadSurfaces(points, illumination);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  vtkDataArray* irradiance = points->GetPointData()->GetArray(names::Irradiance);
+  vtkDataArray* radiance = points->GetPointData()->GetArray(names::Radiosity);
+  vtkDataArray* balance = points->GetFieldData()->GetArray(names::EnergyBalance);
+  if (!irradiance || !radiance || !balance || irradiance->GetNumberOfComponents() != 3 ||
+    radiance->GetNumberOfComponents() != 3 || balance->GetNumberOfComponents() != 3 ||
+    balance->GetNumberOfTuples() < 2)
+  {
+    return "the illumination lacks Irradiance, Radiosity or EnergyBalance";
+  }
+  const vtkIdType count = points->GetNumberOfPoints();
+  illumination.Irradiance.resize(static_cast<size_t>(count));
+  illumination.ExitantRadiance.resize(static_cast<size_t>(count));
+  for (vtkIdType k = 0; k < count; ++k)
+  {
+    irradiance->GetTuple(k, &illumination.Irradiance[static_cast<size_t>(k)][0]);
+    radiance->GetTuple(k, &illumination.ExitantRadiance[static_cast<size_t>(k)][0]);
+  }
+  balance->GetTuple(0, &illumination.Emitted[0]);
+  balance->GetTuple(1, &illumination.Absorbed[0]);
+  sphcover::SolutionFigures figures;
+  try
+  {
+    figures = sphcover::ComputeSolutionFigures(cover, illumination);
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+
+  const vtkIdType surfaces = static_cast<vtkIdType>(figures.Surfaces.size());
+  auto area = vtkNamedArrays::Double(names::SurfaceArea, 1, surfaces);
+  auto meanIrradiance = vtkNamedArrays::Double(names::SurfaceMeanIrradiance, 3, surfaces);
+  auto meanRadiance = vtkNamedArrays::Double(names::SurfaceMeanExitantRadiance, 3, surfaces);
+  // One component per named surface (VTK keeps at least one, for a scene without surfaces).
+  auto factors =
+    vtkNamedArrays::Double(names::SurfaceFormFactors, static_cast<int>(surfaces), surfaces);
+  auto* surfaceNames =
+    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::SurfaceNames));
+  for (vtkIdType a = 0; a < surfaces; ++a)
+  {
+    const sphcover::SurfaceFigures& surface = figures.Surfaces[static_cast<size_t>(a)];
+    area->SetValue(a, surface.Area);
+    meanIrradiance->SetTuple(a, &surface.MeanIrradiance[0]);
+    meanRadiance->SetTuple(a, &surface.MeanExitantRadiance[0]);
+    factors->SetTuple(a, &figures.FormFactors[static_cast<size_t>(a * surfaces)]);
+    factors->SetComponentName(a, surfaceNames->GetValue(a).c_str());
+  }
+  auto statistics = vtkNamedArrays::Double(names::SolutionStatistics, 3, 1);
+  statistics->SetComponentName(0, "CharacteristicPoints");
+  statistics->SetComponentName(1, "Strips");
+  statistics->SetComponentName(2, "RelativeImbalance");
+  statistics->SetComponent(0, 0, static_cast<double>(figures.CharacteristicPoints));
+  statistics->SetComponent(0, 1, static_cast<double>(figures.Strips));
+  statistics->SetComponent(0, 2, figures.RelativeImbalance);
+  vtkFieldData* fd = points->GetFieldData();
+  fd->AddArray(area);
+  fd->AddArray(meanIrradiance);
+  fd->AddArray(meanRadiance);
+  fd->AddArray(factors);
+  fd->AddArray(statistics);
+  return std::string();
+}
+}
+
 vtkStandardNewMacro(vtkLightPropagationFilter);
+
+std::string vtkLightPropagationFilter::AddSolutionFigures(vtkPolyData* illumination)
+{
+  if (!illumination)
+  {
+    return "no illumination";
+  }
+  sphcover::SphericalCover cover;
+  const std::string problem = vtkSphericalCoverArrays::Load(illumination, cover);
+  return problem.empty() ? StoreFigures(cover, illumination) : problem;
+}
 
 vtkLightPropagationFilter::vtkLightPropagationFilter()
 {
@@ -98,6 +230,19 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     vtkErrorMacro(<< "Cannot propagate light: " << materialProblem);
     return 0;
   }
+  // The figures are per named surface: a point that names none is refused before the
+  // propagation, not after it.
+  const bool named = HasSurfaceNames(input);
+  if (named)
+  {
+    sphcover::PointIllumination surfaces;
+    const std::string surfaceProblem = ReadSurfaces(input, surfaces);
+    if (!surfaceProblem.empty())
+    {
+      vtkErrorMacro(<< "Cannot propagate light: " << surfaceProblem);
+      return 0;
+    }
+  }
   const vtkIdType count = input->GetNumberOfPoints();
   const double needed =
     static_cast<double>(sphcover::LightPropagation::EstimateBytes(cover, materials)) /
@@ -119,6 +264,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
                                                       : sphcover::ShootingOrder::BrightestFirst;
   try
   {
+    const auto start = std::chrono::steady_clock::now();
     sphcover::LightPropagation propagation(cover, materials);
     // The points' hemisphere frames (vtkSphericalCoverFilter's Normals and Tangents), for the
     // receivers a non-diffuse point's hemisphere does not hold (LightPropagation::SetFrames).
@@ -160,6 +306,8 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
       return 0;
     }
     this->Shots = static_cast<int>(propagation.History().size());
+    const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     output->ShallowCopy(input);
     auto irradiance = vtkNamedArrays::Double(names::Irradiance, 3, count);
@@ -191,6 +339,22 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     balance->SetTuple(0, &energy.Emitted[0]);
     balance->SetTuple(1, &energy.Absorbed[0]);
     output->GetFieldData()->AddArray(balance);
+    auto statistics = vtkNamedArrays::Double(names::PropagationStatistics, 2, 1);
+    statistics->SetComponentName(0, "Shots");
+    statistics->SetComponentName(1, "Seconds");
+    statistics->SetComponent(0, 0, static_cast<double>(this->Shots));
+    statistics->SetComponent(0, 1, elapsed);
+    output->GetFieldData()->AddArray(statistics);
+    if (named)
+    {
+      const std::string figuresProblem = StoreFigures(cover, output);
+      if (!figuresProblem.empty())
+      {
+        output->Initialize();
+        vtkErrorMacro(<< "Cannot sum up the solution: " << figuresProblem);
+        return 0;
+      }
+    }
 
     const std::vector<sphcover::ShotRecord>& shots = propagation.History();
     const vtkIdType rows = static_cast<vtkIdType>(shots.size());

@@ -24,7 +24,15 @@
  * others pi Le + sum over its regions of E times the region's albedo-weighted projected solid
  * angle, i.e. (k_d + k_s) int E cos dw for phong) and, in field data,
  * `IncidentRadiance` (3 per entry of the cover: the incident radiance of every region h_ij,
- * in the cover's entry order) and `EnergyBalance` (emitted, absorbed W per band).
+ * in the cover's entry order), `EnergyBalance` (emitted, absorbed W per band),
+ * `PropagationStatistics` (Shots, Seconds) and the solution's figures (Core's
+ * SolutionFigures, what `sphcover solve --report` prints): `SolutionStatistics`
+ * (CharacteristicPoints, Strips, RelativeImbalance) and, per entry of `SurfaceNames`,
+ * `SurfaceArea`, `SurfaceMeanIrradiance` (3), `SurfaceMeanExitantRadiance` (3, of Radiosity)
+ * and `SurfaceFormFactors` (one component per name: row a, from surface a). The figures need
+ * the points' `SurfaceNameId` and the field array `SurfaceNames` (every reader's scene has
+ * them); without them they are left out, and an id that is not an index of the names is an
+ * error.
  *
  * Output 1 (vtkTable): the convergence history, `Shot`, `Shooter`, `MaxChange` (the power
  * shot relative to the emitted power), `UnshotEnergy` (W), `Seconds`.
@@ -42,6 +50,8 @@
 
 #include "SphericalCoverFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+
+#include <string> // for std::string
 
 class SPHERICALCOVERFILTERS_EXPORT vtkLightPropagationFilter : public vtkPolyDataAlgorithm
 {
@@ -106,6 +116,13 @@ public:
 
   /// Shots of the last update.
   vtkGetMacro(Shots, int);
+
+  /**
+   * Computes the solution's figures (see above) from the arrays of `illumination`, this
+   * filter's output 0 or one read back from a file, and stores them in its field data.
+   * Returns "" or the problem (then nothing is stored).
+   */
+  static std::string AddSolutionFigures(vtkPolyData* illumination);
 
 protected:
   vtkLightPropagationFilter();

@@ -10,7 +10,8 @@
  * `SurfaceNameId`, `MaterialId`, `MaterialType`, `Emission` (3), `Diffuse` (3), `Specular` (3),
  * `PhongExponent`, `TwoSided`. Field data: `SurfaceNames`, `MaterialNames`,
  * `MaterialTypeNames`, `MaterialFiles`, `CameraNames`, `CameraParameters` (12 named
- * components), `SceneSettings` (4 named components), `SourceFile`.
+ * components), `SceneSettings` (4 named components), `SourceFile`, `SceneFingerprint` (one
+ * string, sphcover::Fingerprint: the stages pass it on, so a saved solution names its scene).
  *
  * A file with a `.bpt` extension is read as a .bpt file on its own (see vtkBPTReader).
  * Bad input gives one error naming the file, the location (line or JSON pointer) and the

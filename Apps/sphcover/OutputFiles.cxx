@@ -10,6 +10,8 @@
 #include <vtkPointData.h>
 #include <vtkXMLWriter.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <csignal>
 #include <cstdlib>
@@ -151,6 +153,19 @@ void StartJanitor()
   }
 }
 
+/// The folder `path` is written into; throws "cannot write '<path>': no folder <folder>" when
+/// it does not exist.
+fs::path OutputFolder(const std::string& path)
+{
+  const fs::path folder = fs::absolute(path).parent_path();
+  std::error_code error;
+  if (!fs::is_directory(folder, error))
+  {
+    throw std::runtime_error("cannot write '" + path + "': no folder " + folder.string());
+  }
+  return folder;
+}
+
 /// The pid in a staging folder's name `.<name>.sphcover-<pid>.<random>`, or 0.
 pid_t StagingOwner(const std::string& name)
 {
@@ -198,6 +213,48 @@ void MoveIntoPlace(const fs::path& staging, const fs::path& folder, const fs::pa
 }
 }
 
+std::string ExtensionOf(const std::string& path)
+{
+  std::string extension = fs::path(path).extension().string();
+  for (char& c : extension)
+  {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return extension;
+}
+
+void CheckOutputPath(const std::string& option,
+  const std::string& path,
+  const std::vector<std::string>& extensions,
+  const std::string& kind)
+{
+  if (path.empty())
+  {
+    return;
+  }
+  if (std::find(extensions.begin(), extensions.end(), ExtensionOf(path)) == extensions.end())
+  {
+    std::string expected;
+    for (const std::string& extension : extensions)
+    {
+      expected += (expected.empty() ? "" : " or ") + extension;
+    }
+    throw std::runtime_error(
+      option + " '" + path + "': unknown " + kind + " format (expected " + expected + ")");
+  }
+  std::error_code error;
+  if (fs::is_directory(path, error))
+  {
+    throw std::runtime_error("cannot write '" + path + "': it is a folder");
+  }
+  const fs::path folder = OutputFolder(path);
+  if (access(folder.c_str(), W_OK) != 0)
+  {
+    throw std::runtime_error(
+      "cannot write '" + path + "': folder " + folder.string() + ": " + std::strerror(errno));
+  }
+}
+
 void WatchTerminationSignals()
 {
   StartJanitor();
@@ -233,13 +290,9 @@ void WatchTerminationSignals()
 void WriteAtomically(const std::string& path, const std::function<void(const fs::path&)>& write)
 {
   const fs::path target = fs::absolute(path);
-  const fs::path folder = target.parent_path();
+  const fs::path folder = OutputFolder(path);
   const auto fail = [&path](const std::string& why)
   { return std::runtime_error("cannot write '" + path + "': " + why); };
-  if (!fs::is_directory(folder))
-  {
-    throw fail("no folder " + folder.string());
-  }
   RemoveAbandonedStaging(folder);
   const fs::path prefix =
     folder / ("." + target.filename().string() + StagingTag + std::to_string(getpid()) + ".");

@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 class vtkDataObject;
 class vtkImageData;
@@ -26,6 +27,19 @@ class vtkXMLWriter;
 
 namespace sphcover_cli
 {
+/// Lower-case extension of a path, with its dot ("" if none).
+std::string ExtensionOf(const std::string& path);
+
+/**
+ * Checks an output path before any work starts (a solve can take minutes; failing to write
+ * afterwards wastes it): one of `extensions`, not a folder, in an existing folder this process
+ * may write to. An empty path (the option not given) passes. Throws one line naming the option.
+ */
+void CheckOutputPath(const std::string& option,
+  const std::string& path,
+  const std::vector<std::string>& extensions,
+  const std::string& kind);
+
 /// Starts the janitor process, blocks SIGINT, SIGTERM and SIGHUP and starts the thread that
 /// handles them. Call it in main() before any other thread exists: the janitor is forked, and
 /// every thread must inherit the blocked mask.

@@ -2,8 +2,11 @@
 camera at a small size (read back by VTK: the size asked for, the lamp the brightest pixel, the
 red wall red and the green wall green); the report's timings include the render; a solution
 saved by `sphcover solve -o` and rendered with --solution gives the identical image (the
-walk-through case: only the render runs); the image does not depend on the thread count; bad
-input (a corrupted saved solution too) gives one line, a non-zero exit and no output file."""
+walk-through case: only the render runs, and its report has the same figures); the image does
+not depend on the thread count; the report's figures are those the light propagation filter
+puts in its output's field data, and the reader's scene fingerprint reaches it and the saved
+solution; bad input (a corrupted saved solution too) gives one line, a non-zero exit and no
+output file."""
 import json
 import os
 import subprocess
@@ -66,12 +69,12 @@ else:
 
 # Reuse a saved solution: only the render runs, and the image is identical.
 solution = os.path.join(folder, "solution.vtm")
+reused_report = os.path.join(folder, "reused.json")
 result = run("solve", scene, "-o", solution, "--quiet", *coarse)
 if result.returncode != 0:
     failures.append(f"solve failed: {result.stderr.strip()}")
 else:
     reused = os.path.join(folder, "reused.png")
-    reused_report = os.path.join(folder, "reused.json")
     result = run("render", scene, "--solution", solution, "--png", reused, "--size", "64x48",
                  "--report", reused_report, "--quiet")
     if result.returncode != 0:
@@ -141,6 +144,96 @@ if os.path.exists(solution):
     writer.SetFileName(corrupt)
     writer.SetInputData(blocks)
     writer.Write()
+
+# The report's figures are the light propagation filter's (its output's field data): the same
+# pipeline built with the sphericalcover package carries what the CLI printed, and the scene's
+# fingerprint that the reader passes on is the one the saved solution carries.
+from sphericalcover import (vtkIntervalSubdivisionFilter, vtkLightPropagationFilter,
+                            vtkPatchSceneReader, vtkSphericalCoverFilter)
+
+reader = vtkPatchSceneReader()
+reader.SetFileName(scene)
+subdivision = vtkIntervalSubdivisionFilter()
+subdivision.SetInputConnection(reader.GetOutputPort())
+reader.Update()
+tolerance = reader.GetOutput().GetFieldData().GetArray("SceneSettings").GetComponent(0, 3)
+subdivision.SetMaxLevel(1)
+subdivision.SetThetaBins(16)
+subdivision.SetPhiBins(64)
+subdivision.SetTolerance(tolerance)
+cover = vtkSphericalCoverFilter()
+cover.SetInputConnection(subdivision.GetOutputPort(0))
+cover.SetThetaBins(16)
+cover.SetPhiBins(64)
+propagation = vtkLightPropagationFilter()
+propagation.SetInputConnection(cover.GetOutputPort(0))
+propagation.Update()
+fd = propagation.GetOutput().GetFieldData()
+
+
+def close(a, b):
+    return abs(a - b) <= 1e-9 * max(abs(a), abs(b), 1e-300)
+
+
+def field(name):
+    array = fd.GetArray(name)
+    if array is None:
+        failures.append(f"the propagation's field data lacks {name}")
+    return array
+
+
+if os.path.exists(report_file):
+    report = json.load(open(report_file))
+    arrays = [field(n) for n in ["SurfaceArea", "SurfaceMeanIrradiance", "SurfaceMeanExitantRadiance",
+                                 "SurfaceFormFactors", "EnergyBalance", "SolutionStatistics",
+                                 "PropagationStatistics"]]
+    if all(a is not None for a in arrays):
+        area, irradiance, radiance, factors, balance, statistics, shots = arrays
+        names = fd.GetAbstractArray("SurfaceNames")
+        mismatches = []
+        for k, surface in enumerate(report["surfaces"]):
+            if names.GetValue(k) != surface["name"] or not close(area.GetValue(k), surface["area"]):
+                mismatches.append(f"surface {k} name/area")
+            for band in range(3):
+                if not (close(irradiance.GetComponent(k, band), surface["mean_irradiance"][band]) and
+                        close(radiance.GetComponent(k, band), surface["mean_exitant_radiance"][band])):
+                    mismatches.append(f"surface {k} band {band} means")
+            for j, value in enumerate(report["form_factors"]["matrix"][k]):
+                if not close(factors.GetComponent(k, j), value):
+                    mismatches.append(f"form factor {k} {j}")
+        for band in range(3):
+            if not (close(balance.GetComponent(0, band), report["energy"]["emitted_w"][band]) and
+                    close(balance.GetComponent(1, band), report["energy"]["absorbed_w"][band])):
+                mismatches.append(f"energy band {band}")
+        counts = report["counts"]
+        if (statistics.GetComponent(0, 0), statistics.GetComponent(0, 1),
+                shots.GetComponent(0, 0)) != (counts["characteristic_points"], counts["strips"],
+                                              counts["shots"]):
+            mismatches.append("counts")
+        if not close(statistics.GetComponent(0, 2), report["energy"]["relative_imbalance"]):
+            mismatches.append("relative imbalance")
+        if len(report["surfaces"]) != names.GetNumberOfValues() or mismatches:
+            failures.append(f"the filter's figures are not the report's: {mismatches[:5]}")
+        else:
+            print(f"the filter's field data carries the report's figures ({len(report['surfaces'])} "
+                  f"surfaces, {counts['shots']} shots)")
+fingerprint = reader.GetOutput().GetFieldData().GetAbstractArray("SceneFingerprint")
+carried = fd.GetAbstractArray("SceneFingerprint")
+if fingerprint is None or carried is None or fingerprint.GetValue(0) != carried.GetValue(0):
+    failures.append("the reader's SceneFingerprint does not reach the propagation's output")
+elif os.path.exists(solution):
+    saved = vtkXMLMultiBlockDataReader()
+    saved.SetFileName(solution)
+    saved.Update()
+    stored = saved.GetOutput().GetBlock(1).GetFieldData().GetAbstractArray("SceneFingerprint")
+    if stored is None or stored.GetValue(0) != fingerprint.GetValue(0):
+        failures.append("the saved solution does not carry the reader's SceneFingerprint")
+# A saved solution's report (its figures computed again from its arrays) is the fresh one's.
+if os.path.exists(report_file) and os.path.exists(reused_report):
+    fresh, reused = json.load(open(report_file)), json.load(open(reused_report))
+    for key in ["surfaces", "form_factors", "energy"]:
+        if fresh[key] != reused[key]:
+            failures.append(f"render --solution reports other {key} than render")
 
 # Bad input: one line on stderr, non-zero exit, no output file.
 bad_output = os.path.join(folder, "bad.png")

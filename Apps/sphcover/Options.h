@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Options.h
+ * @brief The command line's options (main.cxx parses them; see its help texts).
+ */
+#ifndef SPHCOVER_OPTIONS_H
+#define SPHCOVER_OPTIONS_H
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace sphcover_cli
+{
+struct Options
+{
+  std::string Scene;
+  std::string Output;
+  std::string RangeMethod = "bernstein";
+  std::string Report;
+  std::string Fill = "projection";
+  std::vector<std::string> Settings;
+  std::string Png;
+  std::string Camera;
+  std::string Size;
+  std::string SolutionFile;
+  int SamplesPerPixel = 4;
+  double Exposure = 1.0;
+  int Threads = 0;
+  bool Quiet = false;
+  /// The budgets (see the options' help): what a stage may take before it refuses.
+  double MemoryLimit = 8192.0;
+  int MaxPatches = 1000000;
+  double MaxPairTests = 1.0e9;
+  double MaxSamples = 1073741824.0;
+
+  /// --memory-limit (MiB) in bytes.
+  std::size_t MemoryLimitBytes() const
+  {
+    return static_cast<std::size_t>(this->MemoryLimit * 1024.0 * 1024.0);
+  }
+};
+}
+
+#endif

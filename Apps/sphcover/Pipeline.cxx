@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Pipeline.h"
+
+#include "Budgets.h"
+#include "Options.h"
+#include "ProgressBar.h"
+
+#include "vtkSphericalCoverArrayNames.h"
+
+#include "scene/SceneLoader.h"
+
+#include <vtkDataArray.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <stdexcept>
+
+namespace sphcover_cli
+{
+void Run(vtkAlgorithm* algorithm, ErrorCollector& errors)
+{
+  errors.Watch(algorithm);
+  if (algorithm->GetExecutive()->Update() != 1)
+  {
+    throw std::runtime_error(errors.First());
+  }
+}
+
+sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<std::string>& sets)
+{
+  sphcover::SceneSettings settings;
+  vtkDataArray* values =
+    surfaces->GetFieldData()->GetArray(vtkSphericalCoverArrayNames::SceneSettings);
+  if (values && values->GetNumberOfComponents() == 4)
+  {
+    settings.ThetaBins = static_cast<int>(values->GetComponent(0, 0));
+    settings.PhiBins = static_cast<int>(values->GetComponent(0, 1));
+    settings.MaxLevel = static_cast<int>(values->GetComponent(0, 2));
+    settings.Tolerance = values->GetComponent(0, 3);
+  }
+  for (const std::string& assignment : sets)
+  {
+    settings = sphcover::OverrideSetting(settings, assignment);
+  }
+  return settings;
+}
+
+void Solution::Read(const Options& options, bool progress)
+{
+  this->Reader->SetFileName(options.Scene.c_str());
+  ProgressBar bar(this->Reader, "read", options.Quiet || !progress);
+  Run(this->Reader, this->Errors);
+  this->ReadSeconds = bar.Seconds();
+}
+
+void Solution::Subdivide(const Options& options, const sphcover::SceneSettings& settings)
+{
+  this->Subdivision->SetInputConnection(this->Reader->GetOutputPort());
+  this->Subdivision->SetMaximumPatches(options.MaxPatches);
+  this->Subdivision->SetMaximumPairTests(options.MaxPairTests);
+  this->Subdivision->SetMemoryLimit(options.MemoryLimit);
+  this->Subdivision->SetThetaBins(settings.ThetaBins);
+  this->Subdivision->SetPhiBins(settings.PhiBins);
+  this->Subdivision->SetMaxLevel(settings.MaxLevel);
+  this->Subdivision->SetTolerance(settings.Tolerance);
+  if (options.RangeMethod == "natural")
+  {
+    this->Subdivision->SetRangeMethodToNaturalInterval();
+  }
+  {
+    ProgressBar bar(this->Subdivision, "subdivide", options.Quiet);
+    Run(this->Subdivision, this->Errors);
+    this->SubdivideSeconds = bar.Seconds();
+  }
+}
+
+void Solution::Solve(const Options& options)
+{
+  const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
+  CheckCoverGrid(settings, options);
+  this->Subdivide(options, settings);
+  this->Cover->SetMemoryLimit(options.MemoryLimit);
+  this->Propagation->SetMemoryLimit(options.MemoryLimit);
+  this->Cover->SetInputConnection(this->Subdivision->GetOutputPort(0));
+  this->Cover->SetThetaBins(settings.ThetaBins);
+  this->Cover->SetPhiBins(settings.PhiBins);
+  if (options.Fill == "raycasting")
+  {
+    this->Cover->SetFillMethodToRayCasting();
+  }
+  {
+    ProgressBar bar(this->Cover, "cover", options.Quiet);
+    Run(this->Cover, this->Errors);
+    this->CoverSeconds = bar.Seconds();
+  }
+  this->Propagation->SetInputConnection(this->Cover->GetOutputPort(0));
+  {
+    ProgressBar bar(this->Propagation, "propagate", options.Quiet);
+    Run(this->Propagation, this->Errors);
+    this->PropagateSeconds = bar.Seconds();
+  }
+}
+
+nlohmann::json Solution::Timings() const
+{
+  return { { "read", this->ReadSeconds },
+    { "subdivide", this->SubdivideSeconds },
+    { "cover", this->CoverSeconds },
+    { "propagate", this->PropagateSeconds } };
+}
+}

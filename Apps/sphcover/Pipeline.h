@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Pipeline.h
+ * @brief The VTK pipeline the commands run: the reader, then the subdivision, the spherical
+ * cover and the light propagation (paper §4, §3.3, §5.1), each stage with a progress bar and its
+ * time; a failing stage throws its first error as one line.
+ */
+#ifndef SPHCOVER_PIPELINE_H
+#define SPHCOVER_PIPELINE_H
+
+#include "ErrorCollector.h"
+
+#include "vtkIntervalSubdivisionFilter.h"
+#include "vtkLightPropagationFilter.h"
+#include "vtkPatchSceneReader.h"
+#include "vtkSphericalCoverFilter.h"
+
+#include "scene/Scene.h"
+
+#include <nlohmann/json.hpp>
+#include <vtkNew.h>
+
+#include <string>
+#include <vector>
+
+class vtkAlgorithm;
+class vtkDataObject;
+
+namespace sphcover_cli
+{
+struct Options;
+
+/// Updates an algorithm; on failure throws its first error as one line.
+void Run(vtkAlgorithm* algorithm, ErrorCollector& errors);
+
+/// The scene's settings block as the reader passed it on, with the --set overrides applied.
+sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<std::string>& sets);
+
+/// The scene file through the reader, and (Solve) the stages up to the equilibrium.
+struct Solution
+{
+  vtkNew<vtkPatchSceneReader> Reader;
+  vtkNew<vtkIntervalSubdivisionFilter> Subdivision;
+  vtkNew<vtkSphericalCoverFilter> Cover;
+  vtkNew<vtkLightPropagationFilter> Propagation;
+  ErrorCollector Errors;
+  double ReadSeconds = 0.0;
+  double SubdivideSeconds = 0.0;
+  double CoverSeconds = 0.0;
+  double PropagateSeconds = 0.0;
+
+  /// Reads the scene (its surfaces, cameras, settings and fingerprint in field data).
+  void Read(const Options& options, bool progress = true);
+
+  /// After Read: the interval subdivision with `settings` and the options' budgets.
+  void Subdivide(const Options& options, const sphcover::SceneSettings& settings);
+
+  /// After Read: checks the cover grid against --memory-limit, then subdivides, covers and
+  /// propagates with the scene's settings and the options.
+  void Solve(const Options& options);
+
+  /// The stages' seconds, as the report's `timings_s`.
+  nlohmann::json Timings() const;
+};
+}
+
+#endif

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "Report.h"
+
+#include "Pipeline.h"
+
+#include "vtkSphericalCoverArrayNames.h"
+
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
+
+#include <stdexcept>
+
+namespace sphcover_cli
+{
+namespace names = vtkSphericalCoverArrayNames;
+
+nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
+{
+  vtkFieldData* fd = illumination->GetFieldData();
+  auto* surfaceNames = vtkStringArray::SafeDownCast(fd->GetAbstractArray(names::SurfaceNames));
+  vtkDataArray* area = fd->GetArray(names::SurfaceArea);
+  vtkDataArray* irradiance = fd->GetArray(names::SurfaceMeanIrradiance);
+  vtkDataArray* radiance = fd->GetArray(names::SurfaceMeanExitantRadiance);
+  vtkDataArray* factors = fd->GetArray(names::SurfaceFormFactors);
+  vtkDataArray* balance = fd->GetArray(names::EnergyBalance);
+  vtkDataArray* statistics = fd->GetArray(names::SolutionStatistics);
+  const vtkIdType groups = surfaceNames ? surfaceNames->GetNumberOfValues() : 0;
+  auto holds = [](vtkDataArray* array, int components, vtkIdType tuples)
+  {
+    return array && array->GetNumberOfComponents() == components &&
+      array->GetNumberOfTuples() == tuples;
+  };
+  if (!surfaceNames || !holds(area, 1, groups) || !holds(irradiance, 3, groups) ||
+    !holds(radiance, 3, groups) || !holds(factors, groups > 0 ? int(groups) : 1, groups) ||
+    !holds(balance, 3, 2) || !holds(statistics, 3, 1))
+  {
+    throw std::runtime_error("the illumination lacks the solution's figures (SurfaceArea, "
+                             "SurfaceFormFactors, SolutionStatistics: vtkLightPropagationFilter)");
+  }
+  auto triple = [](vtkDataArray* array, vtkIdType tuple)
+  {
+    return nlohmann::json::array({ array->GetComponent(tuple, 0),
+      array->GetComponent(tuple, 1),
+      array->GetComponent(tuple, 2) });
+  };
+
+  nlohmann::json report;
+  report["surfaces"] = nlohmann::json::array();
+  report["form_factors"]["names"] = nlohmann::json::array();
+  report["form_factors"]["matrix"] = nlohmann::json::array();
+  for (vtkIdType a = 0; a < groups; ++a)
+  {
+    report["surfaces"].push_back({ { "name", surfaceNames->GetValue(a) },
+      { "area", area->GetComponent(a, 0) },
+      { "mean_irradiance", triple(irradiance, a) },
+      { "mean_exitant_radiance", triple(radiance, a) } });
+    report["form_factors"]["names"].push_back(surfaceNames->GetValue(a));
+    nlohmann::json row = nlohmann::json::array();
+    for (vtkIdType b = 0; b < groups; ++b)
+    {
+      row.push_back(factors->GetComponent(a, static_cast<int>(b)));
+    }
+    report["form_factors"]["matrix"].push_back(row);
+  }
+  report["energy"] = { { "emitted_w", triple(balance, 0) },
+    { "absorbed_w", triple(balance, 1) },
+    { "relative_imbalance", statistics->GetComponent(0, 2) } };
+  report["counts"] = { { "characteristic_points",
+                         static_cast<long long>(statistics->GetComponent(0, 0)) },
+    { "strips", static_cast<unsigned long long>(statistics->GetComponent(0, 1)) } };
+  if (counts.Surfaces >= 0)
+  {
+    report["counts"]["surfaces"] = counts.Surfaces;
+  }
+  if (counts.Patches >= 0)
+  {
+    report["counts"]["patches"] = counts.Patches;
+  }
+  if (counts.PairTests >= 0)
+  {
+    report["counts"]["pair_tests"] = counts.PairTests;
+  }
+  if (counts.Shots >= 0)
+  {
+    report["counts"]["shots"] = counts.Shots;
+  }
+  return report;
+}
+
+nlohmann::json SolutionReport(Solution& solution)
+{
+  ReportCounts counts;
+  counts.Surfaces = solution.Reader->GetOutput()->GetNumberOfCells();
+  counts.Patches = solution.Subdivision->GetOutput()->GetNumberOfCells();
+  counts.PairTests = static_cast<long long>(solution.Subdivision->GetPairTests());
+  counts.Shots = solution.Propagation->GetShots();
+  nlohmann::json report = Report(solution.Propagation->GetOutput(), counts);
+  report["timings_s"] = solution.Timings();
+  return report;
+}
+}

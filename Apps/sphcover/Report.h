@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file Report.h
+ * @brief The JSON report of SPEC §5 (solve, render --report): per named surface its area and
+ * area-weighted mean irradiance and exitant radiance, the form factors between named surfaces
+ * (area-weighted over the source surface), the energy balance and the counts. The figures are
+ * vtkLightPropagationFilter's (its output's field data, Core's SolutionFigures); this only
+ * formats them, with the timings the commands measure (`timings_s`; render adds `image`).
+ */
+#ifndef SPHCOVER_REPORT_H
+#define SPHCOVER_REPORT_H
+
+#include <nlohmann/json.hpp>
+
+class vtkPolyData;
+
+namespace sphcover_cli
+{
+/// What the report counts besides the illumination's figures (-1: unknown, left out).
+struct ReportCounts
+{
+  long long Surfaces = -1;
+  long long Patches = -1;
+  long long PairTests = -1;
+  int Shots = -1;
+};
+
+struct Solution;
+
+/// The report of the figures in `illumination`'s field data. Throws one line when it has none.
+nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts);
+
+/// The report of a solution computed in this run, with its timings.
+nlohmann::json SolutionReport(Solution& solution);
+}
+
+#endif

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file SavedSolution.h
+ * @brief A solution written by `sphcover solve -o` (.vtm: block 0 the patches, block 1 the
+ * illumination), read back for `render --solution`, and the check that it was solved from the
+ * scene given: the scene fingerprint (sphcover::Fingerprint) that the reader puts in its field
+ * data and every stage passes on must be the one the solution carries.
+ */
+#ifndef SPHCOVER_SAVEDSOLUTION_H
+#define SPHCOVER_SAVEDSOLUTION_H
+
+#include <vtkNew.h>
+#include <vtkXMLMultiBlockDataReader.h>
+
+#include <string>
+
+class ErrorCollector;
+class vtkDataObject;
+class vtkPolyData;
+
+namespace sphcover_cli
+{
+struct Options;
+
+struct SavedSolution
+{
+  vtkNew<vtkXMLMultiBlockDataReader> Reader;
+  vtkDataObject* Patches = nullptr;
+  vtkPolyData* Illumination = nullptr;
+  double ReadSeconds = 0.0;
+
+  /// Reads --solution (with the "read" progress bar); throws one line when it is missing or
+  /// not a solution of `solve -o`.
+  void Read(const Options& options, ErrorCollector& errors);
+
+  /// Throws one line unless the illumination carries the fingerprint of `scene` (the reader's
+  /// output of options.Scene).
+  void CheckFingerprint(const Options& options, vtkDataObject* scene) const;
+};
+}
+
+#endif
