@@ -49,6 +49,9 @@ constexpr const char* Normals = "Normals";
 constexpr const char* UV = "UV";
 /// Field data, named components: pair tests, sweeps.
 constexpr const char* SubdivisionStatistics = "SubdivisionStatistics";
+/// Field data, 7 named components: the settings the subdivision used (max_level, theta_bins,
+/// phi_bins and the tolerances of the four criteria), its properties or the scene's.
+constexpr const char* SubdivisionSettings = "SubdivisionSettings";
 
 // Spherical cover (SPEC §4.3): points' point data, the cover in field data, the strip table.
 constexpr const char* Tangents = "Tangents";
