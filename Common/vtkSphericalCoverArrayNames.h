@@ -33,6 +33,13 @@ constexpr const char* CameraParameters = "CameraParameters";
 /// 4 named components: theta_bins, phi_bins, max_level, tolerance.
 constexpr const char* SceneSettings = "SceneSettings";
 constexpr const char* SourceFile = "SourceFile";
+/// The reader's pipeline information (REQUEST_INFORMATION, before any data exists): a
+/// vtkDataObject whose field data holds CameraNames and CameraParameters, so that the image
+/// size of a scene camera is known when vtkRadianceImageFilter announces its extent. The
+/// name and location of a vtkInformationDataObjectMetaDataKey (found through
+/// vtkInformationKeyLookup: the readers and the filters share no code but Common's).
+constexpr const char* SceneCamerasKey = "SCENE_CAMERAS";
+constexpr const char* SceneCamerasKeyLocation = "vtkSphericalCover";
 
 // Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
 constexpr const char* PatchId = "PatchId";
