@@ -37,6 +37,14 @@ constexpr const char* SourceFile = "SourceFile";
 /// so that a saved solution can tell the scene it was solved from.
 constexpr const char* SceneFingerprint = "SceneFingerprint";
 
+/// The reader's pipeline information (REQUEST_INFORMATION, before any data exists): a
+/// vtkDataObject whose field data holds CameraNames and CameraParameters, so that the image
+/// size of a scene camera is known when vtkRadianceImageFilter announces its extent. The
+/// name and location of a vtkInformationDataObjectMetaDataKey (found through
+/// vtkInformationKeyLookup: the readers and the filters share no code but Common's).
+constexpr const char* SceneCamerasKey = "SCENE_CAMERAS";
+constexpr const char* SceneCamerasKeyLocation = "vtkSphericalCover";
+
 // Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
 constexpr const char* PatchId = "PatchId";
 /// Cover points: the cell of the cover's input (the subdivision's Patches) a point's patch was
@@ -52,6 +60,9 @@ constexpr const char* Normals = "Normals";
 constexpr const char* UV = "UV";
 /// Field data, named components: pair tests, sweeps.
 constexpr const char* SubdivisionStatistics = "SubdivisionStatistics";
+/// Field data, 7 named components: the settings the subdivision used (max_level, theta_bins,
+/// phi_bins and the tolerances of the four criteria), its properties or the scene's.
+constexpr const char* SubdivisionSettings = "SubdivisionSettings";
 
 // Spherical cover (SPEC §4.3): points' point data, the cover in field data, the strip table.
 constexpr const char* Tangents = "Tangents";

@@ -8,6 +8,7 @@
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
 
+#include "scene/Scene.h"
 #include "subdivision/IntervalSubdivision.h"
 
 #include <vtkCellArray.h>
@@ -29,6 +30,36 @@
 #include <exception>
 
 namespace names = vtkSphericalCoverArrayNames;
+
+namespace
+{
+/// The settings block of the scene the input was read from (its field data `SceneSettings`),
+/// or the scene file's defaults.
+sphcover::SceneSettings SceneSettingsOf(vtkDataObject* input)
+{
+  sphcover::SceneSettings settings;
+  vtkDataArray* values = input->GetFieldData()->GetArray(names::SceneSettings);
+  if (values && values->GetNumberOfComponents() == 4 && values->GetNumberOfTuples() == 1)
+  {
+    settings.ThetaBins = static_cast<int>(values->GetComponent(0, 0));
+    settings.PhiBins = static_cast<int>(values->GetComponent(0, 1));
+    settings.MaxLevel = static_cast<int>(values->GetComponent(0, 2));
+    settings.Tolerance = values->GetComponent(0, 3);
+  }
+  return settings;
+}
+
+/// A property's value, or the scene's where it is left at SCENE_SETTING.
+int OrScene(int property, int scene)
+{
+  return property == vtkIntervalSubdivisionFilter::SCENE_SETTING ? scene : property;
+}
+
+double OrScene(double property, double scene)
+{
+  return property == vtkIntervalSubdivisionFilter::SCENE_SETTING ? scene : property;
+}
+}
 
 vtkStandardNewMacro(vtkIntervalSubdivisionFilter);
 
@@ -83,23 +114,25 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
     return 1;
   }
 
+  // The properties left at SCENE_SETTING take the scene's settings block.
+  const sphcover::SceneSettings fromScene = SceneSettingsOf(input);
   sphcover::SubdivisionSettings settings;
   settings.Method = this->RangeMethod == NATURAL_INTERVAL ? sphcover::RangeMethod::NaturalInterval
                                                           : sphcover::RangeMethod::Bernstein;
-  settings.MaxLevel = this->MaxLevel;
+  settings.MaxLevel = OrScene(this->MaxLevel, fromScene.MaxLevel);
   settings.MaximumPatches = static_cast<size_t>(this->MaximumPatches);
   settings.MemoryLimitBytes = static_cast<size_t>(this->MemoryLimit * 1024.0 * 1024.0);
   settings.MaximumPairTests = static_cast<size_t>(this->MaximumPairTests);
-  settings.ThetaBins = this->ThetaBins;
-  settings.PhiBins = this->PhiBins;
+  settings.ThetaBins = OrScene(this->ThetaBins, fromScene.ThetaBins);
+  settings.PhiBins = OrScene(this->PhiBins, fromScene.PhiBins);
   const bool enabled[4] = { this->SelfShadowing,
     this->HemisphericalContainment,
     this->SphericalShape,
     this->Characterisability };
-  const double tolerances[4] = { this->SelfShadowingTolerance,
-    this->HemisphericalContainmentTolerance,
-    this->SphericalShapeTolerance,
-    this->CharacterisabilityTolerance };
+  const double tolerances[4] = { OrScene(this->SelfShadowingTolerance, fromScene.Tolerance),
+    OrScene(this->HemisphericalContainmentTolerance, fromScene.Tolerance),
+    OrScene(this->SphericalShapeTolerance, fromScene.Tolerance),
+    OrScene(this->CharacterisabilityTolerance, fromScene.Tolerance) };
   for (int c = 0; c < sphcover::NumberOfCriteria; ++c)
   {
     settings.Enabled[c] = enabled[c];
@@ -166,6 +199,28 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
   statistics->SetComponent(0, 0, static_cast<double>(this->PairTests));
   statistics->SetComponent(0, 1, sweeps);
   patchesOut->GetFieldData()->AddArray(statistics);
+  // The values used, for the next stages (the cover's grid) and for the user to see.
+  auto used = vtkNamedArrays::Double(names::SubdivisionSettings, 7, 1);
+  const char* usedNames[7] = { "max_level",
+    "theta_bins",
+    "phi_bins",
+    "self_shadowing_tolerance",
+    "hemispherical_containment_tolerance",
+    "spherical_shape_tolerance",
+    "characterisability_tolerance" };
+  const double usedValues[7] = { double(settings.MaxLevel),
+    double(settings.ThetaBins),
+    double(settings.PhiBins),
+    tolerances[0],
+    tolerances[1],
+    tolerances[2],
+    tolerances[3] };
+  for (int k = 0; k < 7; ++k)
+  {
+    used->SetComponentName(k, usedNames[k]);
+  }
+  used->SetTuple(0, usedValues);
+  patchesOut->GetFieldData()->AddArray(used);
 
   auto surfaceId = vtkNamedArrays::Int(names::SurfaceId, 1, count);
   auto patchId = vtkNamedArrays::Int(names::PatchId, 1, count);

@@ -17,11 +17,18 @@
  * (convex hull) bounds or natural interval arithmetic (RangeMethod). See
  * Core/subdivision/SubdivisionCriteria.h for the exact tests and tolerances.
  *
+ * Settings of the scene: MaxLevel, ThetaBins, PhiBins and the four tolerances default to
+ * SCENE_SETTING (-1), which takes the input's field data `SceneSettings` (max_level,
+ * theta_bins, phi_bins, and tolerance for all four criteria), as the command line does, or
+ * the scene file's defaults (5, 32, 128, 0.02) when the input has none. Any other value is the
+ * user's and wins (a flag "was Set called" would not do: ParaView sets every property).
+ *
  * Output 0 (vtkUnstructuredGrid): one cell per patch, its exact geometry (Bezier
  * quadrilateral, quad or triangle), cell data `SurfaceId`, `PatchId`, `Level`, `UVRange`
  * (u0, u1, v0, v1), `Area`, `SplitReason` (the criterion that caused the last split; names in
  * the field array `SplitReasonNames`), and the material arrays of the input. Field data: the
- * input's, plus `SubdivisionStatistics` (pair tests, sweeps).
+ * input's, plus `SubdivisionStatistics` (pair tests, sweeps) and `SubdivisionSettings` (the
+ * values used; vtkSphericalCoverFilter takes its grid from them).
  *
  * Output 1 (vtkPolyData): the characteristic points, one vertex each, at the parametric centre
  * of each patch, with point data `Normals`, `PatchId`, `SurfaceId`, `UV`, `Area`, `Level`.
@@ -49,6 +56,12 @@ public:
   vtkTypeMacro(vtkIntervalSubdivisionFilter, vtkUnstructuredGridAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// The default of the scene's settings: the input's `SceneSettings` value is used.
+  enum
+  {
+    SCENE_SETTING = -1
+  };
+
   enum RangeMethods
   {
     BERNSTEIN = 0,
@@ -70,7 +83,7 @@ public:
   /**
    * The deepest subdivision level (ternary splits from a surface), 0 to 32 (deeper patches are
    * narrower than the double precision of the parameter domain; another value fails the
-   * request). Default is 5.
+   * request). Default is SCENE_SETTING: the scene's max_level (5 without one).
    */
   vtkSetMacro(MaxLevel, int);
   vtkGetMacro(MaxLevel, int);
@@ -95,7 +108,8 @@ public:
   ///@{
   /**
    * The (theta, phi) grid of the spherical cover: no patch is split once it projects to about
-   * one cell. Defaults are 32 and 128.
+   * one cell. Defaults are SCENE_SETTING: the scene's theta_bins and phi_bins (32 and 128
+   * without them).
    */
   vtkSetMacro(ThetaBins, int);
   vtkGetMacro(ThetaBins, int);
@@ -106,7 +120,8 @@ public:
   ///@{
   /**
    * Self-shadowing criterion (paper §4.2.1): split a patch with a silhouette as seen from a
-   * characteristic point. Tolerance in units of |N| d (a cosine). Defaults are on and 0.02.
+   * characteristic point. Tolerance in units of |N| d (a cosine). Defaults are on and
+   * SCENE_SETTING (the scene's tolerance, 0.02 without one).
    */
   vtkSetMacro(SelfShadowing, bool);
   vtkGetMacro(SelfShadowing, bool);
@@ -119,7 +134,7 @@ public:
   /**
    * Hemispherical containment criterion (paper §4.2.2): split a patch that straddles the
    * horizon of a characteristic point. Tolerance relative to the distance. Defaults are on and
-   * 0.02.
+   * SCENE_SETTING (the scene's tolerance, 0.02 without one).
    */
   vtkSetMacro(HemisphericalContainment, bool);
   vtkGetMacro(HemisphericalContainment, bool);
@@ -132,7 +147,8 @@ public:
   /**
    * Spherical shape criterion (paper §4.2.3): split a source patch whose distance (diffuse) or
    * projected normal (other materials) varies by more than the relative tolerance as seen from
-   * a characteristic point. Defaults are on and 0.02.
+   * a characteristic point. Defaults are on and SCENE_SETTING (the scene's tolerance, 0.02
+   * without one).
    */
   vtkSetMacro(SphericalShape, bool);
   vtkGetMacro(SphericalShape, bool);
@@ -145,7 +161,7 @@ public:
   /**
    * Characterisability criterion (paper §4.2.4): split a receiving patch whose normal varies
    * by more than the relative tolerance with respect to the direction to a source point.
-   * Defaults are on and 0.02.
+   * Defaults are on and SCENE_SETTING (the scene's tolerance, 0.02 without one).
    */
   vtkSetMacro(Characterisability, bool);
   vtkGetMacro(Characterisability, bool);
@@ -169,20 +185,20 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int RangeMethod = BERNSTEIN;
-  int MaxLevel = 5;
+  int MaxLevel = SCENE_SETTING;
   int MaximumPatches = 1000000;
   double MemoryLimit = 8192.0;
   double MaximumPairTests = 1.0e9;
-  int ThetaBins = 32;
-  int PhiBins = 128;
+  int ThetaBins = SCENE_SETTING;
+  int PhiBins = SCENE_SETTING;
   bool SelfShadowing = true;
-  double SelfShadowingTolerance = 0.02;
+  double SelfShadowingTolerance = SCENE_SETTING;
   bool HemisphericalContainment = true;
-  double HemisphericalContainmentTolerance = 0.02;
+  double HemisphericalContainmentTolerance = SCENE_SETTING;
   bool SphericalShape = true;
-  double SphericalShapeTolerance = 0.02;
+  double SphericalShapeTolerance = SCENE_SETTING;
   bool Characterisability = true;
-  double CharacterisabilityTolerance = 0.02;
+  double CharacterisabilityTolerance = SCENE_SETTING;
   vtkIdType PairTests = 0;
 
 private:

@@ -16,6 +16,8 @@
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
+#include <vtkInformationDataObjectMetaDataKey.h>
+#include <vtkInformationKeyLookup.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -46,8 +48,9 @@ unsigned char EncodeSRGB(double linear)
   return static_cast<unsigned char>(std::lround(255.0 * encoded));
 }
 
-/// The camera named `name` among the field data's CameraNames / CameraParameters (position,
-/// focal point, view up, view angle, width, height); false when absent.
+/// The camera named `name` (the first one if `name` is empty) among the field data's
+/// CameraNames / CameraParameters (position, focal point, view up, view angle, width, height);
+/// false when absent.
 bool FindCamera(vtkFieldData* fd, const std::string& name, sphcover::Camera& camera)
 {
   auto* cameraNames =
@@ -59,15 +62,50 @@ bool FindCamera(vtkFieldData* fd, const std::string& name, sphcover::Camera& cam
   }
   for (vtkIdType k = 0; k < cameraNames->GetNumberOfValues(); ++k)
   {
-    if (cameraNames->GetValue(k) == name && k < parameters->GetNumberOfTuples())
+    if ((name.empty() || cameraNames->GetValue(k) == name) && k < parameters->GetNumberOfTuples())
     {
       double p[12];
       parameters->GetTuple(k, p);
-      camera.Name = name;
+      camera.Name = cameraNames->GetValue(k);
       camera.Position = glm::dvec3(p[0], p[1], p[2]);
       camera.FocalPoint = glm::dvec3(p[3], p[4], p[5]);
       camera.ViewUp = glm::dvec3(p[6], p[7], p[8]);
       camera.ViewAngle = p[9];
+      camera.Width = static_cast<int>(p[10]);
+      camera.Height = static_cast<int>(p[11]);
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The key of the scene's cameras in the pipeline information (vtkSphericalCoverArrayNames.h):
+/// the one vtkPatchSceneReader publishes them under, whichever module made it first.
+vtkInformationDataObjectMetaDataKey* SceneCamerasKey()
+{
+  static vtkInformationDataObjectMetaDataKey* key = []
+  {
+    auto* known = vtkInformationDataObjectMetaDataKey::SafeDownCast(
+      vtkInformationKeyLookup::Find(names::SceneCamerasKey, names::SceneCamerasKeyLocation));
+    return known ? known
+                 : new vtkInformationDataObjectMetaDataKey(
+                     names::SceneCamerasKey, names::SceneCamerasKeyLocation);
+  }();
+  return key;
+}
+
+/// The camera `name` (or the first) of the scene as the inputs' pipeline information carries
+/// it, known before any data exists (vtkPatchSceneReader); false when they carry none.
+bool FindCameraInformation(vtkInformationVector** inputVector,
+  const std::string& name,
+  sphcover::Camera& camera)
+{
+  for (int port = 0; port < 2; ++port)
+  {
+    vtkInformation* info = inputVector[port]->GetInformationObject(0);
+    vtkDataObject* cameras = info ? info->Get(SceneCamerasKey()) : nullptr;
+    if (cameras && FindCamera(cameras->GetFieldData(), name, camera))
+    {
       return true;
     }
   }
@@ -104,12 +142,35 @@ int vtkRadianceImageFilter::FillInputPortInformation(int port, vtkInformation* i
   return 1;
 }
 
+void vtkRadianceImageFilter::ImageSize(vtkInformationVector** inputVector,
+  int& width,
+  int& height) const
+{
+  width = this->Width;
+  height = this->Height;
+  if (width != 0 && height != 0)
+  {
+    return;
+  }
+  sphcover::Camera camera;
+  if (!FindCameraInformation(inputVector, this->CameraName, camera))
+  {
+    camera.Width = 512;
+    camera.Height = 512;
+  }
+  width = width != 0 ? width : camera.Width;
+  height = height != 0 ? height : camera.Height;
+}
+
 int vtkRadianceImageFilter::RequestInformation(vtkInformation*,
-  vtkInformationVector**,
+  vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
-  const int extent[6] = { 0, std::max(this->Width, 1) - 1, 0, std::max(this->Height, 1) - 1, 0, 0 };
+  int width = 0;
+  int height = 0;
+  this->ImageSize(inputVector, width, height);
+  const int extent[6] = { 0, std::max(width, 1) - 1, 0, std::max(height, 1) - 1, 0, 0 };
   const double spacing[3] = { 1.0, 1.0, 1.0 };
   const double origin[3] = { 0.0, 0.0, 0.0 };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), extent, 6);
@@ -161,13 +222,30 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   }
   else
   {
-    camera.Position = glm::dvec3(this->Position[0], this->Position[1], this->Position[2]);
-    camera.FocalPoint = glm::dvec3(this->FocalPoint[0], this->FocalPoint[1], this->FocalPoint[2]);
-    camera.ViewUp = glm::dvec3(this->ViewUp[0], this->ViewUp[1], this->ViewUp[2]);
-    camera.ViewAngle = this->ViewAngle;
+    // Each pose property left at its default is the scene's first camera's (the former
+    // defaults without one); the view is the user's once Position and FocalPoint differ.
+    sphcover::Camera scene;
+    if (!FindCamera(illumination->GetFieldData(), "", scene) &&
+      !FindCamera(patchesInput->GetFieldData(), "", scene))
+    {
+      scene.Position = glm::dvec3(0.0, 0.0, 1.0);
+      scene.FocalPoint = glm::dvec3(0.0, 0.0, 0.0);
+      scene.ViewUp = glm::dvec3(0.0, 1.0, 0.0);
+      scene.ViewAngle = 30.0;
+    }
+    const glm::dvec3 position(this->Position[0], this->Position[1], this->Position[2]);
+    const glm::dvec3 focalPoint(this->FocalPoint[0], this->FocalPoint[1], this->FocalPoint[2]);
+    const glm::dvec3 viewUp(this->ViewUp[0], this->ViewUp[1], this->ViewUp[2]);
+    const bool ownView = position != focalPoint;
+    const bool sceneOnly = !ownView && viewUp == glm::dvec3(0.0) && this->ViewAngle == 0.0;
+    camera.Name = sceneOnly ? scene.Name : std::string();
+    camera.Position = ownView ? position : scene.Position;
+    camera.FocalPoint = ownView ? focalPoint : scene.FocalPoint;
+    camera.ViewUp = viewUp != glm::dvec3(0.0) ? viewUp : scene.ViewUp;
+    camera.ViewAngle = this->ViewAngle != 0.0 ? this->ViewAngle : scene.ViewAngle;
   }
-  camera.Width = this->Width;
-  camera.Height = this->Height;
+  // The size announced by RequestInformation, from the same pipeline information.
+  this->ImageSize(inputVector, camera.Width, camera.Height);
   sphcover::RenderSettings settings;
   settings.SamplesPerPixel = this->SamplesPerPixel;
   settings.MemoryLimitBytes = static_cast<size_t>(

@@ -25,9 +25,16 @@
  * the eye, blended with the same weights (see RadianceRenderer.h).
  *
  * Camera: CameraName selects one of the scene's cameras (position, focal point, view up, view
- * angle); otherwise Position, FocalPoint, ViewUp and ViewAngle are used. The image size is
- * always Width x Height (known before the inputs execute, as RequestInformation needs it; the
- * command line sets them from the scene camera's size).
+ * angle; the inputs' field data CameraNames / CameraParameters). With an empty CameraName (the
+ * default), Position, FocalPoint, ViewUp and ViewAngle are used where the user set them, and
+ * the scene's first camera where they keep their defaults, values no camera can have: the view
+ * (Position and FocalPoint) while they are equal, ViewUp while (0, 0, 0), ViewAngle while 0.
+ * Without a scene camera those are (0, 0, 1), (0, 0, 0), (0, 1, 0) and 30 degrees. (ParaView
+ * sets every property, so "set by the user" is told by the value.) Width and Height of 0 (the
+ * defaults) are the size of that scene camera (CameraName's, or the first), which must be
+ * known before the inputs execute (RequestInformation announces the extent): it is read from
+ * the pipeline information vtkPatchSceneReader publishes (SceneCamerasKey); inputs without it,
+ * such as a saved solution, give 512 x 512.
  *
  * Output (vtkImageData, Width x Height x 1, spacing 1, row 0 at the bottom), point data:
  * `Radiance` (float RGB, W m^-2 sr^-1, the mean over SamplesPerPixel stratified samples),
@@ -58,39 +65,45 @@ public:
 
   ///@{
   /**
-   * Name of a camera of the scene (the illumination's field data `CameraNames`); empty: the
-   * camera properties below. Default is "".
+   * Name of a camera of the scene (the illumination's field data `CameraNames`), whose pose
+   * is used whatever the properties below; empty: those properties, and the scene's first
+   * camera for the ones left at their defaults (see above). Default is "".
    */
   vtkSetStdStringFromCharMacro(CameraName);
   vtkGetCharFromStdStringMacro(CameraName);
   ///@}
 
   ///@{
-  /** Eye position (used without CameraName). Default is (0, 0, 1). */
+  /**
+   * Eye position and point looked at (used without CameraName). Defaults are (0, 0, 0) and
+   * (0, 0, 0): while equal, the scene's first camera's view.
+   */
   vtkSetVector3Macro(Position, double);
   vtkGetVector3Macro(Position, double);
-  ///@}
-
-  ///@{
-  /** Point looked at (used without CameraName). Default is (0, 0, 0). */
   vtkSetVector3Macro(FocalPoint, double);
   vtkGetVector3Macro(FocalPoint, double);
   ///@}
 
   ///@{
-  /** Up direction of the view (used without CameraName). Default is (0, 1, 0). */
+  /**
+   * Up direction of the view (used without CameraName). Default is (0, 0, 0): the scene's
+   * first camera's.
+   */
   vtkSetVector3Macro(ViewUp, double);
   vtkGetVector3Macro(ViewUp, double);
   ///@}
 
   ///@{
-  /** Vertical field of view in degrees (used without CameraName). Default is 30. */
+  /**
+   * Vertical field of view in degrees (used without CameraName). Default is 0: the scene's
+   * first camera's.
+   */
   vtkSetMacro(ViewAngle, double);
   vtkGetMacro(ViewAngle, double);
   ///@}
 
   ///@{
-  /** Image size in pixels. Defaults are 512 and 512. */
+  /** Image size in pixels. Defaults are 0 and 0: the scene camera's size (see above). */
   vtkSetMacro(Width, int);
   vtkGetMacro(Width, int);
   vtkSetMacro(Height, int);
@@ -135,13 +148,16 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /// Width x Height, the scene camera's size where they are 0 (the inputs' information).
+  void ImageSize(vtkInformationVector** inputVector, int& width, int& height) const;
+
   std::string CameraName;
-  double Position[3] = { 0.0, 0.0, 1.0 };
+  double Position[3] = { 0.0, 0.0, 0.0 };
   double FocalPoint[3] = { 0.0, 0.0, 0.0 };
-  double ViewUp[3] = { 0.0, 1.0, 0.0 };
-  double ViewAngle = 30.0;
-  int Width = 512;
-  int Height = 512;
+  double ViewUp[3] = { 0.0, 0.0, 0.0 };
+  double ViewAngle = 0.0;
+  int Width = 0;
+  int Height = 0;
   int SamplesPerPixel = 4;
   double Exposure = 1.0;
   double MemoryLimit = 1024.0;

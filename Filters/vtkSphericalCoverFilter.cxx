@@ -17,6 +17,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
@@ -33,6 +34,33 @@
 #include <exception>
 
 namespace names = vtkSphericalCoverArrayNames;
+
+namespace
+{
+/// The (theta, phi) grid of the input's settings: the subdivision's (SubdivisionSettings:
+/// max_level, theta_bins, phi_bins, ...), else the scene's (SceneSettings: theta_bins,
+/// phi_bins, ...), else the scene file's defaults.
+void GridOf(vtkDataObject* input, int& thetaBins, int& phiBins)
+{
+  const sphcover::SceneSettings defaults;
+  thetaBins = defaults.ThetaBins;
+  phiBins = defaults.PhiBins;
+  vtkFieldData* fd = input->GetFieldData();
+  vtkDataArray* subdivision = fd->GetArray(names::SubdivisionSettings);
+  vtkDataArray* scene = fd->GetArray(names::SceneSettings);
+  if (subdivision && subdivision->GetNumberOfComponents() == 7 &&
+    subdivision->GetNumberOfTuples() == 1)
+  {
+    thetaBins = static_cast<int>(subdivision->GetComponent(0, 1));
+    phiBins = static_cast<int>(subdivision->GetComponent(0, 2));
+  }
+  else if (scene && scene->GetNumberOfComponents() == 4 && scene->GetNumberOfTuples() == 1)
+  {
+    thetaBins = static_cast<int>(scene->GetComponent(0, 0));
+    phiBins = static_cast<int>(scene->GetComponent(0, 1));
+  }
+}
+}
 
 vtkStandardNewMacro(vtkSphericalCoverFilter);
 
@@ -87,9 +115,20 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     return 0;
   }
 
+  // The grid left at SCENE_SETTING is the input's (the subdivision's or the scene's).
+  int inputTheta = 0;
+  int inputPhi = 0;
+  GridOf(input, inputTheta, inputPhi);
   sphcover::SphericalCoverOptions options;
-  options.ThetaBins = this->ThetaBins;
-  options.PhiBins = this->PhiBins;
+  options.ThetaBins = this->ThetaBins == SCENE_SETTING ? inputTheta : this->ThetaBins;
+  options.PhiBins = this->PhiBins == SCENE_SETTING ? inputPhi : this->PhiBins;
+  if (options.ThetaBins < 1 || options.PhiBins < 1)
+  {
+    vtkErrorMacro(<< "Cannot build the spherical cover: ThetaBins and PhiBins must be >= 1 (or "
+                  << SCENE_SETTING << ", the input's grid), got " << options.ThetaBins << " and "
+                  << options.PhiBins << ".");
+    return 0;
+  }
   options.SamplesTheta = this->SamplesPerCell;
   options.SamplesPhi = this->SamplesPerCell;
   options.Fill = this->FillMethod == RAY_CASTING ? sphcover::RBufferFill::RayCasting

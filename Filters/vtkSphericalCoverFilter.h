@@ -12,6 +12,11 @@
  * against a tessellation of the exact patches; several samples per cell classify each cell
  * by coverage. Patches fully below the tangent plane of P_i are skipped before any work.
  *
+ * The grid: ThetaBins and PhiBins default to SCENE_SETTING (-1), which takes the grid the
+ * patches were subdivided for (the input's field data `SubdivisionSettings`), else the scene's
+ * (`SceneSettings`), else 32 x 128; any other value is the user's and wins. The grid used is
+ * the output's `CoverGrid`.
+ *
  * Output 0 (vtkPolyData): the characteristic points with point data `Normals`, `Tangents`
  * (phi = 0), `Area`, `PatchId`, `SurfaceId`, `CoveredProjectedSolidAngle` (pi inside a closed
  * scene), `VisibleSources` and the material arrays of the patches; field data: the input's
@@ -57,6 +62,12 @@ public:
   vtkTypeMacro(vtkSphericalCoverFilter, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
+  /// The default of ThetaBins and PhiBins: the grid of the input's settings is used.
+  enum
+  {
+    SCENE_SETTING = -1
+  };
+
   enum FillMethods
   {
     PROJECTION = 0,
@@ -64,10 +75,13 @@ public:
   };
 
   ///@{
-  /** Cells of the hemisphere grid in theta (polar) and phi (azimuth). Defaults 32 and 128. */
-  vtkSetClampMacro(ThetaBins, int, 1, 4096);
+  /**
+   * Cells of the hemisphere grid in theta (polar, 1 to 4096) and phi (azimuth, 1 to 16384;
+   * 0 fails the request), or SCENE_SETTING, the default: the input's (see above).
+   */
+  vtkSetClampMacro(ThetaBins, int, SCENE_SETTING, 4096);
   vtkGetMacro(ThetaBins, int);
-  vtkSetClampMacro(PhiBins, int, 1, 16384);
+  vtkSetClampMacro(PhiBins, int, SCENE_SETTING, 16384);
   vtkGetMacro(PhiBins, int);
   ///@}
 
@@ -150,8 +164,8 @@ protected:
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int ThetaBins = 32;
-  int PhiBins = 128;
+  int ThetaBins = SCENE_SETTING;
+  int PhiBins = SCENE_SETTING;
   int SamplesPerCell = 3;
   int FillMethod = PROJECTION;
   bool BackFacesOcclude = true;

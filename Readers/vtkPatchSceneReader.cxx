@@ -3,18 +3,43 @@
 
 #include "vtkSceneFileLoader.h"
 #include "vtkScenePieces.h"
+#include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridBuilder.h"
 
 #include "scene/Scene.h"
 
+#include <vtkFieldData.h>
 #include <vtkInformation.h>
+#include <vtkInformationDataObjectMetaDataKey.h>
+#include <vtkInformationKeyLookup.h>
 #include <vtkInformationVector.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <exception>
 
+namespace names = vtkSphericalCoverArrayNames;
+
 vtkStandardNewMacro(vtkPatchSceneReader);
+
+namespace
+{
+/// The key of the scene's cameras in the pipeline information (vtkSphericalCoverArrayNames.h):
+/// the one vtkRadianceImageFilter looks up by the same name, whichever module made it first.
+vtkInformationDataObjectMetaDataKey* SceneCamerasKey()
+{
+  static vtkInformationDataObjectMetaDataKey* key = []
+  {
+    auto* known = vtkInformationDataObjectMetaDataKey::SafeDownCast(
+      vtkInformationKeyLookup::Find(names::SceneCamerasKey, names::SceneCamerasKeyLocation));
+    return known ? known
+                 : new vtkInformationDataObjectMetaDataKey(
+                     names::SceneCamerasKey, names::SceneCamerasKeyLocation);
+  }();
+  return key;
+}
+}
 
 vtkPatchSceneReader::vtkPatchSceneReader()
 {
@@ -34,7 +59,32 @@ int vtkPatchSceneReader::RequestInformation(vtkInformation*,
 {
   // The reader answers every piece request itself (the whole scene to piece 0, nothing to the
   // others) instead of leaving pieces > 0 to the executive's default.
-  outputVector->GetInformationObject(0)->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
+
+  // The cameras, before any data exists: vtkRadianceImageFilter's image size is that of a
+  // scene camera and must be known when it announces its extent. A file that does not load
+  // publishes none; RequestData reports its error (one message, where it was before).
+  outInfo->Remove(SceneCamerasKey());
+  if (!this->FileName.empty())
+  {
+    try
+    {
+      const sphcover::Scene scene = this->LoadFile(this->FileName);
+      vtkNew<vtkUnstructuredGrid> described;
+      vtkSurfaceGridBuilder::AddFieldData(scene, described);
+      vtkNew<vtkDataObject> cameras;
+      cameras->GetFieldData()->AddArray(
+        described->GetFieldData()->GetAbstractArray(names::CameraNames));
+      cameras->GetFieldData()->AddArray(
+        described->GetFieldData()->GetArray(names::CameraParameters));
+      outInfo->Set(SceneCamerasKey(), cameras);
+    }
+    catch (const std::exception&)
+    {
+      // Reported by RequestData.
+    }
+  }
   return 1;
 }
 

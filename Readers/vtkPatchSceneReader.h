@@ -17,9 +17,15 @@
  * Bad input gives one error naming the file, the location (line or JSON pointer) and the
  * problem, and an empty output with a failed request.
  *
+ * Pipeline information: the scene's cameras (CameraNames, CameraParameters) under the key
+ * vtkSphericalCoverArrayNames::SceneCamerasKey, which passes downstream before any data
+ * exists, so that vtkRadianceImageFilter knows a camera's image size when it announces its
+ * extent. RequestInformation therefore loads the file too (on every process; a file that does
+ * not load publishes nothing there, and RequestData reports the error).
+ *
  * Pieces (vtkScenePieces.h): global illumination needs the whole scene in one place, so the
- * reader gives the whole scene to piece 0 and an empty grid, without reading the file, to every
- * other piece (under `mpiexec -n N pvbatch --symmetric` only rank 0 reads).
+ * reader gives the whole scene to piece 0 and an empty grid, without building it, to every
+ * other piece (under `mpiexec -n N pvbatch --symmetric` only rank 0 builds the surfaces).
  */
 #ifndef vtkPatchSceneReader_h
 #define vtkPatchSceneReader_h

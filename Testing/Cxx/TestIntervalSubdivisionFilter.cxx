@@ -91,7 +91,8 @@ int TestIntervalSubdivisionFilter(int argc, char* argv[])
     filter->SetSphericalShapeTolerance(-0.5);
     failures += ExpectFailure(filter, "SphericalShapeTolerance must be");
     filter->SetSphericalShapeTolerance(0.02);
-    filter->SetMaxLevel(-1);
+    // -1 is SCENE_SETTING (the scene's max_level); below it, an error.
+    filter->SetMaxLevel(-2);
     failures += ExpectFailure(filter, "MaxLevel must be >= 0");
     filter->SetMaxLevel(2);
     filter->SetPhiBins(0);

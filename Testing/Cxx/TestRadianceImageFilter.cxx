@@ -7,6 +7,7 @@
 //   to the area-weighted mean exitant radiance of its characteristic points (what the solve
 //   report gives) within 1%;
 // - the output arrays and the image size; RGB is the sRGB encoding of Exposure * Radiance;
+// - without camera properties, the scene's first camera at its size; a property set wins;
 // - bad input: raw surfaces without illumination, an unknown camera, bad camera properties,
 //   an image beyond the memory limit, non-diffuse points without IncidentRadiance: one clear
 //   error each.
@@ -170,6 +171,58 @@ void CornellBackWall()
   }
 }
 
+/// Centre pixel's depth (the image has an odd or even size: the pixel right of the centre).
+double CentreDepth(vtkImageData* image)
+{
+  int dims[3];
+  image->GetDimensions(dims);
+  return image->GetPointData()->GetArray("Depth")->GetComponent(
+    static_cast<vtkIdType>(dims[1] / 2) * dims[0] + dims[0] / 2, 0);
+}
+
+/// With the camera properties at their defaults, the scene's first camera at its size (known
+/// before the inputs execute, from the reader's pipeline information): the image of that camera
+/// named; a property set wins, the others stay the camera's.
+void SceneCamera()
+{
+  RenderTestPipeline::Pipeline pipeline("cornell_box.scene", 0);
+  pipeline.Render->SetSamplesPerPixel(1);
+  pipeline.Render->Update();
+  vtkNew<vtkImageData> byDefault;
+  byDefault->DeepCopy(pipeline.Render->GetOutput());
+  int dims[3];
+  byDefault->GetDimensions(dims);
+  Check(dims[0] == 512 && dims[1] == 512, "no camera property: camera 'main''s 512 x 512");
+  pipeline.Render->SetCameraName("main");
+  pipeline.Render->SetWidth(512);
+  pipeline.Render->SetHeight(512);
+  pipeline.Render->Update();
+  vtkDataArray* named = pipeline.Render->GetOutput()->GetPointData()->GetArray("Radiance");
+  vtkDataArray* unnamed = byDefault->GetPointData()->GetArray("Radiance");
+  bool same = named && unnamed && named->GetNumberOfTuples() == unnamed->GetNumberOfTuples();
+  for (vtkIdType k = 0; same && k < 3 * named->GetNumberOfTuples(); ++k)
+  {
+    same = named->GetComponent(k / 3, k % 3) == unnamed->GetComponent(k / 3, k % 3);
+  }
+  Check(same, "no camera property: the image of camera 'main' named");
+
+  // The user's view and width win; the height, view up and view angle stay the camera's.
+  pipeline.Render->SetCameraName("");
+  pipeline.Render->SetWidth(64);
+  pipeline.Render->SetHeight(0);
+  pipeline.Render->SetPosition(278.0, 273.0, -400.0);
+  pipeline.Render->SetFocalPoint(278.0, 273.0, -399.0);
+  pipeline.Render->Update();
+  vtkImageData* moved = pipeline.Render->GetOutput();
+  moved->GetDimensions(dims);
+  Check(dims[0] == 64 && dims[1] == 512, "Width 64 set: 64 x 512 (the camera's height)");
+  // The centre ray runs along +z in both views: 400 closer to the back wall.
+  const double closer = CentreDepth(byDefault) - CentreDepth(moved);
+  std::cout << "scene camera: centre depth " << CentreDepth(byDefault) << ", moved 400 closer "
+            << CentreDepth(moved) << "\n";
+  Check(std::fabs(closer - 400.0) < 1.0, "Position and FocalPoint set: the user's view");
+}
+
 void BadInput()
 {
   {
@@ -195,9 +248,10 @@ void BadInput()
   pipeline.Render->Update();
   Check(pipeline.Render->GetOutput()->GetNumberOfPoints() == 256, "the scene's camera renders");
   pipeline.Render->SetCameraName("");
-  pipeline.Render->SetViewAngle(0.0);
+  // 0, the default, is the scene camera's view angle; 180 and below 0 are errors.
+  pipeline.Render->SetViewAngle(180.0);
   TestFailures::Add(
-    FailureExpectation::Check(pipeline.Render, { "view angle" }, "zero view angle"));
+    FailureExpectation::Check(pipeline.Render, { "view angle" }, "180 degrees view angle"));
   pipeline.Render->SetViewAngle(-30.0);
   TestFailures::Add(
     FailureExpectation::Check(pipeline.Render, { "view angle" }, "negative view angle"));
@@ -206,8 +260,8 @@ void BadInput()
   TestFailures::Add(
     FailureExpectation::Check(pipeline.Render, { "parallel" }, "view up along the view"));
   pipeline.Render->SetViewUp(0.0, 1.0, 0.0);
-  pipeline.Render->SetWidth(0);
-  TestFailures::Add(FailureExpectation::Check(pipeline.Render, { "0x16" }, "width 0"));
+  pipeline.Render->SetWidth(-1); // 0 is the scene camera's width
+  TestFailures::Add(FailureExpectation::Check(pipeline.Render, { "-1x16" }, "width -1"));
   pipeline.Render->SetWidth(100000);
   pipeline.Render->SetHeight(100000);
   TestFailures::Add(FailureExpectation::Check(pipeline.Render, { "MiB", "limit" }, "huge image"));
@@ -227,6 +281,7 @@ int TestRadianceImageFilter(int, char*[])
   const double clay[3] = { 0.75, 0.55, 0.35 };
   Furnace("furnace_clay.scene", 1, clay);
   CornellBackWall();
+  SceneCamera();
   BadInput();
   return TestFailures::ExitCode();
 }
