@@ -22,7 +22,7 @@ int RunSubdivide(const Options& options)
   CheckOutputPath("-o", options.Output, { ".vtm" }, "subdivision");
   Solution solution;
   solution.Read(options);
-  solution.Subdivide(options, SettingsOf(solution.Reader->GetOutput(), options.Settings));
+  solution.Subdivide(options);
   vtkUnstructuredGrid* patches = solution.Subdivision->GetOutput();
   auto* points = vtkPolyData::SafeDownCast(solution.Subdivision->GetOutputDataObject(1));
 

@@ -54,16 +54,36 @@ void Solution::Read(const Options& options, bool progress)
   this->ReadSeconds = bar.Seconds();
 }
 
-void Solution::Subdivide(const Options& options, const sphcover::SceneSettings& settings)
+void Solution::Subdivide(const Options& options)
 {
   this->Subdivision->SetInputConnection(this->Reader->GetOutputPort());
   this->Subdivision->SetMaximumPatches(options.MaxPatches);
   this->Subdivision->SetMaximumPairTests(options.MaxPairTests);
   this->Subdivision->SetMemoryLimit(options.MemoryLimit);
-  this->Subdivision->SetThetaBins(settings.ThetaBins);
-  this->Subdivision->SetPhiBins(settings.PhiBins);
-  this->Subdivision->SetMaxLevel(settings.MaxLevel);
-  this->Subdivision->SetTolerance(settings.Tolerance);
+  // The filters take the scene's settings from the reader's field data themselves, as in
+  // ParaView and Python (one pipeline); the command line sets only what --set overrides, and
+  // the cover takes the subdivision's grid from its SubdivisionSettings.
+  const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
+  for (const std::string& assignment : options.Settings)
+  {
+    const std::string key = assignment.substr(0, assignment.find('='));
+    if (key == "theta_bins")
+    {
+      this->Subdivision->SetThetaBins(settings.ThetaBins);
+    }
+    else if (key == "phi_bins")
+    {
+      this->Subdivision->SetPhiBins(settings.PhiBins);
+    }
+    else if (key == "max_level")
+    {
+      this->Subdivision->SetMaxLevel(settings.MaxLevel);
+    }
+    else if (key == "tolerance")
+    {
+      this->Subdivision->SetTolerance(settings.Tolerance);
+    }
+  }
   if (options.RangeMethod == "natural")
   {
     this->Subdivision->SetRangeMethodToNaturalInterval();
@@ -79,12 +99,10 @@ void Solution::Solve(const Options& options)
 {
   const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
   CheckCoverGrid(settings, options);
-  this->Subdivide(options, settings);
+  this->Subdivide(options);
   this->Cover->SetMemoryLimit(options.MemoryLimit);
   this->Propagation->SetMemoryLimit(options.MemoryLimit);
   this->Cover->SetInputConnection(this->Subdivision->GetOutputPort(0));
-  this->Cover->SetThetaBins(settings.ThetaBins);
-  this->Cover->SetPhiBins(settings.PhiBins);
   if (options.Fill == "raycasting")
   {
     this->Cover->SetFillMethodToRayCasting();

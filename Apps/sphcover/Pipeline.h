@@ -52,8 +52,9 @@ struct Solution
   /// Reads the scene (its surfaces, cameras, settings and fingerprint in field data).
   void Read(const Options& options, bool progress = true);
 
-  /// After Read: the interval subdivision with `settings` and the options' budgets.
-  void Subdivide(const Options& options, const sphcover::SceneSettings& settings);
+  /// After Read: the interval subdivision with the scene's settings (the filter reads them from
+  /// the reader's output), the --set overrides and the options' budgets.
+  void Subdivide(const Options& options);
 
   /// After Read: checks the cover grid against --memory-limit, then subdivides, covers and
   /// propagates with the scene's settings and the options.
