@@ -31,7 +31,7 @@
 #include "render/RadianceRenderer.h"
 #include "scene/InputError.h"
 #include "scene/Scene.h"
-#include "scene/SceneLoader.h"
+#include "scene/SettingsOverride.h"
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
