@@ -130,6 +130,11 @@ public:
   static std::size_t EstimateBytes(int thetaBins, int phiBins);
 
 private:
+  /// The steps of the constructor after the weights w are known (w indexed (rowOut * Rows +
+  /// rowIn) * PhiBins + deltaColumn): the cumulative sums and Coupled, then Reflect's direct
+  /// terms and spectra.
+  void BuildCumulativeSums(const std::vector<glm::dvec3>& w);
+  void BuildReflectForm(const std::vector<glm::dvec3>& w);
   const glm::dvec3* Cumulative(int rowOut, int rowIn) const
   {
     return this->Sums.data() + static_cast<std::size_t>(rowOut * this->Rows + rowIn) * this->Stride;
