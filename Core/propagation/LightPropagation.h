@@ -402,11 +402,25 @@ private:
   std::size_t Brightest(double& power, double& total) const;
   /// U_j from Unshot and DirectionalUnshot (what Power holds).
   double PowerOf(std::size_t patch) const;
+  /// Run's steps: the next patch of FixedOrder that has unshot power; one shot with its
+  /// record (all but what the scan after it measures); the final check of E_e.
+  std::size_t NextInFixedOrder();
+  ShotRecord ShootAndRecord(std::size_t shooter);
+  void CheckIncidentFinite() const;
+  // The non-diffuse shots (DirectionalShot.cxx).
   /// Sets up the non-diffuse machinery (models, weight tables, transposed entries).
   void SetUpModels(const std::vector<Material>& materialOfPatch);
+  /// ColumnBack: for every entry (i, j) of column j the position of (j, i) in row j, if any.
+  void MatchTransposedEntries();
+  /// ColumnAlbedoMeasure: a_e Omega_e of every entry of a non-diffuse row.
+  void ComputeAlbedoMeasures();
   /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
   /// row j, into DirectionalOut, by the cheaper method; returns the mean over the hemisphere.
   glm::dvec3 DirectionalShot(std::size_t shooter);
+  /// Moves the shooter's unshot dE into DirectionalIn, as in-strips by row.
+  void TakeUnshotInStrips(std::size_t shooter);
+  /// DirectionalCoupled from DirectionalIn; returns the strip pairs of a strip-pair shot.
+  std::size_t CoupleInRows(std::size_t shooter, const ReflectanceWeights& table);
   /// The two methods of DirectionalShot, on the in-strips it collected.
   glm::dvec3 ShotByStripPairs(std::size_t shooter,
     const ReflectanceWeights& table,
