@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // LightPropagation's non-diffuse shots (paper §3.5 "general reflectance", §5.1, §5.2; the class
-// is declared in LightPropagation.h, whose file comment describes them): the set-up of the
-// weight tables and transposed entries, the unshot incident radiance collected per shot, the
-// two ways of summing the weight table (strip pairs, the whole-hemisphere grid) and the
-// receivers served without a region h_ji.
+// is declared in LightPropagation.h, the derivation is in Documentation/notes/propagation.md):
+// the set-up of the weight tables and transposed entries, the unshot incident radiance
+// collected per shot, the two ways of summing the weight table (strip pairs, the
+// whole-hemisphere grid) and the receivers served without a region h_ji.
 #include "propagation/LightPropagation.h"
 
 #include "cover/SphericalCover.h"
