@@ -7,7 +7,7 @@
 
 #include "vtkSphericalCoverArrayNames.h"
 
-#include "scene/SceneLoader.h"
+#include "scene/SettingsOverride.h"
 
 #include <vtkDataArray.h>
 #include <vtkExecutive.h>

@@ -8,39 +8,47 @@
 
 namespace sphcover
 {
-
-ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
-  const ExchangeBalanceSettings& settings,
-  const ProgressCallback& progress)
+namespace
 {
-  const std::size_t n = cover.PatchCount();
-  const std::size_t entries = cover.EntryCount();
-  // G_ij = A_i Omega_ij by entry (row order) and in column order, and the targets r_i.
-  std::vector<double> rowThroughput(entries);
-  std::vector<double> columnThroughput(entries);
-  std::vector<double> target(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i)
+
+/// The matrix scaling of the balance (see the header): the throughputs G_ij = A_i Omega_ij by
+/// entry (row order) and in column order, the targets r_i, and the factors x (rows), y (columns).
+class MatrixScaling
+{
+public:
+  explicit MatrixScaling(const SphericalCover& cover)
+    : Cover(cover)
+    , RowThroughput(cover.EntryCount())
+    , ColumnThroughput(cover.EntryCount())
+    , Target(cover.PatchCount(), 0.0)
+    , X(cover.PatchCount(), 1.0)
+    , Y(cover.PatchCount(), 1.0)
   {
-    for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+    for (std::size_t i = 0; i < cover.PatchCount(); ++i)
     {
-      rowThroughput[e] = cover.PatchArea(i) * cover.ProjectedSolidAngle(e);
-      target[i] += rowThroughput[e];
+      for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+      {
+        this->RowThroughput[e] = cover.PatchArea(i) * cover.ProjectedSolidAngle(e);
+        this->Target[i] += this->RowThroughput[e];
+      }
+    }
+    for (std::size_t k = 0; k < cover.EntryCount(); ++k)
+    {
+      this->ColumnThroughput[k] = this->RowThroughput[cover.ColumnAt(k).EntryIndex];
     }
   }
-  for (std::size_t k = 0; k < entries; ++k)
-  {
-    columnThroughput[k] = rowThroughput[cover.ColumnAt(k).EntryIndex];
-  }
 
-  std::vector<double> x(n, 1.0);
-  std::vector<double> y(n, 1.0);
-  // Column sums of x_i G_ij y_j against r_j, over the sources that are seen (r_j = 0 gives
-  // y_j = 0, see the header); also updates y when asked (the column step).
-  const auto columnStep = [&](bool update)
+  /// Column sums of x_i G_ij y_j against r_j, over the sources that are seen (r_j = 0 gives
+  /// y_j = 0, see the header): the largest relative residual, or with `update` the column step
+  /// (y_j = r_j / sum) and its largest relative change.
+  double ColumnStep(bool update)
   {
+    const SphericalCover& cover = this->Cover;
+    std::vector<double>& x = this->X;
+    std::vector<double>& y = this->Y;
     double residual = 0.0;
     double largestChange = 0.0;
-    for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t j = 0; j < cover.PatchCount(); ++j)
     {
       if (cover.ColumnBegin(j) == cover.ColumnEnd(j))
       {
@@ -49,43 +57,77 @@ ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
       double sum = 0.0;
       for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
       {
-        sum += x[cover.ColumnAt(k).Receiver] * columnThroughput[k];
+        sum += x[cover.ColumnAt(k).Receiver] * this->ColumnThroughput[k];
       }
       if (!(sum > 0.0))
       {
         continue;
       }
-      residual =
-        std::max(residual, std::fabs(sum * y[j] - target[j]) / std::max(target[j], sum * y[j]));
+      residual = std::max(
+        residual, std::fabs(sum * y[j] - this->Target[j]) / std::max(this->Target[j], sum * y[j]));
       if (update)
       {
-        const double next = target[j] / sum;
+        const double next = this->Target[j] / sum;
         largestChange = std::max(largestChange, std::fabs(next - y[j]) / std::max(next, y[j]));
         y[j] = next;
       }
     }
     return update ? largestChange : residual;
-  };
-  const auto rowStep = [&]
+  }
+
+  /// x_i = r_i / sum_j G_ij y_j: every hemisphere gathers exactly its covered measure.
+  void RowStep()
   {
-    for (std::size_t i = 0; i < n; ++i)
+    const SphericalCover& cover = this->Cover;
+    for (std::size_t i = 0; i < cover.PatchCount(); ++i)
     {
       double sum = 0.0;
       for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
       {
-        sum += rowThroughput[e] * y[cover.EntryAt(e).Source];
+        sum += this->RowThroughput[e] * this->Y[cover.EntryAt(e).Source];
       }
-      x[i] = sum > 0.0 ? target[i] / sum : 1.0;
+      this->X[i] = sum > 0.0 ? this->Target[i] / sum : 1.0;
     }
-  };
+  }
 
-  this->InitialResidual = columnStep(false);
+  /// f_e = x_i y_j of every entry e = (i, j), by entry index.
+  std::vector<double> EntryFactors() const
+  {
+    const SphericalCover& cover = this->Cover;
+    std::vector<double> factors(cover.EntryCount());
+    for (std::size_t i = 0; i < cover.PatchCount(); ++i)
+    {
+      for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+      {
+        factors[e] = this->X[i] * this->Y[cover.EntryAt(e).Source];
+      }
+    }
+    return factors;
+  }
+
+private:
+  const SphericalCover& Cover;
+  std::vector<double> RowThroughput;
+  std::vector<double> ColumnThroughput;
+  std::vector<double> Target;
+  std::vector<double> X;
+  std::vector<double> Y;
+};
+
+} // namespace
+
+ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
+  const ExchangeBalanceSettings& settings,
+  const ProgressCallback& progress)
+{
+  MatrixScaling scaling(cover);
+  this->InitialResidual = scaling.ColumnStep(false);
   // The change of every iteration, to tell a slow convergence from a stall.
   std::vector<double> changes;
   while (this->IterationCount < settings.MaximumIterations)
   {
-    rowStep();
-    const double change = columnStep(true);
+    scaling.RowStep();
+    const double change = scaling.ColumnStep(true);
     ++this->IterationCount;
     if (change <= settings.Tolerance)
     {
@@ -110,16 +152,9 @@ ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
     }
   }
   // A row step last: each hemisphere gathers exactly its covered measure.
-  rowStep();
-  this->Residual = columnStep(false);
-  this->Factors.resize(entries);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
-    {
-      this->Factors[e] = x[i] * y[cover.EntryAt(e).Source];
-    }
-  }
+  scaling.RowStep();
+  this->Residual = scaling.ColumnStep(false);
+  this->Factors = scaling.EntryFactors();
   if (progress)
   {
     progress(1.0);

@@ -4,54 +4,26 @@
  * @brief Per-entry factors that make the light exchange of a point-sampled spherical cover
  * conserve energy while every hemisphere keeps its covered measure.
  *
- * The exchange of the cover. Entry e = (i, j) of row i (the region h_ij of H_i, paper §3.3)
- * carries the throughput G_ij = A_i Omega_ij (W per unit radiance): a shot of radiance dL by
- * Q_j delivers A_i Omega_ij dL to P_i (LightPropagation). Row i sums to the point's covered
- * throughput r_i = A_i Omega_i (Omega_i = CoveredProjectedSolidAngle, pi inside a closed scene),
- * and that is what makes the white furnace exact: a uniform radiance L arriving over h_i1..h_in
- * gives the irradiance pi L. What Q_j's shot delivers, however, is the column sum
- * sum_i A_i Omega_ij, while what Q_j sends into the scene is its own row sum r_j: the two are
- * equal only if the cover is reciprocal (A_i Omega_ij = A_j Omega_ji, paper §3.3's
- * "form factor" reciprocity). A cover sampled at characteristic points is not: the
- * hemisphere of P_i is taken at one point of patch i, cells are won by votes, and a
- * partially occluded pair can be seen one way only (the Cornell box with a front wall: 8.8% of
- * the throughput in entries whose reverse is null). The equilibrium then creates or destroys
- * light: 0.84% of the emitted power in that closed box (Data/scenes/cornell_box_closed.scene,
- * BenchmarkLightPropagation --refine 3 --balance 0).
+ * Entry e = (i, j) of the cover (region h_ij of H_i, paper §3.3) carries the throughput
+ * G_ij = A_i Omega_ij: a shot of radiance dL by Q_j delivers A_i Omega_ij dL to P_i. Row i sums
+ * to the point's covered throughput r_i = A_i Omega_i (which keeps the white furnace exact), but
+ * what Q_j delivers is its column sum, which equals what it sends, r_j, only where the cover is
+ * reciprocal (A_i Omega_ij = A_j Omega_ji, §3.3); a cover sampled at characteristic points is
+ * not, and its equilibrium then creates or destroys light.
  *
- * The balance. Factors f_ij = x_i y_j (one per receiver, one per source) such that the balanced
- * throughput G'_ij = x_i G_ij y_j has
- *   - row sums r_i: each hemisphere still gathers exactly its covered measure (the furnace stays
- *     exact, and an open scene's openings stay what the cover says);
- *   - column sums r_j: each source delivers exactly what its own hemisphere sends into the
- *     scene, so a diffuse shot of power pi A_j dL into a closed scene arrives in full, and the
- *     equilibrium balances emission and absorption.
- * This is matrix scaling to prescribed marginals (Sinkhorn-Knopp): alternately x_i = r_i /
- * sum_j G_ij y_j and y_j = r_j / sum_i x_i G_ij, until no y changes by more than Tolerance
- * (relative); the last step is a row step, so rows are exact and columns within the tolerance.
- * The factors touch only the entries that exist: regions keep their cells (what a point sees
- * through which cells, used for directional reflection and the renderer), only the measure
- * with which the radiance arriving through them counts in the irradiance and the power is
- * scaled (LightPropagation: the radiance itself is not, so that mirrors pass on what they see).
- * They are fixed before the first shot, so the propagation stays linear: order independence is kept
- * (unlike a per-shot rescaling of what each shot delivers, which was rejected for that reason,
- * LightPropagation).
+ * The balance: factors f_ij = x_i y_j such that x_i G_ij y_j has row sums r_i (each hemisphere
+ * gathers its covered measure) and column sums r_j (each source delivers what its hemisphere
+ * sends): matrix scaling to prescribed marginals (Sinkhorn-Knopp), row and column steps in turn
+ * until no y_j changes by more than Tolerance (relative), a row step last (rows exact). The
+ * factors scale only the measure with which the existing regions count in the irradiance and the
+ * power (LightPropagation::SetExchangeFactors), not the regions or the radiance; fixed before the
+ * first shot, they keep the propagation linear and order independent.
  *
- * Why the marginals and not the pairs: a symmetric G' cannot keep one-sided entries (h_ij
- * without h_ji), and dropping them leaves holes where a point sees a source. The marginals are
- * what energy conservation needs for Lambertian sources; a non-diffuse shooter, whose radiance
- * differs from region to region, is balanced only up to how its radiance varies along its
- * column: closed scenes with mirrors keep a few tenths of a percent (LightPropagation).
- *
- * Sources that see nothing (r_j = 0) but are seen get the target 0, so y_j = 0: in a closed
- * scene these are points buried under an object (the Cornell floor under the blocks), whose
- * exitant radiance is their emission only, and the receivers' x_i give the measure they saw to
- * the rest of their rows. Receivers that see nothing have an empty row. Points that see but are
- * never seen (an empty column) cannot deliver their target, so the marginals cannot be met
- * exactly; the iteration then settles into a fixed cycle and stops as Stalled() (closed Cornell
- * box: 19 iterations, column residual 1.3e-6). The furnaces converge in 6 to 15 iterations.
- * After MaximumIterations without either, the factors are used as they are (rows exact) and
- * neither Converged() nor Stalled() is set.
+ * Sources that see nothing but are seen (r_j = 0) get y_j = 0. Where the marginals cannot be met
+ * (a point that sees but is never seen) the iteration settles into a cycle and stops as
+ * Stalled(); after MaximumIterations without either, the factors are used as they are (rows
+ * exact). Why the marginals and not the pairs, and the imbalances measured:
+ * Documentation/notes/propagation.md.
  *
  * Cost: O(entries) per iteration, sequential in a fixed order (deterministic).
  */

@@ -27,16 +27,6 @@ double BandSum(const glm::dvec3& v)
   return v.x + v.y + v.z;
 }
 
-/// A hint to the processor to fetch `address` into the cache (a gather's later reads).
-inline void Prefetch(const void* address)
-{
-#if defined(__GNUC__)
-  __builtin_prefetch(address);
-#else
-  (void)address;
-#endif
-}
-
 /// The Lambertian reflectance k_d of every material (0 for mirror and tabulated).
 std::vector<glm::dvec3> ReflectanceOf(const std::vector<Material>& materials)
 {
@@ -51,7 +41,7 @@ std::vector<glm::dvec3> ReflectanceOf(const std::vector<Material>& materials)
   return rho;
 }
 
-/// Materials that give the same BRDF share a model and a weight table.
+/// The emitted radiance Le of every material.
 std::vector<glm::dvec3> EmissionOf(const std::vector<Material>& materials)
 {
   std::vector<glm::dvec3> le;
@@ -130,68 +120,6 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
   this->SetUpModels(materialOfPatch);
 }
 
-void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
-{
-  this->Reflectances = PointReflectances(this->Cover.Grid(), materialOfPatch);
-  for (std::size_t i = 0; i < materialOfPatch.size(); ++i)
-  {
-    this->ModelOfPatch[i] = this->Reflectances.ModelOf(i);
-  }
-  if (this->Reflectances.Empty())
-  {
-    return;
-  }
-  const SphericalCover& cover = this->Cover;
-  const HemisphereGrid& grid = cover.Grid();
-  const std::size_t entries = cover.EntryCount();
-  // The transposed entries: row j is sorted by source, column j by receiver, so one merge of
-  // the two finds, for every receiver i of column j, the entry (j, i) of row j.
-  this->ColumnBack.assign(entries, NoEntry);
-  for (std::size_t j = 0; j < this->PatchCount(); ++j)
-  {
-    std::size_t e = cover.EntryBegin(j);
-    std::size_t k = cover.ColumnBegin(j);
-    while (e < cover.EntryEnd(j) && k < cover.ColumnEnd(j))
-    {
-      const uint32_t source = cover.EntryAt(e).Source;
-      const uint32_t receiver = cover.ColumnAt(k).Receiver;
-      if (source < receiver)
-      {
-        ++e;
-      }
-      else if (receiver < source)
-      {
-        ++k;
-      }
-      else
-      {
-        this->ColumnBack[k++] = static_cast<uint32_t>(e++ - cover.EntryBegin(j));
-      }
-    }
-  }
-  this->ColumnAlbedoMeasure.assign(entries, glm::dvec3(0.0));
-  for (std::size_t i = 0; i < this->PatchCount(); ++i)
-  {
-    if (this->ModelOfPatch[i] < 0)
-    {
-      continue;
-    }
-    const ReflectanceWeights& table = *this->Reflectances.Table(i);
-    for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
-    {
-      glm::dvec3 measure(0.0);
-      for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
-      {
-        const SphericalCover::Strip& strip = cover.StripAt(k);
-        measure += static_cast<double>(strip.PhiEnd - strip.PhiBegin) *
-          grid.CellMeasure(strip.Row) * table.RowAlbedo(strip.Row);
-      }
-      this->ColumnAlbedoMeasure[this->EntryPosition[e]] = measure;
-    }
-  }
-  this->Reset();
-}
-
 const Reflectance* LightPropagation::ReflectanceModel(std::size_t patch) const
 {
   return this->Reflectances.Model(patch);
@@ -259,266 +187,6 @@ void LightPropagation::Reset()
   this->Shots.clear();
   this->ElapsedSeconds = 0.0;
   this->NextInOrder = 0;
-}
-
-glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
-{
-  const SphericalCover& cover = this->Cover;
-  const HemisphereGrid& grid = cover.Grid();
-  const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
-  const std::size_t rowBegin = cover.EntryBegin(shooter);
-  const std::size_t rowEnd = cover.EntryEnd(shooter);
-
-  // The in-strips that hold unshot incident radiance, taken out of the shooter's row, by row.
-  const int rows = grid.ThetaBins();
-  const std::size_t rowCount = static_cast<std::size_t>(rows);
-  std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
-  in.resize(rowCount);
-  for (std::vector<InStrip>& strips : in)
-  {
-    strips.clear();
-  }
-  for (std::size_t e = rowBegin; e < rowEnd; ++e)
-  {
-    // The row's entries lie all over the column-ordered state: ask for the ones ahead early.
-    constexpr std::size_t Ahead = 16;
-    if (e + Ahead < rowEnd)
-    {
-      Prefetch(&this->UnshotIncident[this->EntryPosition[e + Ahead]]);
-    }
-    glm::dvec3& unshot = this->UnshotIncident[this->EntryPosition[e]];
-    const glm::dvec3 radiance = unshot;
-    if (radiance == glm::dvec3(0.0))
-    {
-      continue;
-    }
-    unshot = glm::dvec3(0.0);
-    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
-    {
-      const SphericalCover::Strip& strip = cover.StripAt(k);
-      in[strip.Row].push_back({ strip.PhiBegin, strip.PhiEnd, radiance });
-    }
-  }
-  this->DirectionalUnshot[shooter] = 0.0;
-  // For every out row, the in rows the table couples it with that hold unshot light, and the
-  // number of their strips.
-  std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
-  coupled.resize(rowCount);
-  for (std::vector<int>& rowsIn : coupled)
-  {
-    rowsIn.clear();
-  }
-  std::vector<std::size_t> coupledStrips(rowCount, 0);
-  for (int rowOut = 0; rowOut < rows; ++rowOut)
-  {
-    for (int rowIn = 0; rowIn < rows; ++rowIn)
-    {
-      if (!in[static_cast<std::size_t>(rowIn)].empty() && table.RowsCoupled(rowOut, rowIn))
-      {
-        coupled[static_cast<std::size_t>(rowOut)].push_back(rowIn);
-        coupledStrips[static_cast<std::size_t>(rowOut)] +=
-          in[static_cast<std::size_t>(rowIn)].size();
-      }
-    }
-  }
-  // The strip pairs of the strip-pair sum: its cost, against the grid's (file comment).
-  std::size_t pairs = 0;
-  if (rowEnd > rowBegin)
-  {
-    for (std::size_t k = cover.StripBegin(rowBegin); k < cover.StripEnd(rowEnd - 1); ++k)
-    {
-      pairs += coupledStrips[cover.StripAt(k).Row];
-    }
-  }
-  this->GridShot = this->Method == DirectionalMethod::Grid ||
-    (this->Method == DirectionalMethod::Automatic &&
-      static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount()));
-  this->DirectionalOut.assign(rowEnd - rowBegin, glm::dvec3(0.0));
-  return this->GridShot ? this->ShotByGrid(shooter, table)
-                        : this->ShotByStripPairs(shooter, table, pairs);
-}
-
-glm::dvec3 LightPropagation::ShotByStripPairs(std::size_t shooter,
-  const ReflectanceWeights& table,
-  std::size_t pairs)
-{
-  const SphericalCover& cover = this->Cover;
-  const HemisphereGrid& grid = cover.Grid();
-  const std::size_t rowBegin = cover.EntryBegin(shooter);
-  const std::size_t rowEnd = cover.EntryEnd(shooter);
-  const std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
-  const std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
-  // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
-  glm::dvec3 meanFlux(0.0);
-  for (int rowOut = 0; rowOut < grid.ThetaBins(); ++rowOut)
-  {
-    glm::dvec3 rowFlux(0.0);
-    for (int rowIn : coupled[static_cast<std::size_t>(rowOut)])
-    {
-      const glm::dvec3 weight = table.RowWeight(rowOut, rowIn);
-      for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
-      {
-        rowFlux += static_cast<double>(strip.End - strip.Begin) * weight * strip.Radiance;
-      }
-    }
-    meanFlux += grid.CellMeasure(rowOut) * rowFlux;
-  }
-
-  // The exitant radiance averaged over every region h_ji of the shooter's row.
-  for (std::size_t e = rowBegin; e < rowEnd; ++e)
-  {
-    glm::dvec3 flux(0.0);
-    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
-    {
-      const SphericalCover::Strip& out = cover.StripAt(k);
-      glm::dvec3 stripFlux(0.0);
-      for (int rowIn : coupled[out.Row])
-      {
-        for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
-        {
-          stripFlux += table.StripPairWeight(
-                         out.Row, out.PhiBegin, out.PhiEnd, rowIn, strip.Begin, strip.End) *
-            strip.Radiance;
-        }
-      }
-      flux += grid.CellMeasure(out.Row) * stripFlux;
-    }
-    if (this->EntryOmega[e] > 0.0)
-    {
-      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
-    }
-  }
-  this->LastWeightEvaluations = pairs;
-  return meanFlux / grid.TotalMeasure();
-}
-
-glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWeights& table)
-{
-  const SphericalCover& cover = this->Cover;
-  const HemisphereGrid& grid = cover.Grid();
-  const std::size_t rows = static_cast<std::size_t>(grid.ThetaBins());
-  const std::size_t columns = static_cast<std::size_t>(grid.PhiBins());
-  // The unshot incident radiance per cell (each cell of the row belongs to one entry).
-  this->GridIn.assign(rows * columns, glm::dvec3(0.0));
-  for (std::size_t row = 0; row < rows; ++row)
-  {
-    for (const InStrip& strip : this->DirectionalIn[row])
-    {
-      for (int c = strip.Begin; c < strip.End; ++c)
-      {
-        this->GridIn[row * columns + static_cast<std::size_t>(c)] += strip.Radiance;
-      }
-    }
-  }
-  // I(o) toward every cell, then per out row the prefix sums of I over the columns, so that
-  // a strip of out cells costs O(1).
-  table.Reflect(this->GridIn, this->GridOut, this->ReflectScratch);
-  this->GridPrefix.resize(rows * (columns + 1));
-  glm::dvec3 meanFlux(0.0);
-  for (std::size_t row = 0; row < rows; ++row)
-  {
-    glm::dvec3* prefix = this->GridPrefix.data() + row * (columns + 1);
-    prefix[0] = glm::dvec3(0.0);
-    for (std::size_t c = 0; c < columns; ++c)
-    {
-      prefix[c + 1] = prefix[c] + this->GridOut[row * columns + c];
-    }
-    meanFlux += grid.CellMeasure(static_cast<int>(row)) * prefix[columns];
-  }
-  const std::size_t rowBegin = cover.EntryBegin(shooter);
-  const std::size_t rowEnd = cover.EntryEnd(shooter);
-  for (std::size_t e = rowBegin; e < rowEnd; ++e)
-  {
-    glm::dvec3 flux(0.0);
-    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
-    {
-      const SphericalCover::Strip& out = cover.StripAt(k);
-      const glm::dvec3* prefix = this->GridPrefix.data() + out.Row * (columns + 1);
-      flux += grid.CellMeasure(out.Row) * (prefix[out.PhiEnd] - prefix[out.PhiBegin]);
-    }
-    if (this->EntryOmega[e] > 0.0)
-    {
-      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
-    }
-  }
-  this->LastWeightEvaluations = 0;
-  return meanFlux / grid.TotalMeasure();
-}
-
-void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
-{
-  if (!frames.empty() && frames.size() != this->PatchCount())
-  {
-    throw std::invalid_argument("LightPropagation: " + std::to_string(frames.size()) +
-      " frames for " + std::to_string(this->PatchCount()) + " patches");
-  }
-  this->Frames = std::move(frames);
-  this->EncodeFallbacks();
-}
-
-void LightPropagation::EncodeFallbacks()
-{
-  // The receivers without h_ji are fixed by the cover, and so is the cell of the direction
-  // P_i - P_j in the shooter's hemisphere: found once here rather than in every shot.
-  const SphericalCover& cover = this->Cover;
-  if (this->ColumnBack.empty())
-  {
-    return;
-  }
-  for (std::size_t j = 0; j < this->PatchCount(); ++j)
-  {
-    for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
-    {
-      uint32_t& code = this->ColumnBack[k];
-      if (code < FallbackFlag)
-      {
-        continue;
-      }
-      code = NoEntry;
-      if (this->Frames.empty())
-      {
-        continue;
-      }
-      const HemisphereFrame& from = this->Frames[j];
-      const int cell = cover.Grid().CellOfLocalDirection(
-        from.ToLocal(this->Frames[cover.ColumnAt(k).Receiver].Origin - from.Origin));
-      if (cell >= 0)
-      {
-        code = FallbackFlag | static_cast<uint32_t>(cell);
-      }
-    }
-  }
-}
-
-glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
-  uint32_t code,
-  const glm::dvec3& mean)
-{
-  if (code == NoEntry)
-  {
-    ++this->LastMeanFallbacks;
-    return mean;
-  }
-  // The exitant radiance toward the cell of the direction P_i - P_j (paper §5.1) in the
-  // shooter's hemisphere, from the in-strips DirectionalShot kept.
-  const HemisphereGrid& grid = this->Cover.Grid();
-  const int cell = static_cast<int>(code & ~FallbackFlag);
-  if (this->GridShot)
-  {
-    return this->GridOut[static_cast<std::size_t>(cell)];
-  }
-  const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
-  const int rowOut = grid.RowOfCell(cell);
-  const int columnOut = grid.ColumnOfCell(cell);
-  glm::dvec3 sum(0.0);
-  for (int rowIn : this->DirectionalCoupled[static_cast<std::size_t>(rowOut)])
-  {
-    for (const InStrip& strip : this->DirectionalIn[static_cast<std::size_t>(rowIn)])
-    {
-      sum += table.StripWeight(rowOut, columnOut, rowIn, strip.Begin, strip.End) * strip.Radiance;
-    }
-  }
-  return sum;
 }
 
 std::size_t LightPropagation::Shoot(std::size_t shooter)
@@ -680,28 +348,9 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     {
       return false;
     }
-    std::size_t shooter = brightest;
-    if (settings.Order == ShootingOrder::FixedOrder)
-    {
-      // Not converged, so some patch has unshot power: the cycle finds it within N steps.
-      while (this->UnshotPower(this->NextInOrder) <= 0.0)
-      {
-        this->NextInOrder = (this->NextInOrder + 1) % this->PatchCount();
-      }
-      shooter = this->NextInOrder;
-      this->NextInOrder = (this->NextInOrder + 1) % this->PatchCount();
-    }
-
-    ShotRecord record;
-    record.Shot = this->Shots.size();
-    record.Shooter = shooter;
-    record.ShotPower = this->UnshotPower(shooter);
-    record.RelativeChange = record.ShotPower / this->TotalEmitted;
-    record.ReceiverUpdates = this->Shoot(shooter);
-    record.WeightEvaluations = this->LastWeightEvaluations;
-    record.Fallbacks = this->LastFallbacks;
-    record.MeanFallbacks = this->LastMeanFallbacks;
-    record.GridShot = this->GridShot;
+    const std::size_t shooter =
+      settings.Order == ShootingOrder::FixedOrder ? this->NextInFixedOrder() : brightest;
+    ShotRecord record = this->ShootAndRecord(shooter);
     brightest = this->Brightest(largest, unshot);
     if (!std::isfinite(unshot))
     {
@@ -728,6 +377,43 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
       }
     }
   }
+  this->CheckIncidentFinite();
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+std::size_t LightPropagation::NextInFixedOrder()
+{
+  // Not converged, so some patch has unshot power: the cycle finds it within N steps.
+  while (this->UnshotPower(this->NextInOrder) <= 0.0)
+  {
+    this->NextInOrder = (this->NextInOrder + 1) % this->PatchCount();
+  }
+  const std::size_t shooter = this->NextInOrder;
+  this->NextInOrder = (this->NextInOrder + 1) % this->PatchCount();
+  return shooter;
+}
+
+ShotRecord LightPropagation::ShootAndRecord(std::size_t shooter)
+{
+  ShotRecord record;
+  record.Shot = this->Shots.size();
+  record.Shooter = shooter;
+  record.ShotPower = this->UnshotPower(shooter);
+  record.RelativeChange = record.ShotPower / this->TotalEmitted;
+  record.ReceiverUpdates = this->Shoot(shooter);
+  record.WeightEvaluations = this->LastWeightEvaluations;
+  record.Fallbacks = this->LastFallbacks;
+  record.MeanFallbacks = this->LastMeanFallbacks;
+  record.GridShot = this->GridShot;
+  return record;
+}
+
+void LightPropagation::CheckIncidentFinite() const
+{
   // The unshot energy stayed finite, but a radiance can overflow on its own (a tiny region's
   // measure): the result is refused rather than written as inf.
   for (const glm::dvec3& e : this->Incident)
@@ -738,11 +424,6 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
         "an incident radiance is not finite (an overflow); scale the emissions down");
     }
   }
-  if (progress)
-  {
-    progress(1.0);
-  }
-  return true;
 }
 
 const std::vector<glm::dvec3>& LightPropagation::IncidentRadiances() const

@@ -1,167 +1,39 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file LightPropagation.h
- * @brief Progressive propagation of light over the spherical cover (paper §5, §5.1), for
- * the four reflectance kinds of §3.5 (diffuse, ideal mirror, phong, tabulated), with incident
- * radiance stored per region h_ij of every hemisphere H_i (paper §3.1 decision 4) rather than
- * exitant radiance per patch. The diffuse case first; non-diffuse patches below.
+ * @brief Progressive propagation of light over the spherical cover (paper §5, §5.1), for the four
+ * reflectance kinds of §3.5 (diffuse, ideal mirror, phong, tabulated), with incident radiance
+ * stored per region h_ij of every hemisphere H_i (paper §3.1 decision 4).
  *
- * State, per band (RGB):
- *  - E_e, the incident radiance of every entry e = (i, j) of the cover: the radiance P_i
- *    receives through h_ij, which is the exitant radiance of Q_j toward P_i;
- *  - the unshot exitant radiance dL_j of every patch: what Q_j has reflected (or emits) but
- *    not yet sent to the hemispheres that contain it.
+ * State, per band: E_e, the incident radiance of every entry e = (i, j) of the cover (what P_i
+ * receives through h_ij: the exitant radiance of Q_j toward P_i), and what each patch has
+ * received but not yet shot: the uniform dL_j (emission, Lambertian reflection) and, for a
+ * non-diffuse patch, dE_e per entry of its row.
  *
- * A shot (§5.1 "Remove the brightest characteristic point ... For all hemispherical
- * tessellations H_j with P_i in H_j ... update the radiance function entry associated with
- * h_ji") takes the shooter j's unshot radiance dL_j and walks column j of the cover: for every
- * receiver i whose hemisphere holds Q_j (entry e),
- *     E_e += dL_j,   dL_i += rho_i / pi * dL_j * Omega_e,
- * where Omega_e is the projected (cosine-weighted) solid angle of h_ij (f_e Omega_e with the
- * exchange balanced, SetExchangeFactors; E_e itself is never scaled). For a diffuse shooter
- * the exitant radiance is the same in every direction (§3.5.1), so it is evaluated once per
- * shot and a shot costs O(column size) updates (§5.2: "I can be computed only once and then
- * used for all updates. eta in this case, now becomes O(N)").
+ * A shot of patch j (§5.1) walks column j of the cover: every receiver i whose hemisphere holds
+ * Q_j gets E_e += I_ji and dL_i += k_d,i / pi f_e Omega_e I_ji (and dE_e += I_ji when
+ * non-diffuse), Omega_e the projected solid angle of h_ij and f_e its exchange factor
+ * (SetExchangeFactors; 1 without). A Lambertian shooter's I_ji = dL_j is the same toward every
+ * receiver (§5.2). A non-diffuse shooter adds its weight table's reflection of dE averaged over
+ * the region h_ji (ReflectanceWeights, §3.5 "general reflectance"), summed by strip pairs or over
+ * the whole-hemisphere grid (DirectionalMethod, the same sum); a receiver without h_ji gets the
+ * radiance toward the cell of P_i - P_j (SetFrames) or the hemisphere's mean.
  *
- * Derived quantities of a diffuse patch i (row i of the cover):
- *  - irradiance        E_i = sum_{e in row i} E_e Omega_e                       (W m^-2);
- *  - exitant radiance  L_i = Le_i + rho_i / pi * E_i                            (W m^-2 sr^-1);
- *  - brightness (§5)   B_i = rho_i * E_i + pi * Le_i = pi * L_i                 (W m^-2):
- *    the paper's B = (k_d + k_s) int E cos dw + int eps cos dw with k_s = 0 (diffuse) and the
- *    emission eps = Le uniform over the hemisphere, so int eps cos dw = pi Le. It is the
- *    radiosity (exitant flux density) of the patch, per band.
- * L_i includes the light still unshot at P_i (as in progressive radiosity), so it is the
- * current estimate of the equilibrium, not only what has already been propagated.
+ * Order and convergence: BrightestFirst shoots the patch of largest unshot power U_j (§5 "the
+ * brightest"; ties to the lowest index), FixedOrder cycles through the patches; both stop when
+ * sum_j U_j falls below ConvergenceTolerance times the emitted power, or after MaximumShots. All
+ * in the calling thread, in a fixed order: the results are deterministic.
  *
- * Shooting order and convergence. The unshot power of patch j is
- *     U_j = pi * A_j * (dL_j,r + dL_j,g + dL_j,b)   (W, summed over the bands),
- * the flux it would send out in one shot. BrightestFirst shoots the patch of largest U_j (ties
- * to the lowest index; the paper's "brightest characteristic point", measured by its unshot
- * change, which is what SPEC §4.4 allows); FixedOrder cycles through the patches in index
- * order and shoots whatever each has (a patch with nothing unshot is passed over). Both stop
- * when sum_j U_j / W_e < ConvergenceTolerance, W_e = sum_j pi A_j (Le_j,r + Le_j,g + Le_j,b)
- * the emitted power (the paper's "appreciable change" of §5.1, made relative), or after
- * MaximumShots shots. Everything runs in the calling thread in a fixed order: the results are
- * deterministic.
+ * Results per patch: Irradiance E_i = sum_{e in row i} f_e E_e Omega_e; ExitantRadiance, the
+ * Lambertian part Le + k_d / pi E_i; Brightness (§5's B), the flux density emitted and reflected
+ * into the whole hemisphere; ExitantRadianceToward, the exitant radiance toward any direction
+ * (§5.3.1); Energy, the power balance.
  *
- * Non-diffuse reflection (paper §3.5, §5.1, §5.2). A patch whose material is not Lambertian
- * (mirror, phong, tabulated; see Reflectance) cannot turn what it receives into one exitant
- * radiance: its exitant radiance depends on the direction. Such a patch keeps, instead of a
- * reflected dL, the unshot incident radiance dE_e of every entry e of its row (what arrived
- * through h_ie since it last shot); its emission stays in dL (emission is uniform). When it
- * shoots, its exitant radiance toward receiver i is
- *     I_ji = dL_j + (1 / Omega(h_ji)) sum_{o in h_ji} Omega_o sum_c w(o, c) dE_c,
- * the weight table w(out, in-cell) of ReflectanceWeights (paper §3.5 "general reflectance";
- * the ideal mirror is the table with k_s on the mirror cell) averaged over the region h_ji
- * through which P_j sees Q_i: the cells in which the direction P_i - P_j of §5.1 lies. The
- * average over the region rather than the value at one direction is what keeps the energy:
- * summed over the regions of a closed scene, A_j sum_i Omega(h_ji) I_ji is exactly what the
- * weight table reflects. Receiver i gets A_i Omega(h_ij) I_ji, the same where the cover is
- * reciprocal (A_i Omega(h_ij) = A_j Omega(h_ji): the test's one-patch-per-wall box balances to
- * 1e-7). Point-sampled hemispheres of unequal neighbours are not reciprocal (up to 20-27% per
- * pair in the split furnace box). The balance (SetExchangeFactors, ExchangeBalance), fixed
- * before the first shot, gives every region h_ij the measure f_ij Omega_ij (f_ij = x_i y_j)
- * over which its radiance is gathered into irradiance and power: rows keep their covered
- * measure (the furnace stays exact) and columns deliver what the source's own hemisphere sends
- * (a diffuse shot into a closed scene arrives in full). E_e stays the radiance P_i sees (the
- * shooter's exitant radiance toward it, not scaled), and that is what a non-diffuse receiver
- * reflects through its weight table and what the renderer reads. A mirror thus passes on the
- * radiance it sees, and mirror and phong furnaces stay uniform with the balance on. (With E_e
- * scaled by f_e instead, light that crossed k mirrors carried the product of k factors: 2.3% off
- * in the furnace box with a cube inside, NonDiffusePropagation.
- * FurnacesThroughThePipelineWithTheExchangeBalanced.) A non-diffuse point's reflection is
- * counted over its cells' own measure (which the table conserves) and what it receives over the
- * balanced one. Both differ from an exchange that is exact pair by pair only through how the
- * radiance varies along a row or a column, so closed scenes with mirrors and glossy surfaces
- * keep an imbalance of a few tenths of a percent. It is the cover's discretisation error and
- * falls as the patches shrink: the mixed box split 2 x 2, 3 x 3, 4 x 4, 6 x 6, 8 x 8 loses 0.70,
- * 0.65, 0.57, 0.49, 0.37% (ClosedMixedBoxAbsorbsWhatItEmits asserts the fall); a finer grid at
- * the same patches does not help (the mixed box with a cube inside through `sphcover solve`:
- * 0.41, 0.29, 0.39% at 16 x 64, 32 x 128, 64 x 256). The
- * teapot room is off by 0.081% unrefined (1.26% as built) and 0.40% refined as the cover filter
- * does (0.18% as built; with the stored radiance scaled instead of the measure, 0.33% and 0.29%).
- * In the refined teapot room the balance itself cannot close: patches smaller than a cell as
- * seen from afar win few cells of other hemispheres, so their columns fall far short of their
- * rows (1010 of the 13461 points would need y_j > 4) and ExchangeBalance stops stalled. The
- * propagation stays linear, hence order independent; a closed Cornell box goes from 0.84% to
- * 6e-5 (ExchangeBalance.h). Tried and rejected: scaling each shot's delivered power to the sent
- * power (it breaks the furnace, 21% with mirrors, and the order independence); making
- * directional shots exact pair by pair by renormalising each weight table to the balanced
- * out-measures (the split mixed box then balances to 6e-8, but the mirror sphere through the
- * pipeline is 12.6% off the furnace value and the teapot room had not converged after 890902
- * shots, against 72066); re-emitting what a non-diffuse receiver gains or loses by the balanced
- * measure as a uniform radiance (no change: the refined teapot room 0.398%); a cover filled
- * with RBufferFillOptions::DiffuseRounding (the unrefined teapot room 0.22% balanced, 0.96% as
- * built); the rows of non-diffuse receivers left unscaled and the columns balanced through the
- * diffuse rows alone (the teapot room 0.41% unrefined, 0.42% refined).
- *
- * The sum over the table is taken in one of two ways (DirectionalMethod), the same sum in another
- * order (the test GridAndStripPairShotsAgree: 7e-15; the teapot room to 1e-3: incident radiance
- * within 1.1e-14, brightness 9e-14, shot for shot, BenchmarkLightPropagation --compare):
- *  - strip pairs: each (out strip of row j, in strip with unshot radiance) costs O(1)
- *    (cumulative sums of the table), so a shot costs O(strips of row j x strips with unshot
- *    light + column j), the O(D) per receiver of §5.2 reduced by the strips' run-length
- *    structure. Cheap while little of the hemisphere holds unshot light, but it grows with the
- *    product: ~1.2 million pairs per shot in the refined teapot room, where one propagation did
- *    not end in 10 minutes;
- *  - the grid: the unshot light is laid out over the D cells of the hemisphere, reflected
- *    toward every cell at once by ReflectanceWeights::Reflect (the mirror's delta cell by cell,
- *    other tables as circular correlations over phi by FFT, O(ThetaBins^2 PhiBins)), and
- *    averaged over every region h_ji from prefix sums along the rows, O(D log PhiBins +
- *    strips of row j + column j) whatever the strips. A receiver without h_ji reads its cell.
- * Automatic (the default) takes the grid when the strip pairs exceed GridCostInPairs per cell.
- * Where the cover has h_ij
- * but not h_ji (the two hemispheres are discretised independently: a small patch wins no cell
- * of a far shooter's hemisphere; 16% of the updates in the teapot room), the exitant radiance
- * toward the cell of the direction P_i - P_j is used when the frames of the characteristic
- * points are known (SetFrames; the cells are found once, EncodeFallbacks), else the hemisphere's
- * mean exitant radiance (sum over all cells of Omega_o I(o), over pi); ShotRecord counts those
- * updates. A receiver i updates its entry h_ij as before, adds rho_i Omega_e / pi of the increment
- * to dL_i (rho_i = k_d, the Lambertian part, 0 for mirror and tabulated) and, when non-diffuse, the
- * increment to dE_e. The Lambertian part of a phong surface thus travels in closed form with dL,
- * and the weight tables hold the rest of the BRDF (ReflectanceWeights). A Lambertian shooter keeps
- * the closed-form O(column) shot above (§5.2), even among non-diffuse patches.
- *
- * For a non-diffuse patch:
- *  - the unshot power is U_j = pi A_j sum_b dL_j + A_j sum_e sum_b dE_e,b a_e,b Omega_e, with
- *    a_e Omega_e = sum_{c in h_je} Omega_c (a(c) - k_d) the albedo-weighted measure of the
- *    entry (the table's part of the albedo): the
- *    power its next shot sends out (shooting order and convergence as above, on this U_j);
- *  - ExitantRadiance (the Radiosity output) is its Lambertian part Le + k_d / pi E (k_d = 0 for
- *    mirror and tabulated);
- *  - Brightness is pi Le + k_d E + sum_e E_e a_e Omega_e, the flux density it reflects and emits
- * into its whole hemisphere (for a diffuse patch rho E + pi Le as before): the paper's B = (k_d +
- * k_s) int E cos dw + int eps cos dw with the albedo per direction;
- *  - absorbed power A (E - (Brightness - pi Le)), E the irradiance over the balanced measures;
- *  - ExitantRadianceToward(i, direction) evaluates the BRDF toward any direction through the
- *    weight table at the direction's cell (paper §5.3.1: "E interpolated then the BRDF
- *    evaluated toward the eye"); the one implementation is DirectionalExitantRadiance, which
- *    the renderer uses too.
- *
- * Memory layout. The state of the entries (E, dE and the per-entry constants a shot reads) is
- * kept in column order, the order in which a shot walks column j: its entries lie all over the
- * rows, and in row order every update was a cache miss (91% of the column walk's time in the
- * teapot room). The rows are then gathered instead, only by a directional shooter (its own row,
- * prefetched) and for results (Irradiance, IncidentRadiances).
- *
- * Measured (BenchmarkLightPropagation, on a machine shared with other jobs, so wall times are
- * high and vary; processor time is steadier): the teapot room refined as the cover filter does
- * (--refine 3: 13461 patches, 11369 non-diffuse, 9.1 million entries) converges to 1e-5 in
- * 83959 shots, 18.0 s wall and 12.0 s of processor time: uniform shots 62 us (mean column
- * 4004), grid shots 384 us, strip-pair shots 227 us (8021 pairs). Before, `sphcover solve`
- * did not finish propagating it in 10 minutes; strip pairs alone cost 5.8 ms per directional
- * shot there (1.1 million pairs, column-ordered state already). Unrefined (9195
- * patches) to 1e-3: 248 s before (strip pairs, entries in row order), 6.9 s wall / 4.6 s
- * processor now, the same 35397 shots; to 1e-5: 70046 shots, 14.2 s wall / 9.4 s processor. The
- * Cornell box (diffuse only) to 1e-5: 5.7 s before, 1.3 s now (35429 shots); a uniform shot
- * costs 6.9 ns per update (57.7 ns in row order).
- *
- * Limitations: the shooter is found by a scan of the N patches per shot (O(N), the same order
- * as a worst-case column; one pass with the unshot sum), not by a priority queue: a heap would
- * pay O(log N) for each of a column's updates, more than the scan. A shot runs in the calling
- * thread: it takes 50 to 350 us, about what handing work to other threads costs, so threads
- * would gain little and, on a shared machine, wait for cores. Two-sided surfaces are handled as
- * the cover handles them (one hemisphere per point).
+ * Complexity: a shot costs O(column j) updates, plus for a non-diffuse shooter O(strips of row j x
+ * in-strips with unshot light) by strip pairs or O(D log PhiBins) by the grid (D cells per
+ * hemisphere), plus the O(N) scan for the next shooter. Memory: BytesPerEntry per entry and
+ * BytesPerPatch per patch, the entries' state in column order (the order a shot walks).
+ * Derivations, measurements and the variants tried: Documentation/notes/propagation.md.
  */
 #ifndef SPHCOVER_LIGHTPROPAGATION_H
 #define SPHCOVER_LIGHTPROPAGATION_H
@@ -249,8 +121,8 @@ struct ShotRecord
 };
 
 /// Power per band, W: emitted sum_i pi A_i Le_i, absorbed sum_i A_i (E_i - reflected_i)
-/// (reflected_i = rho_i E_i for a diffuse patch, see the file comment otherwise), and what is
-/// still unshot (U_j per band).
+/// (reflected_i = rho_i E_i for a diffuse patch, sum_e E_e a_e Omega_e more otherwise: see
+/// UnshotPower), and what is still unshot (U_j per band).
 struct EnergyBalance
 {
   glm::dvec3 Emitted{ 0.0 };
@@ -323,9 +195,7 @@ public:
   void SetDirectionalMethod(DirectionalMethod method) { this->Method = method; }
   DirectionalMethod GetDirectionalMethod() const { return this->Method; }
   /// Automatic takes the grid when the strip pairs exceed this many per cell of the grid: the
-  /// grid's cost in strip pairs (BenchmarkLightPropagation --compare on the refined teapot room:
-  /// 200 to 300 us per grid shot, 5 ns per strip pair in large shots and more in small ones,
-  /// D = 4096 cells).
+  /// grid's cost in strip pairs, as measured (Documentation/notes/propagation.md).
   static constexpr double GridCostInPairs = 5.0;
 
   /**
@@ -362,7 +232,7 @@ public:
   /// patch; the diffuse part of phong; Le for mirror and tabulated).
   glm::dvec3 ExitantRadiance(std::size_t patch) const;
   /// Exitant flux density: rho_i * Irradiance(i) + pi * Le_i for a diffuse patch, reflected
-  /// into the whole hemisphere + pi Le otherwise (paper §5; see the file comment).
+  /// into the whole hemisphere + pi Le otherwise (paper §5).
   glm::dvec3 Brightness(std::size_t patch) const;
   /// Exitant radiance of patch i toward a unit direction in its hemisphere's local frame
   /// (HemisphereFrame::ToLocal; z along the normal): Le + sum_e sum_{c in h_ie} w(o, c) E_e,
@@ -383,7 +253,9 @@ public:
                                         : this->UnshotIncident[this->EntryPosition[entry]];
   }
   const glm::dvec3& UnshotRadiance(std::size_t patch) const { return this->Unshot[patch]; }
-  /// U_j of the file comment.
+  /// U_j = pi A_j sum_b dL_j,b (+ A_j sum_e sum_b dE_e,b a_e Omega_e for a non-diffuse patch,
+  /// a_e Omega_e = sum_{c in h_je} Omega_c (a(c) - k_d) the table's albedo over the entry): the
+  /// power the next shot of patch j sends out, W summed over the bands.
   double UnshotPower(std::size_t patch) const { return this->Power[patch]; }
   /// sum_j U_j.
   double UnshotEnergy() const;
@@ -402,11 +274,25 @@ private:
   std::size_t Brightest(double& power, double& total) const;
   /// U_j from Unshot and DirectionalUnshot (what Power holds).
   double PowerOf(std::size_t patch) const;
+  /// Run's steps: the next patch of FixedOrder that has unshot power; one shot with its
+  /// record (all but what the scan after it measures); the final check of E_e.
+  std::size_t NextInFixedOrder();
+  ShotRecord ShootAndRecord(std::size_t shooter);
+  void CheckIncidentFinite() const;
+  // The non-diffuse shots (DirectionalShot.cxx).
   /// Sets up the non-diffuse machinery (models, weight tables, transposed entries).
   void SetUpModels(const std::vector<Material>& materialOfPatch);
+  /// ColumnBack: for every entry (i, j) of column j the position of (j, i) in row j, if any.
+  void MatchTransposedEntries();
+  /// ColumnAlbedoMeasure: a_e Omega_e of every entry of a non-diffuse row.
+  void ComputeAlbedoMeasures();
   /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
   /// row j, into DirectionalOut, by the cheaper method; returns the mean over the hemisphere.
   glm::dvec3 DirectionalShot(std::size_t shooter);
+  /// Moves the shooter's unshot dE into DirectionalIn, as in-strips by row.
+  void TakeUnshotInStrips(std::size_t shooter);
+  /// DirectionalCoupled from DirectionalIn; returns the strip pairs of a strip-pair shot.
+  std::size_t CoupleInRows(std::size_t shooter, const ReflectanceWeights& table);
   /// The two methods of DirectionalShot, on the in-strips it collected.
   glm::dvec3 ShotByStripPairs(std::size_t shooter,
     const ReflectanceWeights& table,

@@ -15,6 +15,343 @@
 
 namespace sphcover
 {
+namespace
+{
+
+/// w per (rowOut, rowIn, deltaColumn) while the table is built, in the layout the private
+/// builders of ReflectanceWeights read: (rowOut * rows + rowIn) * columns + deltaColumn.
+struct WeightGrid
+{
+  WeightGrid(std::size_t rows, std::size_t columns)
+    : Rows(rows)
+    , Columns(columns)
+    , Values(rows * rows * columns, glm::dvec3(0.0))
+  {
+  }
+  glm::dvec3& operator()(std::size_t ro, std::size_t ri, std::size_t d)
+  {
+    return this->Values[(ro * this->Rows + ri) * this->Columns + d];
+  }
+  const glm::dvec3& operator()(std::size_t ro, std::size_t ri, std::size_t d) const
+  {
+    return this->Values[(ro * this->Rows + ri) * this->Columns + d];
+  }
+
+  const std::size_t Rows;
+  const std::size_t Columns;
+  std::vector<glm::dvec3> Values;
+};
+
+/// The polar sub-directions of every row, Samples per row: cos and sin of theta, row r's at
+/// [r * Samples, (r + 1) * Samples).
+struct RowSubdirections
+{
+  int Samples = 0;
+  std::vector<double> Cos;
+  std::vector<double> Sin;
+};
+
+/// Polar angles at the midpoints of `samples` strata of equal projected solid angle (uniform in
+/// s = sin^2 theta), as the grid's own samples.
+RowSubdirections SubdirectionsOfRows(const HemisphereGrid& grid, int samples)
+{
+  const std::size_t rows = static_cast<std::size_t>(grid.ThetaBins());
+  RowSubdirections sub;
+  sub.Samples = samples;
+  sub.Cos.resize(rows * samples);
+  sub.Sin.resize(rows * samples);
+  for (std::size_t r = 0; r < rows; ++r)
+  {
+    const double s0 = std::pow(std::sin(grid.RowTheta(static_cast<int>(r))), 2);
+    const double s1 = std::pow(std::sin(grid.RowTheta(static_cast<int>(r) + 1)), 2);
+    for (int k = 0; k < samples; ++k)
+    {
+      const double s = s0 + (k + 0.5) * (s1 - s0) / samples;
+      sub.Sin[r * samples + k] = std::sqrt(s);
+      sub.Cos[r * samples + k] = std::sqrt(std::max(0.0, 1.0 - s));
+    }
+  }
+  return sub;
+}
+
+/// Per row, the directional albedo a(o) - k_d averaged over the row's sub-directions: what the
+/// table's weights toward an out cell of the row sum to.
+std::vector<glm::dvec3> TableAlbedos(const Reflectance& reflectance, const RowSubdirections& sub)
+{
+  const int samples = sub.Samples;
+  const std::size_t rows = sub.Cos.size() / static_cast<std::size_t>(samples);
+  std::vector<glm::dvec3> albedos(rows, glm::dvec3(0.0));
+  for (std::size_t r = 0; r < rows; ++r)
+  {
+    for (int k = 0; k < samples; ++k)
+    {
+      // The Lambertian part k_d is not in the table (the propagation shoots it in closed form).
+      albedos[r] +=
+        (reflectance.Albedo(std::atan2(sub.Sin[r * samples + k], sub.Cos[r * samples + k])) -
+          reflectance.LambertianReflectance()) /
+        static_cast<double>(samples);
+    }
+  }
+  return albedos;
+}
+
+/// The delta of paper §3.5.1: everything from the mirror cell, scaled by k_s; the albedo of
+/// every row is k_s.
+void PlaceMirrorWeights(const Reflectance& reflectance,
+  WeightGrid& w,
+  std::vector<glm::dvec3>& albedos)
+{
+  const std::size_t columns = w.Columns;
+  for (std::size_t r = 0; r < w.Rows; ++r)
+  {
+    if (columns % 2 == 0)
+    {
+      w(r, r, columns / 2) = reflectance.SpecularReflectance();
+    }
+    else
+    {
+      w(r, r, columns / 2) += 0.5 * reflectance.SpecularReflectance();
+      w(r, r, (columns / 2 + 1) % columns) += 0.5 * reflectance.SpecularReflectance();
+    }
+    albedos[r] = reflectance.SpecularReflectance();
+  }
+}
+
+/// w0(o, c): f - k_d / pi averaged over Samples x Samples in-directions of c times Samples x
+/// Samples out-directions of o.
+void SampleWeights(const Reflectance& reflectance,
+  const HemisphereGrid& grid,
+  const RowSubdirections& sub,
+  WeightGrid& w)
+{
+  const int samples = sub.Samples;
+  const glm::dvec3 lambertian = reflectance.LambertianReflectance() / Pi;
+  const double dphi = grid.PhiStep();
+  const double perSample = 1.0 / std::pow(static_cast<double>(samples), 4);
+  std::vector<glm::dvec3> outDirections(static_cast<std::size_t>(samples * samples));
+  for (std::size_t ro = 0; ro < w.Rows; ++ro)
+  {
+    for (int k = 0; k < samples; ++k)
+    {
+      for (int q = 0; q < samples; ++q)
+      {
+        const double phi = (q + 0.5) * dphi / samples;
+        outDirections[static_cast<std::size_t>(k * samples + q)] =
+          glm::dvec3(sub.Sin[ro * samples + k] * std::cos(phi),
+            sub.Sin[ro * samples + k] * std::sin(phi),
+            sub.Cos[ro * samples + k]);
+      }
+    }
+    for (std::size_t ri = 0; ri < w.Rows; ++ri)
+    {
+      for (std::size_t d = 0; d < w.Columns; ++d)
+      {
+        glm::dvec3 sum(0.0);
+        for (int k = 0; k < samples; ++k)
+        {
+          for (int q = 0; q < samples; ++q)
+          {
+            const double phi = (static_cast<double>(d) + (q + 0.5) / samples) * dphi;
+            const glm::dvec3 in(sub.Sin[ri * samples + k] * std::cos(phi),
+              sub.Sin[ri * samples + k] * std::sin(phi),
+              sub.Cos[ri * samples + k]);
+            for (const glm::dvec3& out : outDirections)
+            {
+              sum += reflectance.Evaluate(in, out);
+              sum -= lambertian;
+            }
+          }
+        }
+        w(ro, ri, d) = sum * perSample;
+      }
+    }
+  }
+}
+
+/// Discrete reciprocity: the mean of the table and its transpose (a reciprocal BRDF is
+/// symmetric up to rounding; a measured table need not be).
+void MakeReciprocal(WeightGrid& w)
+{
+  const std::size_t columns = w.Columns;
+  for (std::size_t ro = 0; ro < w.Rows; ++ro)
+  {
+    for (std::size_t ri = ro; ri < w.Rows; ++ri)
+    {
+      for (std::size_t d = 0; d < columns; ++d)
+      {
+        const std::size_t back = (columns - d) % columns;
+        const glm::dvec3 mean = 0.5 * (w(ro, ri, d) + w(ri, ro, back));
+        w(ro, ri, d) = mean;
+        w(ri, ro, back) = mean;
+      }
+    }
+  }
+}
+
+/// Evenness in the column difference: the models are f(delta_phi) = f(-delta_phi)
+/// (Reflectance, BrdfTable), and the samples of the column differences d and -d are mirror
+/// images, so w(d) = w(-d) up to rounding; made exact, it makes the table's Fourier
+/// transform real (Reflect).
+void MakeEvenInColumnDifference(WeightGrid& w)
+{
+  const std::size_t columns = w.Columns;
+  for (std::size_t ro = 0; ro < w.Rows; ++ro)
+  {
+    for (std::size_t ri = 0; ri < w.Rows; ++ri)
+    {
+      for (std::size_t d = 1; 2 * d < columns; ++d)
+      {
+        const glm::dvec3 mean = 0.5 * (w(ro, ri, d) + w(ro, ri, columns - d));
+        w(ro, ri, d) = mean;
+        w(ro, ri, columns - d) = mean;
+      }
+    }
+  }
+}
+
+/// Weights below `cutoff` of the largest are dropped (paper §5.2 (ii): "there may be large
+/// number of grid cells with 0 weights in the reflectance map table"): whole row pairs then
+/// drop out of the shots. They carry a negligible share; the scaling restores the albedo
+/// exactly.
+void DropBelowCutoff(WeightGrid& w, double cutoff)
+{
+  glm::dvec3 largest(0.0);
+  for (const glm::dvec3& v : w.Values)
+  {
+    largest = glm::max(largest, v);
+  }
+  for (glm::dvec3& v : w.Values)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      if (v[b] < cutoff * largest[b])
+      {
+        v[b] = 0.0;
+      }
+    }
+  }
+}
+
+/// The symmetric scaling per band (Sinkhorn): s_ro sum_ri s_ri Omega_ri K(ro, ri) = albedo(ro),
+/// with K(ro, ri) = sum_d w0(ro, ri, d).
+std::vector<glm::dvec3> SymmetricScales(const WeightGrid& w,
+  const HemisphereGrid& grid,
+  const std::vector<glm::dvec3>& albedos)
+{
+  const std::size_t rows = w.Rows;
+  std::vector<glm::dvec3> kernel(rows * rows, glm::dvec3(0.0));
+  for (std::size_t ro = 0; ro < rows; ++ro)
+  {
+    for (std::size_t ri = 0; ri < rows; ++ri)
+    {
+      for (std::size_t d = 0; d < w.Columns; ++d)
+      {
+        kernel[ro * rows + ri] += w(ro, ri, d);
+      }
+      kernel[ro * rows + ri] *= grid.CellMeasure(static_cast<int>(ri));
+    }
+  }
+  std::vector<glm::dvec3> scale(rows, glm::dvec3(1.0));
+  for (int iteration = 0; iteration < 1000; ++iteration)
+  {
+    double worst = 0.0;
+    std::vector<glm::dvec3> next(scale);
+    for (std::size_t ro = 0; ro < rows; ++ro)
+    {
+      glm::dvec3 row(0.0);
+      for (std::size_t ri = 0; ri < rows; ++ri)
+      {
+        row += kernel[ro * rows + ri] * scale[ri];
+      }
+      row *= scale[ro];
+      for (int b = 0; b < 3; ++b)
+      {
+        if (row[b] > 0.0 && albedos[ro][b] > 0.0)
+        {
+          worst = std::max(worst, std::fabs(row[b] / albedos[ro][b] - 1.0));
+          next[ro][b] = scale[ro][b] * std::sqrt(albedos[ro][b] / row[b]);
+        }
+        else if (albedos[ro][b] <= 0.0)
+        {
+          next[ro][b] = 0.0;
+        }
+      }
+    }
+    scale = next;
+    if (worst < 1e-13)
+    {
+      break;
+    }
+  }
+  return scale;
+}
+
+/// w(o, c) = s_row(o) s_row(c) Omega_c w0(o, c); returns max over rows and bands of |s - 1|
+/// (LargestScaling), rows without albedo left out.
+double ApplyScales(const std::vector<glm::dvec3>& scale,
+  const std::vector<glm::dvec3>& albedos,
+  const HemisphereGrid& grid,
+  WeightGrid& w)
+{
+  double scaling = 0.0;
+  for (std::size_t ro = 0; ro < w.Rows; ++ro)
+  {
+    for (int b = 0; b < 3; ++b)
+    {
+      if (albedos[ro][b] > 0.0)
+      {
+        scaling = std::max(scaling, std::fabs(scale[ro][b] - 1.0));
+      }
+    }
+    for (std::size_t ri = 0; ri < w.Rows; ++ri)
+    {
+      const glm::dvec3 factor = scale[ro] * scale[ri] * grid.CellMeasure(static_cast<int>(ri));
+      for (std::size_t d = 0; d < w.Columns; ++d)
+      {
+        w(ro, ri, d) *= factor;
+      }
+    }
+  }
+  return scaling;
+}
+
+/// The rows of `incident` (rows x columns) with some non-zero radiance, into `lit`.
+void FindLitRows(const std::vector<glm::dvec3>& incident,
+  std::size_t rows,
+  std::size_t columns,
+  std::vector<std::size_t>& lit)
+{
+  lit.clear();
+  for (std::size_t r = 0; r < rows; ++r)
+  {
+    const glm::dvec3* row = incident.data() + r * columns;
+    if (std::any_of(row, row + columns, [](const glm::dvec3& e) { return e != glm::dvec3(0.0); }))
+    {
+      lit.push_back(r);
+    }
+  }
+}
+
+/// One direct term of a row pair: out[co] += w e[(co + d) mod columns] for every out column
+/// co, the wrap taken out of the loop.
+void AddDirectTerm(glm::dvec3* out,
+  const glm::dvec3* e,
+  std::size_t columns,
+  std::size_t d,
+  const glm::dvec3& w)
+{
+  for (std::size_t co = 0; co + d < columns; ++co)
+  {
+    out[co] += w * e[co + d];
+  }
+  for (std::size_t co = columns - d; co < columns; ++co)
+  {
+    out[co] += w * e[co + d - columns];
+  }
+}
+
+} // namespace
+
 ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
   const HemisphereGrid& grid,
   int samples)
@@ -26,217 +363,32 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
   {
     throw std::invalid_argument("ReflectanceWeights: samples must be in [1, 8]");
   }
-  const std::size_t rows = static_cast<std::size_t>(this->Rows);
-  const std::size_t columns = static_cast<std::size_t>(this->Columns);
-  // w per (rowOut, rowIn, deltaColumn).
-  std::vector<glm::dvec3> w(rows * rows * columns, glm::dvec3(0.0));
-  auto at = [&](std::size_t ro, std::size_t ri, std::size_t d) -> glm::dvec3&
-  { return w[(ro * rows + ri) * columns + d]; };
-
-  // Sub-directions of a row: polar angles at the midpoints of `samples` strata of equal
-  // projected solid angle (uniform in s = sin^2 theta), as the grid's own samples.
-  std::vector<double> cosTheta(rows * samples), sinTheta(rows * samples);
-  for (std::size_t r = 0; r < rows; ++r)
-  {
-    const double s0 = std::pow(std::sin(grid.RowTheta(static_cast<int>(r))), 2);
-    const double s1 = std::pow(std::sin(grid.RowTheta(static_cast<int>(r) + 1)), 2);
-    for (int k = 0; k < samples; ++k)
-    {
-      const double s = s0 + (k + 0.5) * (s1 - s0) / samples;
-      sinTheta[r * samples + k] = std::sqrt(s);
-      cosTheta[r * samples + k] = std::sqrt(std::max(0.0, 1.0 - s));
-    }
-  }
-  this->Albedos.assign(rows, glm::dvec3(0.0));
-  for (std::size_t r = 0; r < rows; ++r)
-  {
-    for (int k = 0; k < samples; ++k)
-    {
-      // The Lambertian part k_d is not in the table (the propagation shoots it in closed form).
-      this->Albedos[r] +=
-        (reflectance.Albedo(std::atan2(sinTheta[r * samples + k], cosTheta[r * samples + k])) -
-          reflectance.LambertianReflectance()) /
-        static_cast<double>(samples);
-    }
-  }
-
+  WeightGrid w(static_cast<std::size_t>(this->Rows), static_cast<std::size_t>(this->Columns));
+  const RowSubdirections sub = SubdirectionsOfRows(grid, samples);
+  this->Albedos = TableAlbedos(reflectance, sub);
   if (reflectance.IsIdealMirror())
   {
-    // The delta of §3.5.1: everything from the mirror cell, scaled by k_s.
-    for (std::size_t r = 0; r < rows; ++r)
-    {
-      if (columns % 2 == 0)
-      {
-        at(r, r, columns / 2) = reflectance.SpecularReflectance();
-      }
-      else
-      {
-        at(r, r, columns / 2) += 0.5 * reflectance.SpecularReflectance();
-        at(r, r, (columns / 2 + 1) % columns) += 0.5 * reflectance.SpecularReflectance();
-      }
-      this->Albedos[r] = reflectance.SpecularReflectance();
-    }
+    PlaceMirrorWeights(reflectance, w, this->Albedos);
   }
   else
   {
-    const glm::dvec3 lambertian = reflectance.LambertianReflectance() / Pi;
-    const double dphi = grid.PhiStep();
-    const double perSample = 1.0 / std::pow(static_cast<double>(samples), 4);
-    std::vector<glm::dvec3> outDirections(static_cast<std::size_t>(samples * samples));
-    for (std::size_t ro = 0; ro < rows; ++ro)
-    {
-      for (int k = 0; k < samples; ++k)
-      {
-        for (int q = 0; q < samples; ++q)
-        {
-          const double phi = (q + 0.5) * dphi / samples;
-          outDirections[static_cast<std::size_t>(k * samples + q)] =
-            glm::dvec3(sinTheta[ro * samples + k] * std::cos(phi),
-              sinTheta[ro * samples + k] * std::sin(phi),
-              cosTheta[ro * samples + k]);
-        }
-      }
-      for (std::size_t ri = 0; ri < rows; ++ri)
-      {
-        for (std::size_t d = 0; d < columns; ++d)
-        {
-          glm::dvec3 sum(0.0);
-          for (int k = 0; k < samples; ++k)
-          {
-            for (int q = 0; q < samples; ++q)
-            {
-              const double phi = (static_cast<double>(d) + (q + 0.5) / samples) * dphi;
-              const glm::dvec3 in(sinTheta[ri * samples + k] * std::cos(phi),
-                sinTheta[ri * samples + k] * std::sin(phi),
-                cosTheta[ri * samples + k]);
-              for (const glm::dvec3& out : outDirections)
-              {
-                sum += reflectance.Evaluate(in, out);
-                sum -= lambertian;
-              }
-            }
-          }
-          at(ro, ri, d) = sum * perSample;
-        }
-      }
-    }
-    // Discrete reciprocity: the mean of the table and its transpose (a reciprocal BRDF is
-    // symmetric up to rounding; a measured table need not be).
-    for (std::size_t ro = 0; ro < rows; ++ro)
-    {
-      for (std::size_t ri = ro; ri < rows; ++ri)
-      {
-        for (std::size_t d = 0; d < columns; ++d)
-        {
-          const std::size_t back = (columns - d) % columns;
-          const glm::dvec3 mean = 0.5 * (at(ro, ri, d) + at(ri, ro, back));
-          at(ro, ri, d) = mean;
-          at(ri, ro, back) = mean;
-        }
-      }
-    }
-    // Evenness in the column difference: the models are f(delta_phi) = f(-delta_phi)
-    // (Reflectance, BrdfTable), and the samples of the column differences d and -d are mirror
-    // images, so w(d) = w(-d) up to rounding; made exact, it makes the table's Fourier
-    // transform real (Reflect).
-    for (std::size_t ro = 0; ro < rows; ++ro)
-    {
-      for (std::size_t ri = 0; ri < rows; ++ri)
-      {
-        for (std::size_t d = 1; 2 * d < columns; ++d)
-        {
-          const glm::dvec3 mean = 0.5 * (at(ro, ri, d) + at(ro, ri, columns - d));
-          at(ro, ri, d) = mean;
-          at(ro, ri, columns - d) = mean;
-        }
-      }
-    }
-    // Weights below Cutoff of the largest are dropped (paper §5.2 (ii): "there may be large
-    // number of grid cells with 0 weights in the reflectance map table"): whole row pairs then
-    // drop out of the shots. They carry a negligible share; the scaling below restores the
-    // albedo exactly.
-    glm::dvec3 largest(0.0);
-    for (const glm::dvec3& v : w)
-    {
-      largest = glm::max(largest, v);
-    }
-    for (glm::dvec3& v : w)
-    {
-      for (int b = 0; b < 3; ++b)
-      {
-        if (v[b] < Cutoff * largest[b])
-        {
-          v[b] = 0.0;
-        }
-      }
-    }
-    // Symmetric scaling per band: s_ro sum_ri s_ri Omega_ri K(ro, ri) = albedo(ro), with
-    // K(ro, ri) = sum_d f0(ro, ri, d).
-    std::vector<glm::dvec3> kernel(rows * rows, glm::dvec3(0.0));
-    for (std::size_t ro = 0; ro < rows; ++ro)
-    {
-      for (std::size_t ri = 0; ri < rows; ++ri)
-      {
-        for (std::size_t d = 0; d < columns; ++d)
-        {
-          kernel[ro * rows + ri] += at(ro, ri, d);
-        }
-        kernel[ro * rows + ri] *= grid.CellMeasure(static_cast<int>(ri));
-      }
-    }
-    std::vector<glm::dvec3> scale(rows, glm::dvec3(1.0));
-    for (int iteration = 0; iteration < 1000; ++iteration)
-    {
-      double worst = 0.0;
-      std::vector<glm::dvec3> next(scale);
-      for (std::size_t ro = 0; ro < rows; ++ro)
-      {
-        glm::dvec3 row(0.0);
-        for (std::size_t ri = 0; ri < rows; ++ri)
-        {
-          row += kernel[ro * rows + ri] * scale[ri];
-        }
-        row *= scale[ro];
-        for (int b = 0; b < 3; ++b)
-        {
-          if (row[b] > 0.0 && this->Albedos[ro][b] > 0.0)
-          {
-            worst = std::max(worst, std::fabs(row[b] / this->Albedos[ro][b] - 1.0));
-            next[ro][b] = scale[ro][b] * std::sqrt(this->Albedos[ro][b] / row[b]);
-          }
-          else if (this->Albedos[ro][b] <= 0.0)
-          {
-            next[ro][b] = 0.0;
-          }
-        }
-      }
-      scale = next;
-      if (worst < 1e-13)
-      {
-        break;
-      }
-    }
-    for (std::size_t ro = 0; ro < rows; ++ro)
-    {
-      for (int b = 0; b < 3; ++b)
-      {
-        if (this->Albedos[ro][b] > 0.0)
-        {
-          this->Scaling = std::max(this->Scaling, std::fabs(scale[ro][b] - 1.0));
-        }
-      }
-      for (std::size_t ri = 0; ri < rows; ++ri)
-      {
-        const glm::dvec3 factor = scale[ro] * scale[ri] * grid.CellMeasure(static_cast<int>(ri));
-        for (std::size_t d = 0; d < columns; ++d)
-        {
-          at(ro, ri, d) *= factor;
-        }
-      }
-    }
+    SampleWeights(reflectance, grid, sub, w);
+    MakeReciprocal(w);
+    MakeEvenInColumnDifference(w);
+    DropBelowCutoff(w, Cutoff);
+    const std::vector<glm::dvec3> scale = SymmetricScales(w, grid, this->Albedos);
+    this->Scaling = ApplyScales(scale, this->Albedos, grid, w);
   }
+  this->BuildCumulativeSums(w.Values);
+  this->BuildReflectForm(w.Values);
+}
 
-  // Cumulative sums for O(1) strip access.
+void ReflectanceWeights::BuildCumulativeSums(const std::vector<glm::dvec3>& w)
+{
+  const std::size_t rows = static_cast<std::size_t>(this->Rows);
+  const std::size_t columns = static_cast<std::size_t>(this->Columns);
+  auto at = [&](std::size_t ro, std::size_t ri, std::size_t d) -> const glm::dvec3&
+  { return w[(ro * rows + ri) * columns + d]; };
   this->Sums.assign(rows * rows * this->Stride, glm::dvec3(0.0));
   this->Coupled.assign(rows * rows, 0);
   for (std::size_t ro = 0; ro < rows; ++ro)
@@ -264,8 +416,14 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
       this->Coupled[ro * rows + ri] = coupled ? 1 : 0;
     }
   }
+}
 
-  // Reflect's form of the table: a few direct terms or a spectrum per row pair.
+void ReflectanceWeights::BuildReflectForm(const std::vector<glm::dvec3>& w)
+{
+  const std::size_t rows = static_cast<std::size_t>(this->Rows);
+  const std::size_t columns = static_cast<std::size_t>(this->Columns);
+  auto at = [&](std::size_t ro, std::size_t ri, std::size_t d) -> const glm::dvec3&
+  { return w[(ro * rows + ri) * columns + d]; };
   this->SpectrumLength = this->Columns / 2 + 1;
   const std::size_t length = static_cast<std::size_t>(this->SpectrumLength);
   this->DirectOffsets.assign(rows * rows + 1, 0);
@@ -298,7 +456,8 @@ ReflectanceWeights::ReflectanceWeights(const Reflectance& reflectance,
       else
       {
         // I(co) = sum_d w(d) e(co + d) is a correlation: its DFT is conj(W(k)) E(k), and W is
-        // real because w is even in d (above; the mirror's delta is even as well).
+        // real because w is even in d (MakeEvenInColumnDifference; the mirror's delta is even
+        // as well).
         this->SpectrumOf[pair] = static_cast<int>(this->Spectra.size() / (3 * length));
         this->InRowSpectral[ri] = 1;
         for (int b = 0; b < 3; ++b)
@@ -335,15 +494,7 @@ void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
   const std::size_t length = static_cast<std::size_t>(this->SpectrumLength);
   exitant.assign(rows * columns, glm::dvec3(0.0));
   std::vector<std::size_t>& lit = scratch.Lit;
-  lit.clear();
-  for (std::size_t r = 0; r < rows; ++r)
-  {
-    const glm::dvec3* row = incident.data() + r * columns;
-    if (std::any_of(row, row + columns, [](const glm::dvec3& e) { return e != glm::dvec3(0.0); }))
-    {
-      lit.push_back(r);
-    }
-  }
+  FindLitRows(incident, rows, columns, lit);
   if (lit.empty())
   {
     return;
@@ -397,17 +548,11 @@ void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
       const glm::dvec3* e = incident.data() + ri * columns;
       for (std::size_t t = this->DirectOffsets[pair]; t < this->DirectOffsets[pair + 1]; ++t)
       {
-        // out[co] += w(d) e[(co + d) mod PhiBins], the wrap taken out of the loop.
-        const std::size_t d = static_cast<std::size_t>(this->Directs[t].Delta);
-        const glm::dvec3 w = this->Directs[t].Weight;
-        for (std::size_t co = 0; co + d < columns; ++co)
-        {
-          out[co] += w * e[co + d];
-        }
-        for (std::size_t co = columns - d; co < columns; ++co)
-        {
-          out[co] += w * e[co + d - columns];
-        }
+        AddDirectTerm(out,
+          e,
+          columns,
+          static_cast<std::size_t>(this->Directs[t].Delta),
+          this->Directs[t].Weight);
       }
     }
     if (spectral)

@@ -7,53 +7,26 @@
  *
  * The exitant radiance toward out cell o from incident radiance e_c per in-cell c is
  *     I(o) = k_d / pi sum_c Omega_c e_c + sum_c w(o, c) e_c,   w(o, c) ~ (f(c, o) - k_d / pi)
- * Omega_c, Omega_c the cell's projected solid angle: the table holds the BRDF without its
- * Lambertian part k_d (Reflectance::LambertianReflectance, the diffuse part of phong), which the
- * propagation shoots in closed form like a diffuse surface's (paper §5.2). Isotropy makes w depend
- * on the two cells' rows and on the column difference (col_c - col_o) mod PhiBins only, so the
- * table holds ThetaBins^2 x PhiBins values per band instead of cells^2 (32 x 32 x 128 for the
- * default grid: 131072, not 16.8 million).
+ * Omega_c: the table holds the BRDF without its Lambertian part k_d, which the propagation shoots
+ * in closed form (paper §5.2). By isotropy w depends on the two cells' rows and their column
+ * difference only: ThetaBins^2 x PhiBins values per band.
  *
- * Construction:
- *  - ideal mirror: w(o, c) = k_s for c the mirror cell of o (same row, column + PhiBins/2;
- *    with an odd PhiBins the mirror direction of a cell centre lies on a column boundary and
- *    k_s is split evenly between the two cells);
- *  - otherwise f - k_d / pi is averaged over Samples x Samples in-directions of c times
- *    Samples x Samples out-directions of o (strata of equal projected solid angle, as
- *    HemisphereGrid's samples), made symmetric (w(o, c) / Omega_c = w(c, o) / Omega_o, the
- *    discrete reciprocity) and even in the column difference (as the models are in delta_phi),
- *    cleared below Cutoff times its largest value (paper §5.2 (ii):
- *    "there may be large number of grid cells with 0 weights in the reflectance map table";
- *    row pairs left without weight drop out of the shots: a phong lobe of exponent 40 couples
- *    a row with the rows within about 37 degrees of it) and then scaled per row and band,
- *    w(o, c) = s_row(o) s_row(c) w0(o, c), so that
- *        sum_c w(o, c) = a(o) - k_d,  the BRDF's directional albedo (Reflectance::Albedo)
- *    without its Lambertian part,
- *    for every out cell (symmetric Sinkhorn scaling). Because the scaled table stays
- *    symmetric, sum_o Omega_o w(o, c) = Omega_c (a(c) - k_d) as well: the light an in-cell receives
- * is reflected exactly by its albedo over the whole hemisphere. The first identity makes the white
- * furnace exact (a uniform incident radiance L gives I = a L in every direction), the second makes
- * the propagation conserve energy. LargestScaling() reports how far the factors are from 1, i.e.
- * how much the sampled BRDF missed its albedo.
+ * Construction, the constructor's steps: an ideal mirror puts k_s on the mirror cell (§3.5.1);
+ * another BRDF is averaged over Samples x Samples sub-directions of both cells, made symmetric
+ * (discrete reciprocity) and even in the column difference, cleared below Cutoff times its
+ * largest value (§5.2 (ii)) and scaled per row and band (symmetric Sinkhorn scaling) so that
+ * sum_c w(o, c) = a(o) - k_d, the directional albedo without k_d, for every out cell; the scaled
+ * table stays symmetric, so an in-cell's light is reflected exactly by its albedo as well.
+ * LargestScaling() reports how far the factors are from 1.
  *
- * Access (the "suitable access data structure" of paper §5.2): for every pair of rows the
- * table keeps the second cumulative sum of w over the column difference, so the sum of w over
- * a strip of in-cells toward one out cell (StripWeight), and over a strip of in-cells toward
- * a strip of out cells (StripPairWeight), each costs O(1) whatever the strips' lengths.
+ * Access (§5.2's "suitable access data structure"): per row pair the second cumulative sum of w
+ * over the column difference, so StripWeight and StripPairWeight cost O(1) whatever the strips'
+ * lengths. Reflect serves the whole hemisphere at once: per row pair a circular correlation over
+ * the columns, summed directly with at most DirectTerms weights and by FFT otherwise,
+ * O(ThetaBins^2 PhiBins) rather than §5.2's O(D^2); the results are clamped at 0.
  *
- * The whole hemisphere at once (Reflect): the exitant radiance toward every out cell from the
- * incident radiance of every in cell. By isotropy each pair of rows is a circular correlation
- * over the columns, I(ro, co) = sum_d w(ro, ri, d) e(ri, co + d); a row pair with at most
- * DirectTerms non-zero weights (the mirror's one or two cells) is summed directly, the others
- * as products of discrete Fourier transforms (Eigen's FFT): per band, one transform per lit in
- * row and one inverse per out row, and PhiBins/2 + 1 products per coupled row pair and band
- * (real ones: w is even in the column difference, as the models are in delta_phi, so its
- * transform is real; see the construction). That is O(ThetaBins^2 PhiBins) for a full table
- * instead of the O(D^2) of paper §5.2, D the cells (ThetaBins PhiBins): at most 0.2 million
- * products for the default 32 x 128 grid, against 50 million of the plain sum, and the
- * spectra take 1.6 MB (8 bytes per product). The transforms round at ~1e-16 of the
- * row's largest value, so values that should be 0 can come out as tiny negatives; they are set
- * to 0 (w >= 0 and e >= 0 make I >= 0).
+ * Construction costs O(ThetaBins^2 PhiBins Samples^4) BRDF evaluations; memory: EstimateBytes.
+ * The derivations and sizes: Documentation/notes/reflectance.md.
  */
 #ifndef SPHCOVER_REFLECTANCEWEIGHTS_H
 #define SPHCOVER_REFLECTANCEWEIGHTS_H
@@ -130,6 +103,11 @@ public:
   static std::size_t EstimateBytes(int thetaBins, int phiBins);
 
 private:
+  /// The steps of the constructor after the weights w are known (w indexed (rowOut * Rows +
+  /// rowIn) * PhiBins + deltaColumn): the cumulative sums and Coupled, then Reflect's direct
+  /// terms and spectra.
+  void BuildCumulativeSums(const std::vector<glm::dvec3>& w);
+  void BuildReflectForm(const std::vector<glm::dvec3>& w);
   const glm::dvec3* Cumulative(int rowOut, int rowIn) const
   {
     return this->Sums.data() + static_cast<std::size_t>(rowOut * this->Rows + rowIn) * this->Stride;

@@ -5,45 +5,27 @@
 #include "scene/BrdfTable.h"
 #include "scene/InputError.h"
 #include "scene/InputFile.h"
+#include "scene/JsonInput.h"
+#include "scene/SettingsOverride.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/mat4x4.hpp>
-#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <initializer_list>
+#include <limits>
 #include <memory>
-#include <set>
-#include <sstream>
 
 namespace sphcover
 {
 namespace
 {
-using Json = nlohmann::json;
 
 /// Largest image side a camera may ask for; larger is surely a typo and would exhaust memory.
 constexpr int MaxImageSide = 1 << 15;
-
-/// Deepest nesting of arrays and objects accepted; a scene needs 5. Without a limit a file of
-/// a million '[' is a million-level document (and a 2 MB pointer in the message).
-constexpr size_t MaxJsonDepth = 64;
-
-std::string FormatNumber(double value)
-{
-  std::ostringstream text;
-  text << value;
-  return text.str();
-}
-
-std::string TooLarge(const std::string& what, double value, double limit)
-{
-  return what + " too large: " + FormatNumber(value) + " (the limit is " + FormatNumber(limit) +
-    " in magnitude)";
-}
 
 /// The problem of a coordinate `value` beyond BezierPatch::MaxCoordinate (or not finite).
 std::string CoordinateTooLarge(double value)
@@ -55,168 +37,62 @@ std::string CoordinateTooLarge(double value)
   return TooLarge("coordinate", value, BezierPatch::MaxCoordinate);
 }
 
-std::string EscapePointerToken(const std::string& key)
-{
-  // RFC 6901: '~' -> "~0", '/' -> "~1".
-  std::string out;
-  for (char c : key)
-  {
-    if (c == '~')
-    {
-      out += "~0";
-    }
-    else if (c == '/')
-    {
-      out += "~1";
-    }
-    else
-    {
-      out += c;
-    }
-  }
-  return Excerpt(out); // a key may be megabytes long; the message names its start
-}
-
-std::string Child(const std::string& pointer, const std::string& key)
-{
-  return pointer + "/" + EscapePointerToken(key);
-}
-
-std::string Child(const std::string& pointer, size_t index)
-{
-  return pointer + "/" + std::to_string(index);
-}
-
 std::string FolderOf(const std::string& path)
 {
   const size_t slash = path.find_last_of('/');
   return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
 }
 
-/// Typed, located access to the JSON document: every failure names the JSON pointer.
-class SceneParser
+/// The faces a mesh reader returned, checked: at least one, each a triangle or a quad with
+/// coordinates within BezierPatch::MaxCoordinate. Throws InputError(file, "face F", problem).
+std::vector<MeshFace> CheckMeshFaces(std::vector<MeshFace> faces, const std::string& file)
+{
+  if (faces.empty())
+  {
+    throw InputError(file, "", "mesh has no faces");
+  }
+  for (size_t f = 0; f < faces.size(); ++f)
+  {
+    if (faces[f].size() != 3 && faces[f].size() != 4)
+    {
+      throw InputError(file,
+        "face " + std::to_string(f + 1),
+        "only triangles and quads are supported, got a face with " +
+          std::to_string(faces[f].size()) + " vertices");
+    }
+    const double largest = LargestCoordinate(faces[f]);
+    if (!(largest <= BezierPatch::MaxCoordinate)) // also NaN, which a PLY may hold
+    {
+      throw InputError(file, "face " + std::to_string(f + 1), CoordinateTooLarge(largest));
+    }
+  }
+  return faces;
+}
+
+/// What every surface has besides its geometry (FORMAT.md "surfaces").
+struct SurfaceAttributes
+{
+  std::string Name;
+  int MaterialIndex = -1;
+  bool TwoSided = false;
+  bool Flip = false;
+  glm::dmat4 Transform{ 1.0 };
+};
+
+/// The scene schema (Data/scenes/FORMAT.md) over the located JSON access of JsonInput.
+class SceneParser : public JsonInput
 {
 public:
   SceneParser(const std::string& path, const MeshFaceReader& readMesh)
-    : Path(path)
+    : JsonInput(path)
     , Folder(FolderOf(path))
     , ReadMesh(readMesh)
   {
   }
 
   Scene Parse(const Json& root);
-  SceneSettings Override(const SceneSettings& base, const Json& assignment) const
-  {
-    return this->ParseSettings(assignment, "", base);
-  }
 
 private:
-  [[noreturn]] void Fail(const std::string& pointer, const std::string& problem) const
-  {
-    throw InputError(this->Path, pointer.empty() ? std::string("/") : pointer, problem);
-  }
-
-  void ExpectObject(const Json& j, const std::string& pointer) const
-  {
-    if (!j.is_object())
-    {
-      this->Fail(pointer, "expected an object");
-    }
-  }
-
-  void CheckKeys(const Json& j,
-    const std::string& pointer,
-    const std::vector<const char*>& allowed) const
-  {
-    for (auto it = j.begin(); it != j.end(); ++it)
-    {
-      if (std::none_of(
-            allowed.begin(), allowed.end(), [&](const char* key) { return it.key() == key; }))
-      {
-        this->Fail(Child(pointer, it.key()), "unknown key " + Quote(it.key()));
-      }
-    }
-  }
-
-  const Json& Require(const Json& j, const std::string& pointer, const char* key) const
-  {
-    auto it = j.find(key);
-    if (it == j.end())
-    {
-      this->Fail(pointer, std::string("missing key '") + key + "'");
-    }
-    return *it;
-  }
-
-  double Number(const Json& j, const std::string& pointer) const
-  {
-    if (!j.is_number())
-    {
-      this->Fail(pointer, "expected a number");
-    }
-    const double value = j.get<double>();
-    if (!std::isfinite(value))
-    {
-      this->Fail(pointer, "not a finite number");
-    }
-    return value;
-  }
-
-  /// Integers are written without fraction or exponent (FORMAT.md): 32, not 32.0.
-  long long Integer(const Json& j, const std::string& pointer) const
-  {
-    if (j.is_number_unsigned() && j.get<unsigned long long>() > (1ull << 62))
-    {
-      this->Fail(pointer, "integer out of range");
-    }
-    if (!j.is_number_integer())
-    {
-      this->Fail(pointer, "expected an integer");
-    }
-    return j.get<long long>();
-  }
-
-  int PositiveInteger(const Json& j, const std::string& pointer, long long limit) const
-  {
-    const long long value = this->Integer(j, pointer);
-    if (value < 1 || value > limit)
-    {
-      this->Fail(pointer,
-        "must be a positive integer (at most " + std::to_string(limit) + "), got " +
-          std::to_string(value));
-    }
-    return static_cast<int>(value);
-  }
-
-  bool Boolean(const Json& j, const std::string& pointer) const
-  {
-    if (!j.is_boolean())
-    {
-      this->Fail(pointer, "expected a boolean");
-    }
-    return j.get<bool>();
-  }
-
-  std::string String(const Json& j, const std::string& pointer) const
-  {
-    if (!j.is_string())
-    {
-      this->Fail(pointer, "expected a string");
-    }
-    return j.get<std::string>();
-  }
-
-  /// A finite number of magnitude at most `limit`; beyond it, "<what> too large".
-  double Bounded(const Json& j, const std::string& pointer, double limit, const char* what) const
-  {
-    const double value = this->Number(j, pointer);
-    if (std::fabs(value) > limit)
-    {
-      this->Fail(pointer, TooLarge(what, value, limit));
-    }
-    return value;
-  }
-
   /// A point or translation, each coordinate within BezierPatch::MaxCoordinate.
   glm::dvec3 Position(const Json& j, const std::string& pointer) const
   {
@@ -224,36 +100,6 @@ private:
     for (size_t k = 0; k < 3; ++k)
     {
       this->Bounded(j[k], Child(pointer, k), BezierPatch::MaxCoordinate, "coordinate");
-    }
-    return v;
-  }
-
-  glm::dvec3 Vec3(const Json& j, const std::string& pointer) const
-  {
-    if (!j.is_array() || j.size() != 3)
-    {
-      this->Fail(pointer, "expected an array of 3 numbers");
-    }
-    glm::dvec3 v;
-    for (size_t k = 0; k < 3; ++k)
-    {
-      v[static_cast<int>(k)] = this->Number(j[k], Child(pointer, k));
-    }
-    return v;
-  }
-
-  /// Per-band values in [lo, hi].
-  glm::dvec3 Bands(const Json& j, const std::string& pointer, double lo, double hi) const
-  {
-    const glm::dvec3 v = this->Vec3(j, pointer);
-    for (int k = 0; k < 3; ++k)
-    {
-      if (v[k] < lo || v[k] > hi)
-      {
-        std::ostringstream problem;
-        problem << "must be in [" << lo << ", " << hi << "], got " << v[k];
-        this->Fail(Child(pointer, static_cast<size_t>(k)), problem.str());
-      }
     }
     return v;
   }
@@ -275,21 +121,6 @@ private:
       this->Bounded(j[k], Child(pointer, k), Material::MaxEmission, "emission");
     }
     return v;
-  }
-
-  /// Problems inside a file the scene refers to are reported at the scene entry that names it,
-  /// followed by the file's own location: "room.scene: /surfaces/3/file: pot.bpt: line 7: ...".
-  template<typename Read>
-  auto Included(const std::string& pointer, Read&& read) const -> decltype(read())
-  {
-    try
-    {
-      return read();
-    }
-    catch (const InputError& e)
-    {
-      this->Fail(pointer, e.what());
-    }
   }
 
   std::string ResolvePath(const std::string& file) const
@@ -315,16 +146,34 @@ private:
   Material ParseMaterial(const std::string& name, const Json& j, const std::string& pointer) const;
   glm::dmat4 ParseTransform(const Json& j, const std::string& pointer) const;
   void ParseSurface(const Json& j, const std::string& pointer, Scene& scene) const;
-  Camera ParseCamera(const Json& j, const std::string& pointer) const;
-  SceneSettings ParseSettings(const Json& j,
+  /// The keys a surface of `type` may have (fails on an unknown type).
+  std::vector<const char*> SurfaceKeys(const std::string& type, const std::string& pointer) const;
+  SurfaceAttributes ParseSurfaceAttributes(const Json& j,
     const std::string& pointer,
-    SceneSettings settings = SceneSettings()) const;
+    const Scene& scene) const;
+  /// The patches of a surface of `type` as its points, degree or file give them, before the
+  /// transform; `triangles` marks the ones that are triangles (mesh faces of 3 vertices).
+  std::vector<BezierPatch> ParseGeometry(const std::string& type,
+    const Json& j,
+    const std::string& pointer,
+    std::vector<bool>& triangles) const;
+  std::vector<BezierPatch> ParseBezierSurface(const Json& j, const std::string& pointer) const;
+  std::vector<BezierPatch> ReadMeshSurface(const Json& j,
+    const std::string& pointer,
+    std::vector<bool>& triangles) const;
+  /// Adds the surface to the scene, its patches placed by the transform and checked.
+  void AddPlacedSurface(const std::vector<BezierPatch>& patches,
+    std::vector<bool> triangles,
+    const SurfaceAttributes& attributes,
+    bool inFile,
+    const std::string& pointer,
+    Scene& scene) const;
+  Camera ParseCamera(const Json& j, const std::string& pointer) const;
   std::vector<BezierPatch> ParsePoints(const Json& j,
     const std::string& pointer,
     int degreeU,
     int degreeV) const;
 
-  const std::string& Path;
   const std::string Folder;
   const MeshFaceReader& ReadMesh;
 };
@@ -470,10 +319,9 @@ std::vector<BezierPatch> SceneParser::ParsePoints(const Json& j,
   return { BezierPatch(degreeU, degreeV, std::move(points)) };
 }
 
-void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene& scene) const
+std::vector<const char*> SceneParser::SurfaceKeys(const std::string& type,
+  const std::string& pointer) const
 {
-  this->ExpectObject(j, pointer);
-  const std::string type = this->String(this->Require(j, pointer, "type"), Child(pointer, "type"));
   const std::initializer_list<const char*> common = {
     "name", "type", "material", "two_sided", "flip", "transform"
   };
@@ -495,30 +343,42 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
   {
     this->Fail(Child(pointer, "type"), "unknown surface type " + Quote(type));
   }
-  this->CheckKeys(j, pointer, allowed);
+  return allowed;
+}
 
-  const std::string name = this->String(this->Require(j, pointer, "name"), Child(pointer, "name"));
-  if (std::find(scene.SurfaceNames.begin(), scene.SurfaceNames.end(), name) !=
+SurfaceAttributes SceneParser::ParseSurfaceAttributes(const Json& j,
+  const std::string& pointer,
+  const Scene& scene) const
+{
+  SurfaceAttributes attributes;
+  attributes.Name = this->String(this->Require(j, pointer, "name"), Child(pointer, "name"));
+  if (std::find(scene.SurfaceNames.begin(), scene.SurfaceNames.end(), attributes.Name) !=
     scene.SurfaceNames.end())
   {
-    this->Fail(Child(pointer, "name"), "duplicate surface name " + Quote(name));
+    this->Fail(Child(pointer, "name"), "duplicate surface name " + Quote(attributes.Name));
   }
   const std::string materialName =
     this->String(this->Require(j, pointer, "material"), Child(pointer, "material"));
-  const int materialIndex = scene.FindMaterial(materialName);
-  if (materialIndex < 0)
+  attributes.MaterialIndex = scene.FindMaterial(materialName);
+  if (attributes.MaterialIndex < 0)
   {
     this->Fail(Child(pointer, "material"), "unknown material " + Quote(materialName));
   }
-  const bool twoSided =
+  attributes.TwoSided =
     j.contains("two_sided") && this->Boolean(j["two_sided"], Child(pointer, "two_sided"));
-  const bool flip = j.contains("flip") && this->Boolean(j["flip"], Child(pointer, "flip"));
-  const glm::dmat4 transform = j.contains("transform")
-    ? this->ParseTransform(j["transform"], Child(pointer, "transform"))
-    : glm::dmat4(1.0);
+  attributes.Flip = j.contains("flip") && this->Boolean(j["flip"], Child(pointer, "flip"));
+  if (j.contains("transform"))
+  {
+    attributes.Transform = this->ParseTransform(j["transform"], Child(pointer, "transform"));
+  }
+  return attributes;
+}
 
-  std::vector<BezierPatch> patches;
-  std::vector<bool> triangles;
+std::vector<BezierPatch> SceneParser::ParseGeometry(const std::string& type,
+  const Json& j,
+  const std::string& pointer,
+  std::vector<bool>& triangles) const
+{
   if (type == "bilinear")
   {
     // SPEC order P(0,0), P(1,0), P(1,1), P(0,1) -> row-major u fastest: P00, P10, P01, P11.
@@ -526,95 +386,94 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
       this->ParsePoints(this->Require(j, pointer, "points"), Child(pointer, "points"), 1, 1);
     std::vector<glm::dvec3> cp = quad[0].ControlPoints();
     std::swap(cp[2], cp[3]);
+    std::vector<BezierPatch> patches;
     patches.emplace_back(1, 1, std::move(cp));
+    return patches;
   }
-  else if (type == "bezier")
+  if (type == "bezier")
   {
-    const std::string at = Child(pointer, "degree");
-    const Json& degree = this->Require(j, pointer, "degree");
-    if (!degree.is_array() || degree.size() != 2)
-    {
-      this->Fail(at, "expected an array of 2 integers");
-    }
-    long long mn[2];
-    for (size_t k = 0; k < 2; ++k)
-    {
-      mn[k] = this->Integer(degree[k], Child(at, k));
-      if (mn[k] < 1 || mn[k] > BezierPatch::MaxDegree)
-      {
-        this->Fail(Child(at, k),
-          "degree must be in [1, " + std::to_string(BezierPatch::MaxDegree) + "], got " +
-            std::to_string(mn[k]));
-      }
-    }
-    const long long m = mn[0];
-    const long long n = mn[1];
-    patches = this->ParsePoints(this->Require(j, pointer, "points"),
-      Child(pointer, "points"),
-      static_cast<int>(m),
-      static_cast<int>(n));
+    return this->ParseBezierSurface(j, pointer);
   }
-  else if (type == "bpt")
+  if (type == "bpt")
   {
     const std::string at = Child(pointer, "file");
     const std::string file = this->ExistingFile(this->Require(j, pointer, "file"), at);
-    patches = this->Included(at, [&] { return ReadBptFile(file); });
+    return this->Included(at, [&] { return ReadBptFile(file); });
   }
-  else // mesh
-  {
-    const std::string at = Child(pointer, "file");
-    const std::string file = this->ExistingFile(this->Require(j, pointer, "file"), at);
-    const std::string ext = LowerExtension(file);
-    if (ext != "obj" && ext != "ply" && ext != "vtp")
-    {
-      this->Fail(at, "unsupported mesh format '." + ext + "' (use .obj, .ply or .vtp)");
-    }
-    if (!this->ReadMesh)
-    {
-      this->Fail(at, "mesh surfaces need the VTK scene reader (vtkPatchSceneReader)");
-    }
-    const std::vector<MeshFace> faces = this->Included(at,
-      [&]
-      {
-        std::vector<MeshFace> read = this->ReadMesh(file);
-        if (read.empty())
-        {
-          throw InputError(file, "", "mesh has no faces");
-        }
-        for (size_t f = 0; f < read.size(); ++f)
-        {
-          if (read[f].size() != 3 && read[f].size() != 4)
-          {
-            throw InputError(file,
-              "face " + std::to_string(f + 1),
-              "only triangles and quads are supported, got a face with " +
-                std::to_string(read[f].size()) + " vertices");
-          }
-          const double largest = LargestCoordinate(read[f]);
-          if (!(largest <= BezierPatch::MaxCoordinate)) // also NaN, which a PLY may hold
-          {
-            throw InputError(file, "face " + std::to_string(f + 1), CoordinateTooLarge(largest));
-          }
-        }
-        return read;
-      });
-    for (const MeshFace& face : faces)
-    {
-      // A triangle becomes the bilinear patch with P(1,1) = P(0,1); the right-hand rule of the
-      // face's vertex order is the front (dP/du x dP/dv).
-      const glm::dvec3& last = face.size() == 4 ? face[3] : face[2];
-      patches.emplace_back(1, 1, std::vector<glm::dvec3>{ face[0], face[1], last, face[2] });
-      triangles.resize(patches.size(), false);
-      triangles.back() = face.size() == 3;
-    }
-  }
+  return this->ReadMeshSurface(j, pointer, triangles);
+}
 
+std::vector<BezierPatch> SceneParser::ParseBezierSurface(const Json& j,
+  const std::string& pointer) const
+{
+  const std::string at = Child(pointer, "degree");
+  const Json& degree = this->Require(j, pointer, "degree");
+  if (!degree.is_array() || degree.size() != 2)
+  {
+    this->Fail(at, "expected an array of 2 integers");
+  }
+  long long mn[2];
+  for (size_t k = 0; k < 2; ++k)
+  {
+    mn[k] = this->Integer(degree[k], Child(at, k));
+    if (mn[k] < 1 || mn[k] > BezierPatch::MaxDegree)
+    {
+      this->Fail(Child(at, k),
+        "degree must be in [1, " + std::to_string(BezierPatch::MaxDegree) + "], got " +
+          std::to_string(mn[k]));
+    }
+  }
+  const long long m = mn[0];
+  const long long n = mn[1];
+  return this->ParsePoints(this->Require(j, pointer, "points"),
+    Child(pointer, "points"),
+    static_cast<int>(m),
+    static_cast<int>(n));
+}
+
+std::vector<BezierPatch> SceneParser::ReadMeshSurface(const Json& j,
+  const std::string& pointer,
+  std::vector<bool>& triangles) const
+{
+  const std::string at = Child(pointer, "file");
+  const std::string file = this->ExistingFile(this->Require(j, pointer, "file"), at);
+  const std::string ext = LowerExtension(file);
+  if (ext != "obj" && ext != "ply" && ext != "vtp")
+  {
+    this->Fail(at, "unsupported mesh format '." + ext + "' (use .obj, .ply or .vtp)");
+  }
+  if (!this->ReadMesh)
+  {
+    this->Fail(at, "mesh surfaces need the VTK scene reader (vtkPatchSceneReader)");
+  }
+  const std::vector<MeshFace> faces =
+    this->Included(at, [&] { return CheckMeshFaces(this->ReadMesh(file), file); });
+  std::vector<BezierPatch> patches;
+  for (const MeshFace& face : faces)
+  {
+    // A triangle becomes the bilinear patch with P(1,1) = P(0,1); the right-hand rule of the
+    // face's vertex order is the front (dP/du x dP/dv).
+    const glm::dvec3& last = face.size() == 4 ? face[3] : face[2];
+    patches.emplace_back(1, 1, std::vector<glm::dvec3>{ face[0], face[1], last, face[2] });
+    triangles.resize(patches.size(), false);
+    triangles.back() = face.size() == 3;
+  }
+  return patches;
+}
+
+void SceneParser::AddPlacedSurface(const std::vector<BezierPatch>& patches,
+  std::vector<bool> triangles,
+  const SurfaceAttributes& attributes,
+  bool inFile,
+  const std::string& pointer,
+  Scene& scene) const
+{
   const int nameIndex = static_cast<int>(scene.SurfaceNames.size());
-  scene.SurfaceNames.push_back(name);
+  scene.SurfaceNames.push_back(attributes.Name);
   triangles.resize(patches.size(), false);
   for (size_t p = 0; p < patches.size(); ++p)
   {
-    BezierPatch placed = PlacePatch(patches[p], transform, flip);
+    BezierPatch placed = PlacePatch(patches[p], attributes.Transform, attributes.Flip);
     // The geometry read is within the limit; only the transform can carry it beyond.
     const double largest = LargestCoordinate(placed.ControlPoints());
     if (largest > BezierPatch::MaxCoordinate)
@@ -625,16 +484,27 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
     if (IsDegeneratePatch(placed))
     {
       // Located at the geometry: the points, or the file the patch came from.
-      const bool inFile = type == "bpt" || type == "mesh";
       this->Fail(Child(pointer, inFile ? "file" : "points"),
         inFile ? "degenerate patch " + std::to_string(p + 1) + " (no area)"
                : std::string("degenerate patch (no area)"));
     }
-    Surface surface(std::move(placed), nameIndex, materialIndex);
-    surface.TwoSided = twoSided;
+    Surface surface(std::move(placed), nameIndex, attributes.MaterialIndex);
+    surface.TwoSided = attributes.TwoSided;
     surface.IsTriangle = triangles[p];
     scene.Surfaces.push_back(std::move(surface));
   }
+}
+
+void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene& scene) const
+{
+  this->ExpectObject(j, pointer);
+  const std::string type = this->String(this->Require(j, pointer, "type"), Child(pointer, "type"));
+  this->CheckKeys(j, pointer, this->SurfaceKeys(type, pointer));
+  const SurfaceAttributes attributes = this->ParseSurfaceAttributes(j, pointer, scene);
+  std::vector<bool> triangles;
+  const std::vector<BezierPatch> patches = this->ParseGeometry(type, j, pointer, triangles);
+  const bool inFile = type == "bpt" || type == "mesh";
+  this->AddPlacedSurface(patches, std::move(triangles), attributes, inFile, pointer, scene);
 }
 
 Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
@@ -673,49 +543,12 @@ Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
   return camera;
 }
 
-SceneSettings SceneParser::ParseSettings(const Json& j,
-  const std::string& pointer,
-  SceneSettings settings) const
-{
-  this->ExpectObject(j, pointer);
-  this->CheckKeys(j, pointer, { "theta_bins", "phi_bins", "max_level", "tolerance" });
-  if (j.contains("theta_bins"))
-  {
-    settings.ThetaBins = this->PositiveInteger(j["theta_bins"], Child(pointer, "theta_bins"), 4096);
-  }
-  if (j.contains("phi_bins"))
-  {
-    settings.PhiBins = this->PositiveInteger(j["phi_bins"], Child(pointer, "phi_bins"), 16384);
-  }
-  if (j.contains("max_level"))
-  {
-    const long long level = this->Integer(j["max_level"], Child(pointer, "max_level"));
-    if (level < 0 || level > MaxSubdivisionLevel)
-    {
-      this->Fail(Child(pointer, "max_level"),
-        "must be >= 0 and at most " + std::to_string(MaxSubdivisionLevel) +
-          " (deeper patches are narrower than the double precision of the parameter domain)");
-    }
-    settings.MaxLevel = static_cast<int>(level);
-  }
-  if (j.contains("tolerance"))
-  {
-    settings.Tolerance = this->Number(j["tolerance"], Child(pointer, "tolerance"));
-    // Smaller tolerances test only the rounding of the range bounds (MinimumTolerance).
-    if (!(settings.Tolerance >= MinimumTolerance))
-    {
-      this->Fail(Child(pointer, "tolerance"), "must be >= 1e-9");
-    }
-  }
-  return settings;
-}
-
 Scene SceneParser::Parse(const Json& root)
 {
   this->ExpectObject(root, "");
   this->CheckKeys(root, "", { "version", "materials", "surfaces", "cameras", "settings" });
   Scene scene;
-  scene.SourceFile = this->Path;
+  scene.SourceFile = this->Source;
   const long long version = this->Integer(this->Require(root, "", "version"), "/version");
   if (version != 1)
   {
@@ -755,152 +588,10 @@ Scene SceneParser::Parse(const Json& root)
   }
   if (root.contains("settings"))
   {
-    scene.Settings = this->ParseSettings(root["settings"], "/settings");
+    scene.Settings = ParseSettings(*this, root["settings"], "/settings");
   }
   return scene;
 }
-
-/// nlohmann/json's DOM builder, told not to throw, remembering where and why parsing failed:
-/// the byte offset and the JSON pointer of the value being read (nlohmann's exceptions lose
-/// both for a number overflow such as 1e999, which is a non-finite number to us). It also
-/// stops at what JSON allows but a scene must not have (Problem, at ErrorPointer): a repeated
-/// key (nlohmann would keep the last silently), a NUL character in a key or string (it would
-/// cut a file name short when the path reaches the C library), nesting beyond MaxJsonDepth.
-class LocatingDomParser : public nlohmann::detail::json_sax_dom_parser<Json>
-{
-  using Base = nlohmann::detail::json_sax_dom_parser<Json>;
-
-public:
-  explicit LocatingDomParser(Json& root)
-    : Base(root, false)
-  {
-  }
-
-  bool null() { return this->Value(Base::null()); }
-  bool boolean(bool value) { return this->Value(Base::boolean(value)); }
-  bool number_integer(Json::number_integer_t value)
-  {
-    return this->Value(Base::number_integer(value));
-  }
-  bool number_unsigned(Json::number_unsigned_t value)
-  {
-    return this->Value(Base::number_unsigned(value));
-  }
-  bool number_float(Json::number_float_t value, const Json::string_t& text)
-  {
-    return this->Value(Base::number_float(value, text));
-  }
-  bool string(Json::string_t& value)
-  {
-    if (value.find('\0') != std::string::npos)
-    {
-      return this->Stop("NUL character (\\u0000) in a string");
-    }
-    return this->Value(Base::string(value));
-  }
-  bool binary(Json::binary_t& value) { return this->Value(Base::binary(value)); }
-  bool start_object(std::size_t size)
-  {
-    if (this->Path.size() >= MaxJsonDepth)
-    {
-      return this->Stop("nested deeper than " + std::to_string(MaxJsonDepth) + " levels");
-    }
-    this->Path.push_back({ false, 0, std::string(), {} });
-    return Base::start_object(size);
-  }
-  bool key(Json::string_t& name)
-  {
-    Level& level = this->Path.back();
-    level.Key = name;
-    if (name.find('\0') != std::string::npos)
-    {
-      return this->Stop("NUL character (\\u0000) in a key");
-    }
-    if (!level.Keys.insert(name).second)
-    {
-      return this->Stop("duplicate key " + Quote(name));
-    }
-    return Base::key(name);
-  }
-  bool end_object()
-  {
-    this->Path.pop_back();
-    return this->Value(Base::end_object());
-  }
-  bool start_array(std::size_t size)
-  {
-    if (this->Path.size() >= MaxJsonDepth)
-    {
-      return this->Stop("nested deeper than " + std::to_string(MaxJsonDepth) + " levels");
-    }
-    this->Path.push_back({ true, 0, std::string(), {} });
-    return Base::start_array(size);
-  }
-  bool end_array()
-  {
-    this->Path.pop_back();
-    return this->Value(Base::end_array());
-  }
-
-  template<class Exception>
-  bool parse_error(std::size_t position, const std::string&, const Exception& error)
-  {
-    this->Failed = true;
-    this->ErrorPosition = position;
-    this->ErrorMessage = error.what();
-    this->ErrorId = error.id;
-    this->ErrorPointer = this->Pointer();
-    return false;
-  }
-
-  bool Failed = false;
-  size_t ErrorPosition = 0;
-  std::string ErrorMessage;
-  std::string ErrorPointer;
-  int ErrorId = 0;
-  std::string Problem; // set when the callbacks stopped a syntactically valid document
-
-private:
-  struct Level
-  {
-    bool IsArray;
-    size_t Count;               // elements read so far (arrays)
-    std::string Key;            // the current key (objects)
-    std::set<std::string> Keys; // the keys read so far (objects)
-  };
-
-  /// The JSON pointer of the value being read.
-  std::string Pointer() const
-  {
-    std::string pointer;
-    for (const Level& level : this->Path)
-    {
-      pointer += level.IsArray ? Child("", level.Count) : Child("", level.Key);
-    }
-    return pointer;
-  }
-
-  /// Ends the parse (a callback returning false) with `problem` at the current value.
-  bool Stop(const std::string& problem)
-  {
-    this->Failed = true;
-    this->ErrorPointer = this->Pointer();
-    this->Problem = problem;
-    return false;
-  }
-
-  /// A complete value was read: the enclosing array moves on to its next element.
-  bool Value(bool result)
-  {
-    if (!this->Path.empty() && this->Path.back().IsArray)
-    {
-      ++this->Path.back().Count;
-    }
-    return result;
-  }
-
-  std::vector<Level> Path;
-};
 
 } // namespace
 
@@ -937,71 +628,7 @@ bool IsDegeneratePatch(const BezierPatch& patch)
 
 Scene ParseScene(const std::string& text, const std::string& path, const MeshFaceReader& readMesh)
 {
-  Json root;
-  LocatingDomParser dom(root);
-  if (!Json::sax_parse(text, &dom) || dom.Failed)
-  {
-    if (!dom.Problem.empty())
-    {
-      throw InputError(
-        path, dom.ErrorPointer.empty() ? std::string("/") : dom.ErrorPointer, dom.Problem);
-    }
-    // nlohmann reports the byte offset; users want line and column.
-    const size_t end =
-      std::min(dom.ErrorPosition == 0 ? size_t{ 0 } : dom.ErrorPosition - 1, text.size());
-    size_t line = 1;
-    size_t column = 1;
-    for (size_t k = 0; k < end; ++k)
-    {
-      if (text[k] == '\n')
-      {
-        ++line;
-        column = 1;
-      }
-      else
-      {
-        ++column;
-      }
-    }
-    // Drop nlohmann's "[json.exception.parse_error.101] parse error at line 1, column 2: ".
-    std::string detail = dom.ErrorMessage;
-    const size_t bracket = detail.find("] ");
-    if (detail.compare(0, 16, "[json.exception.") == 0 && bracket != std::string::npos)
-    {
-      detail = detail.substr(bracket + 2);
-    }
-    const size_t colon = detail.find(": ");
-    if (detail.compare(0, 14, "parse error at") == 0 && colon != std::string::npos)
-    {
-      detail = detail.substr(colon + 2);
-    }
-    // nlohmann quotes the whole token it stopped in ("...; last read: '<token>'", maybe
-    // followed by "; expected ..."), which may be a megabyte-long string.
-    const std::string lastRead = "last read: '";
-    const size_t quoted = detail.find(lastRead);
-    if (quoted != std::string::npos)
-    {
-      const size_t begin = quoted + lastRead.size();
-      size_t end = detail.find("'; expected", begin);
-      end = end != std::string::npos ? end : detail.rfind('\'');
-      if (end != std::string::npos && end >= begin)
-      {
-        detail = detail.substr(0, quoted) +
-          "last read: " + Quote(detail.substr(begin, end - begin)) + detail.substr(end + 1);
-      }
-    }
-    const std::string position =
-      "line " + std::to_string(line) + ", column " + std::to_string(column);
-    if (dom.ErrorId == 406) // a number too large for a double, such as 1e999
-    {
-      throw InputError(
-        path, dom.ErrorPointer, "not a finite number (" + detail + ", " + position + ")");
-    }
-    throw InputError(path,
-      position,
-      "JSON syntax error: " + detail +
-        (dom.ErrorPointer.empty() ? "" : " (in " + dom.ErrorPointer + ")"));
-  }
+  const Json root = ParseJsonDocument(text, path);
   SceneParser parser(path, readMesh);
   return parser.Parse(root);
 }
@@ -1009,30 +636,6 @@ Scene ParseScene(const std::string& text, const std::string& path, const MeshFac
 Scene LoadSceneFile(const std::string& path, const MeshFaceReader& readMesh)
 {
   return ParseScene(ReadInputFile(path), path, readMesh);
-}
-
-SceneSettings OverrideSetting(const SceneSettings& base, const std::string& assignment)
-{
-  const size_t equals = assignment.find('=');
-  if (equals == std::string::npos || equals == 0)
-  {
-    throw InputError("--set", assignment, "expected key=value, e.g. theta_bins=64");
-  }
-  const std::string key = assignment.substr(0, equals);
-  const std::string value = assignment.substr(equals + 1);
-  // The value is read as JSON and checked exactly as in a scene file's settings block.
-  Json parsed;
-  LocatingDomParser dom(parsed);
-  if (!Json::sax_parse(value, &dom) || dom.Failed)
-  {
-    throw InputError("--set", key, "not a JSON value: " + Quote(value));
-  }
-  Json object = Json::object();
-  object[key] = parsed;
-  const std::string source = "--set";
-  const MeshFaceReader none;
-  SceneParser parser(source, none);
-  return parser.Override(base, object);
 }
 
 Scene LoadBptAsScene(const std::string& path)

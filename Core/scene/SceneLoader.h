@@ -6,7 +6,8 @@
  * Validation is strict: unknown keys, wrong types, non-finite numbers, out-of-range
  * reflectances, wrong point counts, unknown materials and degenerate patches are errors.
  * The first problem found is thrown as one InputError naming the file, the JSON pointer of the
- * offending value and the problem; nothing partial is returned.
+ * offending value and the problem; nothing partial is returned. The JSON reading itself is
+ * JsonInput.h's, the "settings" block SettingsOverride.h's (shared with the command line's --set).
  */
 #ifndef SPHCOVER_SCENELOADER_H
 #define SPHCOVER_SCENELOADER_H
@@ -38,11 +39,6 @@ Scene ParseScene(const std::string& text,
 /// A .bpt file on its own as a scene: one surface per patch, all named after the file, with a
 /// white diffuse material (reflectance 0.8) and default settings.
 Scene LoadBptAsScene(const std::string& path);
-
-/// The settings with one "key=value" assignment applied (the command line's --set), the value
-/// read as JSON and checked as in a scene file's "settings" block. Throws InputError naming
-/// "--set", the key and the problem.
-SceneSettings OverrideSetting(const SceneSettings& base, const std::string& assignment);
 
 /// True when the patch has (numerically) no area: every sampled Pu x Pv vanishes relative to
 /// the patch size. A triangle stored as a degenerate bilinear patch is not degenerate.

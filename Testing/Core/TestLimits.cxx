@@ -11,6 +11,7 @@
 #include "render/RadianceRenderer.h"
 #include "scene/Scene.h"
 #include "scene/SceneLoader.h"
+#include "scene/SettingsOverride.h"
 #include "subdivision/IntervalSubdivision.h"
 #include "subdivision/SubdivisionCriteria.h"
 
