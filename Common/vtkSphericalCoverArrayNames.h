@@ -37,13 +37,6 @@ constexpr const char* SourceFile = "SourceFile";
 /// so that a saved solution can tell the scene it was solved from.
 constexpr const char* SceneFingerprint = "SceneFingerprint";
 
-/// The reader's pipeline information (REQUEST_INFORMATION, before any data exists): a
-/// vtkDataObject whose field data holds CameraNames and CameraParameters, so that the image
-/// size of a scene camera is known when vtkRadianceImageFilter announces its extent. The
-/// name and location of a vtkInformationDataObjectMetaDataKey (found through
-/// vtkInformationKeyLookup: the readers and the filters share no code but Common's).
-constexpr const char* SceneCamerasKey = "SCENE_CAMERAS";
-constexpr const char* SceneCamerasKeyLocation = "vtkSphericalCover";
 
 // Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
 constexpr const char* PatchId = "PatchId";

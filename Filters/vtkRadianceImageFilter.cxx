@@ -3,6 +3,7 @@
 
 #include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
+#include "vtkSceneCameras.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 
@@ -17,7 +18,6 @@
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationDataObjectMetaDataKey.h>
-#include <vtkInformationKeyLookup.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
@@ -48,52 +48,6 @@ unsigned char EncodeSRGB(double linear)
   return static_cast<unsigned char>(std::lround(255.0 * encoded));
 }
 
-/// The camera named `name` (the first one if `name` is empty) among the field data's
-/// CameraNames / CameraParameters (position, focal point, view up, view angle, width, height);
-/// false when absent.
-bool FindCamera(vtkFieldData* fd, const std::string& name, sphcover::Camera& camera)
-{
-  auto* cameraNames =
-    fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(names::CameraNames)) : nullptr;
-  vtkDataArray* parameters = fd ? fd->GetArray(names::CameraParameters) : nullptr;
-  if (!cameraNames || !parameters || parameters->GetNumberOfComponents() != 12)
-  {
-    return false;
-  }
-  for (vtkIdType k = 0; k < cameraNames->GetNumberOfValues(); ++k)
-  {
-    if ((name.empty() || cameraNames->GetValue(k) == name) && k < parameters->GetNumberOfTuples())
-    {
-      double p[12];
-      parameters->GetTuple(k, p);
-      camera.Name = cameraNames->GetValue(k);
-      camera.Position = glm::dvec3(p[0], p[1], p[2]);
-      camera.FocalPoint = glm::dvec3(p[3], p[4], p[5]);
-      camera.ViewUp = glm::dvec3(p[6], p[7], p[8]);
-      camera.ViewAngle = p[9];
-      camera.Width = static_cast<int>(p[10]);
-      camera.Height = static_cast<int>(p[11]);
-      return true;
-    }
-  }
-  return false;
-}
-
-/// The key of the scene's cameras in the pipeline information (vtkSphericalCoverArrayNames.h):
-/// the one vtkPatchSceneReader publishes them under, whichever module made it first.
-vtkInformationDataObjectMetaDataKey* SceneCamerasKey()
-{
-  static vtkInformationDataObjectMetaDataKey* key = []
-  {
-    auto* known = vtkInformationDataObjectMetaDataKey::SafeDownCast(
-      vtkInformationKeyLookup::Find(names::SceneCamerasKey, names::SceneCamerasKeyLocation));
-    return known ? known
-                 : new vtkInformationDataObjectMetaDataKey(
-                     names::SceneCamerasKey, names::SceneCamerasKeyLocation);
-  }();
-  return key;
-}
-
 /// The camera `name` (or the first) of the scene as the inputs' pipeline information carries
 /// it, known before any data exists (vtkPatchSceneReader); false when they carry none.
 bool FindCameraInformation(vtkInformationVector** inputVector,
@@ -103,8 +57,8 @@ bool FindCameraInformation(vtkInformationVector** inputVector,
   for (int port = 0; port < 2; ++port)
   {
     vtkInformation* info = inputVector[port]->GetInformationObject(0);
-    vtkDataObject* cameras = info ? info->Get(SceneCamerasKey()) : nullptr;
-    if (cameras && FindCamera(cameras->GetFieldData(), name, camera))
+    vtkDataObject* cameras = info ? info->Get(vtkSceneCameras::SCENE_CAMERAS()) : nullptr;
+    if (cameras && vtkSceneCameras::Find(cameras->GetFieldData(), name, camera))
     {
       return true;
     }
@@ -114,16 +68,15 @@ bool FindCameraInformation(vtkInformationVector** inputVector,
 
 std::string CameraList(vtkFieldData* fd)
 {
-  auto* cameraNames =
-    fd ? vtkStringArray::SafeDownCast(fd->GetAbstractArray(names::CameraNames)) : nullptr;
-  if (!cameraNames || cameraNames->GetNumberOfValues() == 0)
+  const std::vector<std::string> cameras = vtkSceneCameras::Names(fd);
+  if (cameras.empty())
   {
     return "the scene has no cameras";
   }
   std::string list = "the scene's cameras are";
-  for (vtkIdType k = 0; k < cameraNames->GetNumberOfValues(); ++k)
+  for (std::size_t k = 0; k < cameras.size(); ++k)
   {
-    list += (k == 0 ? " '" : ", '") + cameraNames->GetValue(k) + "'";
+    list += (k == 0 ? " '" : ", '") + cameras[k] + "'";
   }
   return list;
 }
@@ -212,8 +165,8 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   sphcover::Camera camera;
   if (!this->CameraName.empty())
   {
-    if (!FindCamera(illumination->GetFieldData(), this->CameraName, camera) &&
-      !FindCamera(patchesInput->GetFieldData(), this->CameraName, camera))
+    if (!vtkSceneCameras::Find(illumination->GetFieldData(), this->CameraName, camera) &&
+      !vtkSceneCameras::Find(patchesInput->GetFieldData(), this->CameraName, camera))
     {
       vtkErrorMacro(<< "Cannot render: no camera named '" << this->CameraName << "'; "
                     << CameraList(illumination->GetFieldData()) << ".");
@@ -225,8 +178,8 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
     // Each pose property left at its default is the scene's first camera's (the former
     // defaults without one); the view is the user's once Position and FocalPoint differ.
     sphcover::Camera scene;
-    if (!FindCamera(illumination->GetFieldData(), "", scene) &&
-      !FindCamera(patchesInput->GetFieldData(), "", scene))
+    if (!vtkSceneCameras::Find(illumination->GetFieldData(), "", scene) &&
+      !vtkSceneCameras::Find(patchesInput->GetFieldData(), "", scene))
     {
       scene.Position = glm::dvec3(0.0, 0.0, 1.0);
       scene.FocalPoint = glm::dvec3(0.0, 0.0, 0.0);

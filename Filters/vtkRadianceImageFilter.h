@@ -33,8 +33,8 @@
  * sets every property, so "set by the user" is told by the value.) Width and Height of 0 (the
  * defaults) are the size of that scene camera (CameraName's, or the first), which must be
  * known before the inputs execute (RequestInformation announces the extent): it is read from
- * the pipeline information vtkPatchSceneReader publishes (SceneCamerasKey); inputs without it,
- * such as a saved solution, give 512 x 512.
+ * the pipeline information vtkPatchSceneReader publishes (vtkSceneCameras::SCENE_CAMERAS()); inputs
+ * without it, such as a saved solution, give 512 x 512.
  *
  * Output (vtkImageData, Width x Height x 1, spacing 1, row 0 at the bottom), point data:
  * `Radiance` (float RGB, W m^-2 sr^-1, the mean over SamplesPerPixel stratified samples),

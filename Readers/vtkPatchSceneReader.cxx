@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkPatchSceneReader.h"
 
+#include "vtkSceneCameras.h"
 #include "vtkSceneFileLoader.h"
 #include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
@@ -11,33 +12,34 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationDataObjectMetaDataKey.h>
-#include <vtkInformationKeyLookup.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <exception>
+#include <filesystem>
+#include <utility>
 
 namespace names = vtkSphericalCoverArrayNames;
 
 vtkStandardNewMacro(vtkPatchSceneReader);
 
+struct vtkPatchSceneReader::LoadedScene
+{
+  std::string FileName;
+  std::filesystem::file_time_type Modified;
+  sphcover::Scene Scene;
+};
+
 namespace
 {
-/// The key of the scene's cameras in the pipeline information (vtkSphericalCoverArrayNames.h):
-/// the one vtkRadianceImageFilter looks up by the same name, whichever module made it first.
-vtkInformationDataObjectMetaDataKey* SceneCamerasKey()
+/// The file's modification time, or the epoch when it cannot be read (then no cache matches).
+std::filesystem::file_time_type ModificationTime(const std::string& path)
 {
-  static vtkInformationDataObjectMetaDataKey* key = []
-  {
-    auto* known = vtkInformationDataObjectMetaDataKey::SafeDownCast(
-      vtkInformationKeyLookup::Find(names::SceneCamerasKey, names::SceneCamerasKeyLocation));
-    return known ? known
-                 : new vtkInformationDataObjectMetaDataKey(
-                     names::SceneCamerasKey, names::SceneCamerasKeyLocation);
-  }();
-  return key;
+  std::error_code error;
+  const auto time = std::filesystem::last_write_time(path, error);
+  return error ? std::filesystem::file_time_type() : time;
 }
 }
 
@@ -65,12 +67,14 @@ int vtkPatchSceneReader::RequestInformation(vtkInformation*,
   // The cameras, before any data exists: vtkRadianceImageFilter's image size is that of a
   // scene camera and must be known when it announces its extent. A file that does not load
   // publishes none; RequestData reports its error (one message, where it was before).
-  outInfo->Remove(SceneCamerasKey());
+  outInfo->Remove(vtkSceneCameras::SCENE_CAMERAS());
+  this->Loaded.reset();
   if (!this->FileName.empty())
   {
     try
     {
-      const sphcover::Scene scene = this->LoadFile(this->FileName);
+      const std::filesystem::file_time_type modified = ModificationTime(this->FileName);
+      sphcover::Scene scene = this->LoadFile(this->FileName);
       vtkNew<vtkUnstructuredGrid> described;
       vtkSurfaceGridBuilder::AddFieldData(scene, described);
       vtkNew<vtkDataObject> cameras;
@@ -78,7 +82,8 @@ int vtkPatchSceneReader::RequestInformation(vtkInformation*,
         described->GetFieldData()->GetAbstractArray(names::CameraNames));
       cameras->GetFieldData()->AddArray(
         described->GetFieldData()->GetArray(names::CameraParameters));
-      outInfo->Set(SceneCamerasKey(), cameras);
+      outInfo->Set(vtkSceneCameras::SCENE_CAMERAS(), cameras);
+      this->Loaded.reset(new LoadedScene{ this->FileName, modified, std::move(scene) });
     }
     catch (const std::exception&)
     {
@@ -94,6 +99,8 @@ int vtkPatchSceneReader::RequestData(vtkInformation*,
 {
   vtkUnstructuredGrid* output = vtkUnstructuredGrid::GetData(outputVector, 0);
   output->Initialize();
+  // The scene RequestInformation read, if it is still the file's (taken: read once).
+  std::unique_ptr<LoadedScene> loaded = std::move(this->Loaded);
   if (vtkScenePieces::RequestedPiece(outputVector) > 0)
   {
     // Global illumination needs the whole scene in one piece: piece 0 has it (vtkScenePieces.h).
@@ -107,7 +114,11 @@ int vtkPatchSceneReader::RequestData(vtkInformation*,
   this->UpdateProgress(0.0);
   try
   {
-    const sphcover::Scene scene = this->LoadFile(this->FileName);
+    const bool current = loaded && loaded->FileName == this->FileName &&
+      loaded->Modified != std::filesystem::file_time_type() &&
+      loaded->Modified == ModificationTime(this->FileName);
+    const sphcover::Scene scene =
+      current ? std::move(loaded->Scene) : this->LoadFile(this->FileName);
     this->UpdateProgress(0.5);
     vtkSurfaceGridBuilder::Build(scene, output);
   }

@@ -18,10 +18,11 @@
  * problem, and an empty output with a failed request.
  *
  * Pipeline information: the scene's cameras (CameraNames, CameraParameters) under the key
- * vtkSphericalCoverArrayNames::SceneCamerasKey, which passes downstream before any data
+ * vtkSceneCameras::SCENE_CAMERAS(), which passes downstream before any data
  * exists, so that vtkRadianceImageFilter knows a camera's image size when it announces its
- * extent. RequestInformation therefore loads the file too (on every process; a file that does
- * not load publishes nothing there, and RequestData reports the error).
+ * extent. RequestInformation therefore loads the file (on every process; a file that does not
+ * load publishes nothing there, and RequestData reports the error), and the RequestData that
+ * follows builds from that load unless the file was modified in between: one read per update.
  *
  * Pieces (vtkScenePieces.h): global illumination needs the whole scene in one place, so the
  * reader gives the whole scene to piece 0 and an empty grid, without building it, to every
@@ -33,6 +34,7 @@
 #include "SphericalCoverReadersModule.h" // for export macro
 #include "vtkUnstructuredGridAlgorithm.h"
 
+#include <memory> // for std::unique_ptr
 #include <string> // for std::string
 
 namespace sphcover
@@ -69,6 +71,11 @@ protected:
   std::string FileName;
 
 private:
+  /// The scene RequestInformation loaded, kept for the RequestData that follows so that the
+  /// file is read once per update (with the file's modification time it was read at).
+  struct LoadedScene;
+  std::unique_ptr<LoadedScene> Loaded;
+
   vtkPatchSceneReader(const vtkPatchSceneReader&) = delete;
   void operator=(const vtkPatchSceneReader&) = delete;
 };
