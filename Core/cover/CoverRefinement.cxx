@@ -7,6 +7,7 @@
 #include "cover/RBuffer.h"
 #include "cover/RayCastFill.h"
 #include "geometry/BoundingBoxTree.h"
+#include "geometry/RayCaster.h"
 
 #include <glm/geometric.hpp>
 
@@ -422,14 +423,14 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   double progressShare)
 {
   // The environment the probes see: the scene's whole surfaces (splitting changes no geometry).
-  std::vector<Patch> environment;
+  std::vector<RayCastPatch> environment;
   environment.reserve(this->Environment.Surfaces.size());
   Box bounds;
   for (size_t s = 0; s < this->Environment.Surfaces.size(); ++s)
   {
-    environment.emplace_back(
-      static_cast<int>(s), UVRect::Unit(), 0, this->Environment.Surfaces[s].Patch);
-    const IntervalVec3& box = environment.back().Geometry.Bounds();
+    environment.push_back(
+      RayCastPatch{ &this->Environment.Surfaces[s].Patch, static_cast<int32_t>(s) });
+    const IntervalVec3& box = this->Environment.Surfaces[s].Patch.Bounds();
     if (s == 0)
     {
       bounds = Box{ box.Lower(), box.Upper() };
@@ -443,8 +444,7 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   {
     return true;
   }
-  const HemisphereGrid grid(1, 1, 1, 1);
-  const RayCastFiller rays(environment, grid, this->Settings.Cover.FillOptions);
+  const RayCaster rays(std::move(environment), RayCastOptions(this->Settings.Cover.FillOptions));
   // Rays start on their own surface: skip the first 1e-7 of the scene's size (single-precision
   // rays; far below any gap that matters, such as the light's 0.5 mm in a 550 mm box), and hits
   // of the probe's own surface within its tessellation error.
@@ -469,7 +469,7 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
         return 0;
       }
       if (this->GroupOf(static_cast<int>(hit)) == this->GroupOf(patch.SurfaceIndex) &&
-        distance < ownTolerance * environment[hit].Geometry.Size())
+        distance < ownTolerance * this->Environment.Surfaces[hit].Patch.Size())
       {
         near = distance * (1.0 + 1e-6) + tNear;
         continue;

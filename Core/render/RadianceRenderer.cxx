@@ -5,6 +5,7 @@
 
 #include "cover/HemisphereGrid.h"
 #include "cover/RayCastFill.h"
+#include "geometry/RayCaster.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -137,8 +138,6 @@ RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
   , Interpolator(std::move(interpolator))
   , Exitant(std::move(exitantRadiance))
   , TwoSided(std::move(twoSidedSurface))
-  // The ray caster needs a hemisphere grid only for the R-buffer fills, never for CastRay.
-  , Grid(std::make_unique<HemisphereGrid>(1, 1, 1, 1))
 {
   if (this->Exitant.size() != this->Interpolator.PointCount())
   {
@@ -146,7 +145,7 @@ RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
       " radiance values for " + std::to_string(this->Interpolator.PointCount()) +
       " characteristic points");
   }
-  this->Caster = std::make_unique<RayCastFiller>(this->Patches, *this->Grid, RBufferFillOptions());
+  this->Caster = std::make_unique<RayCaster>(RayCastPatches(this->Patches), RayCasterOptions());
 }
 
 RadianceRenderer::~RadianceRenderer() = default;
@@ -322,7 +321,7 @@ bool RadianceRenderer::Render(const Camera& camera,
         const double x = 2.0 * (i + offsetX[static_cast<size_t>(k)]) / width - 1.0;
         const double y = 2.0 * (j + offsetY[static_cast<size_t>(k)]) / height - 1.0;
         const glm::dvec3 direction = glm::normalize(frame.Forward + x * frame.Right + y * frame.Up);
-        RayCastFiller::RayHit hit;
+        RayCaster::RayHit hit;
         if (!this->Caster->CastRay(frame.Eye, direction, hit))
         {
           continue;

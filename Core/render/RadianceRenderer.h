@@ -11,7 +11,7 @@
  * characteristic points." (paper §5.3)
  *
  * Visible surface: primary rays from the camera cast with Embree against the tessellation of
- * the exact patches that the R-buffer's ray fill uses (RayCastFiller::CastRay), the hit refined
+ * the exact patches that the R-buffer's ray fill uses (RayCaster::CastRay), the hit refined
  * by Newton's method on the exact Bezier patch, so the visible point's (surface, u, v) is the
  * exact one (up to the refinement's tolerance).
  *
@@ -81,7 +81,7 @@
 namespace sphcover
 {
 
-class RayCastFiller;
+class RayCaster;
 
 /// What the directional part of non-diffuse surfaces needs (paper §5.3.1; see the file comment):
 /// the propagation's result on the cover.
@@ -227,8 +227,7 @@ private:
   CharacteristicPointInterpolator Interpolator;
   std::vector<glm::dvec3> Exitant;
   std::vector<bool> TwoSided;
-  std::unique_ptr<HemisphereGrid> Grid;
-  std::unique_ptr<RayCastFiller> Caster;
+  std::unique_ptr<RayCaster> Caster;
   std::unique_ptr<DirectionalIllumination> Directional;
   PointReflectances Reflectances;
 };
