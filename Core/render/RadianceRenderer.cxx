@@ -64,6 +64,56 @@ ViewFrame FrameOf(const Camera& camera)
   frame.Up = halfHeight * up;
   return frame;
 }
+
+/// The stratified positions of the samples in a pixel (Hammersley's set, file comment).
+void SampleOffsets(int samples, std::vector<double>& offsetX, std::vector<double>& offsetY)
+{
+  offsetX.resize(static_cast<size_t>(samples));
+  offsetY.resize(static_cast<size_t>(samples));
+  for (int k = 0; k < samples; ++k)
+  {
+    offsetX[static_cast<size_t>(k)] = (k + 0.5) / samples;
+    // Shifted by half a stratum so that one sample sits at the pixel's centre.
+    offsetY[static_cast<size_t>(k)] = RadicalInverse(static_cast<unsigned>(k)) + 0.5 / samples;
+  }
+}
+
+/// A sample's hit: its surface and distance from the eye.
+struct SampleHit
+{
+  int Surface;
+  double Distance;
+};
+
+/// The surface most of a pixel's samples hit (ties: the lowest index) and their mean
+/// distance: the few samples sorted by surface, the runs counted. `hits` is not empty.
+void MostHitSurface(std::vector<SampleHit>& hits, int& surface, double& depth)
+{
+  std::stable_sort(hits.begin(),
+    hits.end(),
+    [](const SampleHit& a, const SampleHit& b) { return a.Surface < b.Surface; });
+  int best = -1;
+  size_t bestCount = 0;
+  double bestDistance = 0.0;
+  for (size_t first = 0; first < hits.size();)
+  {
+    size_t last = first;
+    double distance = 0.0;
+    for (; last < hits.size() && hits[last].Surface == hits[first].Surface; ++last)
+    {
+      distance += hits[last].Distance;
+    }
+    if (last - first > bestCount)
+    {
+      best = hits[first].Surface;
+      bestCount = last - first;
+      bestDistance = distance / static_cast<double>(bestCount);
+    }
+    first = last;
+  }
+  surface = best;
+  depth = bestDistance;
+}
 }
 
 std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
@@ -293,23 +343,13 @@ bool RadianceRenderer::Render(const Camera& camera,
 
   const ViewFrame frame = FrameOf(camera);
   const int samples = settings.SamplesPerPixel;
-  std::vector<double> offsetX(static_cast<size_t>(samples));
-  std::vector<double> offsetY(static_cast<size_t>(samples));
-  for (int k = 0; k < samples; ++k)
-  {
-    offsetX[static_cast<size_t>(k)] = (k + 0.5) / samples;
-    // Shifted by half a stratum so that one sample sits at the pixel's centre.
-    offsetY[static_cast<size_t>(k)] = RadicalInverse(static_cast<unsigned>(k)) + 0.5 / samples;
-  }
+  std::vector<double> offsetX;
+  std::vector<double> offsetY;
+  SampleOffsets(samples, offsetX, offsetY);
 
   auto renderRow = [&](int j)
   {
-    struct Sample
-    {
-      int Surface;
-      double Distance;
-    };
-    std::vector<Sample> hits;
+    std::vector<SampleHit> hits;
     std::unique_ptr<DirectionalCache> cache =
       this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
     for (int i = 0; i < width; ++i)
@@ -351,32 +391,11 @@ bool RadianceRenderer::Render(const Camera& camera,
       {
         continue;
       }
-      // The surface most samples hit (ties: the lowest index) and their mean distance: sort
-      // the few samples by surface and count the runs.
-      std::stable_sort(hits.begin(),
-        hits.end(),
-        [](const Sample& a, const Sample& b) { return a.Surface < b.Surface; });
-      int best = -1;
-      size_t bestCount = 0;
-      double bestDistance = 0.0;
-      for (size_t first = 0; first < hits.size();)
-      {
-        size_t last = first;
-        double distance = 0.0;
-        for (; last < hits.size() && hits[last].Surface == hits[first].Surface; ++last)
-        {
-          distance += hits[last].Distance;
-        }
-        if (last - first > bestCount)
-        {
-          best = hits[first].Surface;
-          bestCount = last - first;
-          bestDistance = distance / static_cast<double>(bestCount);
-        }
-        first = last;
-      }
-      image.SurfaceId[pixel] = best;
-      image.Depth[pixel] = static_cast<float>(bestDistance);
+      int surface;
+      double depth;
+      MostHitSurface(hits, surface, depth);
+      image.SurfaceId[pixel] = surface;
+      image.Depth[pixel] = static_cast<float>(depth);
     }
   };
 
