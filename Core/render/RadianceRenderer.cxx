@@ -5,6 +5,7 @@
 
 #include "cover/HemisphereGrid.h"
 #include "cover/RayCastFill.h"
+#include "geometry/RayCaster.h"
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
@@ -62,6 +63,56 @@ ViewFrame FrameOf(const Camera& camera)
   frame.Right = halfWidth * right;
   frame.Up = halfHeight * up;
   return frame;
+}
+
+/// The stratified positions of the samples in a pixel (Hammersley's set, file comment).
+void SampleOffsets(int samples, std::vector<double>& offsetX, std::vector<double>& offsetY)
+{
+  offsetX.resize(static_cast<size_t>(samples));
+  offsetY.resize(static_cast<size_t>(samples));
+  for (int k = 0; k < samples; ++k)
+  {
+    offsetX[static_cast<size_t>(k)] = (k + 0.5) / samples;
+    // Shifted by half a stratum so that one sample sits at the pixel's centre.
+    offsetY[static_cast<size_t>(k)] = RadicalInverse(static_cast<unsigned>(k)) + 0.5 / samples;
+  }
+}
+
+/// A sample's hit: its surface and distance from the eye.
+struct SampleHit
+{
+  int Surface;
+  double Distance;
+};
+
+/// The surface most of a pixel's samples hit (ties: the lowest index) and their mean
+/// distance: the few samples sorted by surface, the runs counted. `hits` is not empty.
+void MostHitSurface(std::vector<SampleHit>& hits, int& surface, double& depth)
+{
+  std::stable_sort(hits.begin(),
+    hits.end(),
+    [](const SampleHit& a, const SampleHit& b) { return a.Surface < b.Surface; });
+  int best = -1;
+  size_t bestCount = 0;
+  double bestDistance = 0.0;
+  for (size_t first = 0; first < hits.size();)
+  {
+    size_t last = first;
+    double distance = 0.0;
+    for (; last < hits.size() && hits[last].Surface == hits[first].Surface; ++last)
+    {
+      distance += hits[last].Distance;
+    }
+    if (last - first > bestCount)
+    {
+      best = hits[first].Surface;
+      bestCount = last - first;
+      bestDistance = distance / static_cast<double>(bestCount);
+    }
+    first = last;
+  }
+  surface = best;
+  depth = bestDistance;
 }
 }
 
@@ -137,8 +188,6 @@ RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
   , Interpolator(std::move(interpolator))
   , Exitant(std::move(exitantRadiance))
   , TwoSided(std::move(twoSidedSurface))
-  // The ray caster needs a hemisphere grid only for the R-buffer fills, never for CastRay.
-  , Grid(std::make_unique<HemisphereGrid>(1, 1, 1, 1))
 {
   if (this->Exitant.size() != this->Interpolator.PointCount())
   {
@@ -146,7 +195,7 @@ RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
       " radiance values for " + std::to_string(this->Interpolator.PointCount()) +
       " characteristic points");
   }
-  this->Caster = std::make_unique<RayCastFiller>(this->Patches, *this->Grid, RBufferFillOptions());
+  this->Caster = std::make_unique<RayCaster>(RayCastPatches(this->Patches), RayCasterOptions());
 }
 
 RadianceRenderer::~RadianceRenderer() = default;
@@ -294,23 +343,13 @@ bool RadianceRenderer::Render(const Camera& camera,
 
   const ViewFrame frame = FrameOf(camera);
   const int samples = settings.SamplesPerPixel;
-  std::vector<double> offsetX(static_cast<size_t>(samples));
-  std::vector<double> offsetY(static_cast<size_t>(samples));
-  for (int k = 0; k < samples; ++k)
-  {
-    offsetX[static_cast<size_t>(k)] = (k + 0.5) / samples;
-    // Shifted by half a stratum so that one sample sits at the pixel's centre.
-    offsetY[static_cast<size_t>(k)] = RadicalInverse(static_cast<unsigned>(k)) + 0.5 / samples;
-  }
+  std::vector<double> offsetX;
+  std::vector<double> offsetY;
+  SampleOffsets(samples, offsetX, offsetY);
 
   auto renderRow = [&](int j)
   {
-    struct Sample
-    {
-      int Surface;
-      double Distance;
-    };
-    std::vector<Sample> hits;
+    std::vector<SampleHit> hits;
     std::unique_ptr<DirectionalCache> cache =
       this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
     for (int i = 0; i < width; ++i)
@@ -322,7 +361,7 @@ bool RadianceRenderer::Render(const Camera& camera,
         const double x = 2.0 * (i + offsetX[static_cast<size_t>(k)]) / width - 1.0;
         const double y = 2.0 * (j + offsetY[static_cast<size_t>(k)]) / height - 1.0;
         const glm::dvec3 direction = glm::normalize(frame.Forward + x * frame.Right + y * frame.Up);
-        RayCastFiller::RayHit hit;
+        RayCaster::RayHit hit;
         if (!this->Caster->CastRay(frame.Eye, direction, hit))
         {
           continue;
@@ -352,32 +391,11 @@ bool RadianceRenderer::Render(const Camera& camera,
       {
         continue;
       }
-      // The surface most samples hit (ties: the lowest index) and their mean distance: sort
-      // the few samples by surface and count the runs.
-      std::stable_sort(hits.begin(),
-        hits.end(),
-        [](const Sample& a, const Sample& b) { return a.Surface < b.Surface; });
-      int best = -1;
-      size_t bestCount = 0;
-      double bestDistance = 0.0;
-      for (size_t first = 0; first < hits.size();)
-      {
-        size_t last = first;
-        double distance = 0.0;
-        for (; last < hits.size() && hits[last].Surface == hits[first].Surface; ++last)
-        {
-          distance += hits[last].Distance;
-        }
-        if (last - first > bestCount)
-        {
-          best = hits[first].Surface;
-          bestCount = last - first;
-          bestDistance = distance / static_cast<double>(bestCount);
-        }
-        first = last;
-      }
-      image.SurfaceId[pixel] = best;
-      image.Depth[pixel] = static_cast<float>(bestDistance);
+      int surface;
+      double depth;
+      MostHitSurface(hits, surface, depth);
+      image.SurfaceId[pixel] = surface;
+      image.Depth[pixel] = static_cast<float>(depth);
     }
   };
 

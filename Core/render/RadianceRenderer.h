@@ -4,59 +4,28 @@
  * @brief The final rendering of paper §5.3: a view of the equilibrium illumination through a
  * pinhole camera, as an HDR radiance image.
  *
- * "Any standard visible surface algorithm may be used to carry out the final rendering
- * process. The brightness assigned to a visible point is dependent on the illumination
- * function of the surface on which this point lies. For any intermediate visible point, the
- * illumination function has to be obtained by interpolation/extrapolation of neighbouring
- * characteristic points." (paper §5.3)
+ * Visible surface ("Any standard visible surface algorithm may be used", §5.3): primary rays
+ * from the eye through RayCaster::CastRay, the tessellation of the ray fill with the hit
+ * refined on the exact Bezier patch, so the visible point's (surface, u, v) is exact up to the
+ * refinement's tolerance. A back side of a one-sided surface has radiance 0 (SPEC §3).
  *
- * Visible surface: primary rays from the camera cast with Embree against the tessellation of
- * the exact patches that the R-buffer's ray fill uses (RayCastFiller::CastRay), the hit refined
- * by Newton's method on the exact Bezier patch, so the visible point's (surface, u, v) is the
- * exact one (up to the refinement's tolerance).
+ * Brightness (§5.3.2, "bilinearly interpolating the I's"): the exitant radiance I of the
+ * characteristic points around (u, v) (CharacteristicPointInterpolator, §3.4 Fig. 6),
+ * extrapolated near the edges, clamped at zero per band; emitters show their emission. With
+ * DirectionalIllumination a non-diffuse surface adds its directional part toward the eye
+ * (§5.3.1 with §3.4 Fig. 7): L = sum_k w_k (I_k + I_dir,k(eye_k)) over the stencil's points
+ * k, I_dir,k = DirectionalExitantRadiance of point k toward the eye in k's hemisphere frame
+ * (the BRDF being linear in E, the same as the BRDF applied to the interpolated E), resolved
+ * to the cells of the HemisphereGrid; a two-sided surface's back side shows its Lambertian
+ * part only. The samples of a row of pixels share a cache per (point, eye cell).
  *
- * Brightness: paper §5.3.2, "we can also directly obtain it by bilinearly interpolating the
- * I's in that direction": for a diffuse surface the exitant radiance I of every characteristic
- * point is the same in all directions (the Radiosity of the propagation, emission included),
- * so the visible point's radiance is the bilinear interpolation of the I's of the
- * characteristic points around (u, v), extrapolated near the edges
- * (CharacteristicPointInterpolator, §3.4 Fig. 6), clamped at zero per band. Emitters show their
- * emission (it is part of I).
- *
- * Non-diffuse surfaces (paper §5.3.1, with the interpolation of §3.4 Fig. 7): "the
- * illumination function E is interpolated between the neighbouring characteristic points and
- * the BRDF evaluated toward the eye". Given DirectionalIllumination (the cover, the incident
- * radiance E_e of every entry, the hemisphere frame and material of every point), the radiance
- * toward the eye of a visible point on a non-diffuse surface is
- *     L = sum_k w_k (I_k + I_dir,k(eye_k)),
- * the sum over the stencil's characteristic points k with their interpolation weights w_k,
- * I_k the Lambertian part as above (emission + k_d / pi E, `Radiosity`) and I_dir,k the
- * directional part of point k toward the eye direction expressed in k's hemisphere frame
- * (normal, phi from the tangent dP/du, SPEC §4.3), evaluated by DirectionalExitantRadiance
- * (the same function the propagation uses): the weight table of the BRDF at the eye's cell
- * applied to E_k. The BRDF is linear in E, so the blend of the evaluated points is the BRDF
- * applied to the blended E: interpolating the hemispherical tessellations strip by strip
- * (Fig. 7) and then applying the BRDF gives the same value, without building the interpolated
- * tessellation per pixel. For an ideal mirror I_dir,k is k_s times E of the region of k's
- * hemisphere holding the mirror direction of the eye's cell; for phong and tabulated BRDFs it
- * is sum over the row's strips of w(eye cell, strip) E. The directional part is resolved to
- * the cells of the HemisphereGrid (what the cover stores): a mirror shows the scene at the
- * resolution of its points' hemispheres. The back side of a two-sided non-diffuse surface
- * shows its Lambertian part only (the cover has one hemisphere per point, on the front).
- * Without DirectionalIllumination every surface shows its Lambertian part only.
- * One evaluation costs O(strips of the point's row); the samples of a row of pixels share a
- * cache of the evaluations per (point, eye cell), as neighbouring samples mostly repeat them.
- *
- * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, the image's row 0
- * at the bottom (vtkImageData's order). Each pixel is sampled at SamplesPerPixel stratified,
- * deterministic positions (the Hammersley set: one sample in each of the N columns of width 1/N,
- * the rows by the base-2 radical inverse), and Radiance is the mean over the samples (a ray that
- * escapes counts 0). SurfaceId is the surface most samples hit (ties: the lowest index; -1 when
- * none hit) and Depth the mean distance from the eye of the samples on that surface (-1 when
- * none). A back side of a one-sided surface has radiance 0 (it sends no light, SPEC §3).
- *
- * Pixels are computed independently, in batches of rows run through a ParallelFor; progress is
- * reported and abort honoured between batches. The image does not depend on the thread count.
+ * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, row 0 at the
+ * bottom. SamplesPerPixel stratified, deterministic positions per pixel (Hammersley: one per
+ * column of width 1/N, the rows by the base-2 radical inverse); Radiance is their mean (an
+ * escaping ray counts 0), SurfaceId the surface most samples hit (ties: the lowest index; -1:
+ * none) and Depth their mean distance on it (-1: none). Cost: O(samples x (log triangles +
+ * stencil)); rows in ten batches through a ParallelFor, progress and abort between batches;
+ * the image does not depend on the thread count. Details: Documentation/notes/ray-casting.md.
  */
 #ifndef SPHCOVER_RADIANCERENDERER_H
 #define SPHCOVER_RADIANCERENDERER_H
@@ -81,7 +50,7 @@
 namespace sphcover
 {
 
-class RayCastFiller;
+class RayCaster;
 
 /// What the directional part of non-diffuse surfaces needs (paper §5.3.1; see the file comment):
 /// the propagation's result on the cover.
@@ -227,8 +196,7 @@ private:
   CharacteristicPointInterpolator Interpolator;
   std::vector<glm::dvec3> Exitant;
   std::vector<bool> TwoSided;
-  std::unique_ptr<HemisphereGrid> Grid;
-  std::unique_ptr<RayCastFiller> Caster;
+  std::unique_ptr<RayCaster> Caster;
   std::unique_ptr<DirectionalIllumination> Directional;
   PointReflectances Reflectances;
 };

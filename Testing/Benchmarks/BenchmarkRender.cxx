@@ -15,7 +15,7 @@
  *    timed (the whole pipeline's seconds are these plus the render);
  *  - RadianceRenderer::Render: milliseconds, and rays per second;
  *  - raw Embree: the same count of rays, same directions, against the same tessellation (the
- *    resolution RayCastFiller chooses per patch), rtcIntersect1 with no filter, no refinement
+ *    resolution RayCaster chooses per patch), rtcIntersect1 with no filter, no refinement
  *    and no interpolation: milliseconds, and the render's cost as a ratio to it.
  *  - the render with the directional part of non-diffuse surfaces (paper §5.3.1: the teapot
  *    room's mirror wall and phong teapot), milliseconds (`dir_ms`), next to the render with
@@ -57,7 +57,7 @@ double SecondsSince(Clock::time_point start)
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// The patches' tessellation as RayCastFiller makes it, in a plain Embree scene.
+/// The patches' tessellation as RayCaster makes it, in a plain Embree scene.
 struct RawScene
 {
   RTCDevice Device = nullptr;
@@ -65,8 +65,7 @@ struct RawScene
 
   explicit RawScene(const std::vector<Patch>& patches)
   {
-    const HemisphereGrid grid(1, 1, 1, 1);
-    const RayCastFiller filler(patches, grid, RBufferFillOptions());
+    const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
     this->Device = rtcNewDevice("threads=1");
     this->Scene = rtcNewScene(this->Device);
     rtcSetSceneFlags(this->Scene, RTC_SCENE_FLAG_ROBUST);
@@ -75,7 +74,7 @@ struct RawScene
     {
       int nu = 0;
       int nv = 0;
-      filler.Resolution(p, nu, nv);
+      caster.Resolution(p, nu, nv);
       RTCGeometry geometry = rtcNewGeometry(this->Device, RTC_GEOMETRY_TYPE_TRIANGLE);
       float* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry,
         RTC_BUFFER_TYPE_VERTEX,

@@ -176,7 +176,7 @@ void RunPipeline(const std::string& scenePath)
     }
   }
   // Embree's limit: the same rays (every sample direction of every hemisphere), first hit only.
-  const RayCastFiller rays(patches, grid, options.FillOptions);
+  const RayCaster rays(RayCastPatches(patches), RayCastOptions(options.FillOptions));
   for (const int threads : { 1, 2 })
   {
     std::atomic<unsigned long long> hits{ 0 };

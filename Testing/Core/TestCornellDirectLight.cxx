@@ -63,7 +63,7 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
       const std::unique_ptr<RBufferFiller> filler =
         RBufferFiller::Create(RBufferFill::RayCasting, patches, grid);
       RBuffer buffer(grid);
-      const RayCastFiller rays(patches, grid, RBufferFillOptions());
+      const RayCaster rays(RayCastPatches(patches), RayCasterOptions());
       size_t lampPatches = 0;
       for (const Patch& p : patches)
       {

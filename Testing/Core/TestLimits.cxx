@@ -169,13 +169,13 @@ TEST(Limits, RayCastingRefusesCoordinatesEmbreeAbortsOn)
     1, 1, { { 0, 0, 2e18 }, { 1e18, 0, 2e18 }, { 0, 1e18, 2e18 }, { 1e18, 1e18, 2e18 } });
   std::vector<Patch> patches;
   patches.emplace_back(0, UVRect::Unit(), 0, far);
-  EXPECT_NE(RayCastCoordinateProblem(patches).find("Embree"), std::string::npos);
+  EXPECT_NE(RayCastCoordinateProblem(RayCastPatches(patches)).find("Embree"), std::string::npos);
   const HemisphereGrid grid(8, 16);
   EXPECT_THROW(RayCastFiller(patches, grid, RBufferFillOptions()), std::invalid_argument);
   const BezierPatch near(1, 1, { { 0, 0, 1 }, { 1, 0, 1 }, { 0, 1, 1 }, { 1, 1, 1 } });
   patches.clear();
   patches.emplace_back(0, UVRect::Unit(), 0, near);
-  EXPECT_EQ(RayCastCoordinateProblem(patches), "");
+  EXPECT_EQ(RayCastCoordinateProblem(RayCastPatches(patches)), "");
 }
 
 TEST(Limits, PropagationFailsOnNonFiniteEnergy)

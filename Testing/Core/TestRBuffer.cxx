@@ -445,12 +445,12 @@ TEST(RBuffer, RayFillTessellatesWithinTolerance)
   fine.TessellationTolerance = 1e-3;
   const RayCastFiller a(patches, grid, coarse);
   const RayCastFiller b(patches, grid, fine);
-  EXPECT_LT(a.TriangleCount(), b.TriangleCount());
+  EXPECT_LT(a.Caster().TriangleCount(), b.Caster().TriangleCount());
   for (size_t p = 0; p < patches.size(); ++p)
   {
     int nu;
     int nv;
-    a.Resolution(p, nu, nv);
+    a.Caster().Resolution(p, nu, nv);
     EXPECT_EQ(nu % 2, 0);
     EXPECT_EQ(nv % 2, 0);
     if (patches[p].Geometry.DegreeU() == 1 && patches[p].Geometry.DegreeV() == 1)

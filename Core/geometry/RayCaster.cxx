@@ -1,0 +1,496 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "geometry/RayCaster.h"
+
+#include "geometry/RayPatchIntersection.h"
+
+#include <embree3/rtcore.h>
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <utility>
+
+namespace sphcover
+{
+
+namespace
+{
+constexpr int MaxQuads = 256;
+
+/// Largest |second partial| bounds of a patch over its domain (convex hull of the nets).
+void SecondDerivativeBounds(const BezierPatch& patch, double& uu, double& uv, double& vv)
+{
+  const int m = patch.DegreeU();
+  const int n = patch.DegreeV();
+  uu = 0.0;
+  uv = 0.0;
+  vv = 0.0;
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i + 2 <= m; ++i)
+    {
+      uu = std::max(uu,
+        glm::length(patch.ControlPoint(i + 2, j) - 2.0 * patch.ControlPoint(i + 1, j) +
+          patch.ControlPoint(i, j)));
+    }
+  }
+  for (int j = 0; j + 2 <= n; ++j)
+  {
+    for (int i = 0; i <= m; ++i)
+    {
+      vv = std::max(vv,
+        glm::length(patch.ControlPoint(i, j + 2) - 2.0 * patch.ControlPoint(i, j + 1) +
+          patch.ControlPoint(i, j)));
+    }
+  }
+  for (int j = 0; j < n; ++j)
+  {
+    for (int i = 0; i < m; ++i)
+    {
+      uv = std::max(uv,
+        glm::length(patch.ControlPoint(i + 1, j + 1) - patch.ControlPoint(i + 1, j) -
+          patch.ControlPoint(i, j + 1) + patch.ControlPoint(i, j)));
+    }
+  }
+  uu *= m * (m - 1);
+  vv *= n * (n - 1);
+  uv *= m * n;
+}
+
+/// The smallest even (n_u, n_v) whose linear interpolation error bound is within tolerance:
+/// over a cell h_u x h_v it is (h_u^2 M_uu + 2 h_u h_v M_uv + h_v^2 M_vv) / 8.
+void ChooseResolution(const BezierPatch& patch, double tolerance, int& nu, int& nv)
+{
+  double uu;
+  double uv;
+  double vv;
+  SecondDerivativeBounds(patch, uu, uv, vv);
+  nu = 2;
+  nv = 2;
+  auto error = [&](int a, int b)
+  {
+    const double hu = 1.0 / a;
+    const double hv = 1.0 / b;
+    return (hu * hu * uu + 2.0 * hu * hv * uv + hv * hv * vv) / 8.0;
+  };
+  while (error(nu, nv) > tolerance && (nu < MaxQuads || nv < MaxQuads))
+  {
+    // Refine the direction that contributes more.
+    const double hu = 1.0 / nu;
+    const double hv = 1.0 / nv;
+    const double partU = hu * hu * uu + hu * hv * uv;
+    const double partV = hv * hv * vv + hu * hv * uv;
+    if ((partU >= partV && nu < MaxQuads) || nv >= MaxQuads)
+    {
+      nu = std::min(MaxQuads, nu + std::max(2, (nu / 8) * 2));
+    }
+    else
+    {
+      nv = std::min(MaxQuads, nv + std::max(2, (nv / 8) * 2));
+    }
+  }
+}
+
+/// An Embree ray from `origin` along `direction` (single precision, as Embree takes them),
+/// starting at `tNear`, with no hit yet.
+RTCRayHit MakeRayHit(const glm::dvec3& origin, const glm::dvec3& direction, float tNear)
+{
+  RTCRayHit rayHit;
+  rayHit.ray.org_x = static_cast<float>(origin.x);
+  rayHit.ray.org_y = static_cast<float>(origin.y);
+  rayHit.ray.org_z = static_cast<float>(origin.z);
+  rayHit.ray.dir_x = static_cast<float>(direction.x);
+  rayHit.ray.dir_y = static_cast<float>(direction.y);
+  rayHit.ray.dir_z = static_cast<float>(direction.z);
+  rayHit.ray.tnear = tNear;
+  rayHit.ray.tfar = std::numeric_limits<float>::infinity();
+  rayHit.ray.time = 0.0f;
+  rayHit.ray.mask = 0xFFFFFFFFu;
+  rayHit.ray.id = 0;
+  rayHit.ray.flags = 0;
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rayHit;
+}
+
+/// The intersect context handed to Embree, extended with the caller's filter.
+struct FilterContext
+{
+  RTCIntersectContext Context;
+  RayFilter Filter;
+};
+
+/// Embree's context filter: asks the caller's predicate about every candidate hit. It is
+/// installed for every query (also without a predicate) so that Embree's traversal, and with it
+/// the hit chosen among equally near triangles, is the same for every query.
+void FilterHit(const RTCFilterFunctionNArguments* args)
+{
+  const RayFilter& filter = reinterpret_cast<const FilterContext*>(args->context)->Filter;
+  if (!filter.Accept)
+  {
+    return;
+  }
+  for (unsigned int k = 0; k < args->N; ++k)
+  {
+    if (args->valid[k] == 0)
+    {
+      continue;
+    }
+    const float dot = RTCHitN_Ng_x(args->hit, args->N, k) * RTCRayN_dir_x(args->ray, args->N, k) +
+      RTCHitN_Ng_y(args->hit, args->N, k) * RTCRayN_dir_y(args->ray, args->N, k) +
+      RTCHitN_Ng_z(args->hit, args->N, k) * RTCRayN_dir_z(args->ray, args->N, k);
+    // Embree's Ng is cross(v1 - v0, v2 - v0); the triangles are wound like dQ/du x dQ/dv, so a
+    // front-side hit has Ng . dir < 0.
+    if (!filter.Accept(filter.Context,
+          RTCHitN_geomID(args->hit, args->N, k),
+          RTCRayN_tfar(args->ray, args->N, k),
+          dot < 0.0f))
+    {
+      args->valid[k] = 0;
+    }
+  }
+}
+}
+
+std::string RayCastCoordinateProblem(const std::vector<RayCastPatch>& patches)
+{
+  for (size_t p = 0; p < patches.size(); ++p)
+  {
+    if (!patches[p].Geometry)
+    {
+      continue;
+    }
+    for (const glm::dvec3& point : patches[p].Geometry->ControlPoints())
+    {
+      if (!(LargestCoordinate({ point }) <= MaxRayCastCoordinate))
+      {
+        std::ostringstream problem;
+        problem << "patch " << p << " (surface " << patches[p].Surface
+                << ") has a control point at " << point.x << ", " << point.y << ", " << point.z
+                << ", beyond the coordinates ray casting (Embree) can trace (|x| <= "
+                << MaxRayCastCoordinate << ")";
+        return problem.str();
+      }
+    }
+  }
+  return std::string();
+}
+
+struct RayCaster::Implementation
+{
+  std::vector<RayCastPatch> Patches;
+  RayCasterOptions Options;
+  RTCDevice Device = nullptr;
+  RTCScene Scene = nullptr;
+  std::vector<int> QuadsU;
+  std::vector<int> QuadsV;
+  std::size_t Triangles = 0;
+
+  Implementation(std::vector<RayCastPatch> patches, const RayCasterOptions& options)
+    : Patches(std::move(patches))
+    , Options(options)
+  {
+    for (size_t p = 0; p < this->Patches.size(); ++p)
+    {
+      if (!this->Patches[p].Geometry)
+      {
+        throw std::invalid_argument("RayCaster: patch " + std::to_string(p) + " has no geometry");
+      }
+    }
+    // Every stage that casts rays (the ray fill, the refinement's probes, the renderer) comes
+    // through here, whatever dataset the VTK filters were given: refuse what Embree aborts on.
+    const std::string problem = RayCastCoordinateProblem(this->Patches);
+    if (!problem.empty())
+    {
+      throw std::invalid_argument(problem);
+    }
+    // One thread for the BVH build: the environment is built once, and the result must not
+    // depend on a thread count.
+    this->Device = rtcNewDevice("threads=1");
+    if (!this->Device)
+    {
+      throw std::runtime_error("RayCaster: Embree could not create a device (error " +
+        std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");
+    }
+    this->Scene = rtcNewScene(this->Device);
+    rtcSetSceneFlags(this->Scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(this->Scene, RTC_BUILD_QUALITY_HIGH);
+    this->ChooseResolutions();
+    for (size_t p = 0; p < this->Patches.size(); ++p)
+    {
+      this->AddPatch(p);
+    }
+    rtcCommitScene(this->Scene);
+    const RTCError error = rtcGetDeviceError(this->Device);
+    if (error != RTC_ERROR_NONE)
+    {
+      this->Release();
+      throw std::runtime_error(
+        "RayCaster: Embree failed to build the scene (error " + std::to_string(error) + ")");
+    }
+  }
+
+  ~Implementation() { this->Release(); }
+
+  void Release()
+  {
+    if (this->Scene)
+    {
+      rtcReleaseScene(this->Scene);
+      this->Scene = nullptr;
+    }
+    if (this->Device)
+    {
+      rtcReleaseDevice(this->Device);
+      this->Device = nullptr;
+    }
+  }
+
+  void ChooseResolutions()
+  {
+    const size_t count = this->Patches.size();
+    this->QuadsU.resize(count);
+    this->QuadsV.resize(count);
+    // Largest resolution per (surface, degrees), so that uniformly split surfaces match.
+    std::map<std::tuple<int, int, int>, std::pair<int, int>> largest;
+    for (size_t p = 0; p < count; ++p)
+    {
+      const BezierPatch& geometry = *this->Patches[p].Geometry;
+      ChooseResolution(geometry,
+        this->Options.TessellationTolerance * geometry.Size(),
+        this->QuadsU[p],
+        this->QuadsV[p]);
+      auto& entry = largest[std::make_tuple(
+        static_cast<int>(this->Patches[p].Surface), geometry.DegreeU(), geometry.DegreeV())];
+      entry.first = std::max(entry.first, this->QuadsU[p]);
+      entry.second = std::max(entry.second, this->QuadsV[p]);
+    }
+    for (size_t p = 0; p < count; ++p)
+    {
+      const BezierPatch& geometry = *this->Patches[p].Geometry;
+      const auto& entry = largest[std::make_tuple(
+        static_cast<int>(this->Patches[p].Surface), geometry.DegreeU(), geometry.DegreeV())];
+      this->QuadsU[p] = entry.first;
+      this->QuadsV[p] = entry.second;
+    }
+  }
+
+  void AddPatch(size_t p)
+  {
+    const BezierPatch& patch = *this->Patches[p].Geometry;
+    const int nu = this->QuadsU[p];
+    const int nv = this->QuadsV[p];
+    RTCGeometry geometry = rtcNewGeometry(this->Device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    const size_t vertexCount = static_cast<size_t>((nu + 1) * (nv + 1));
+    float* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
+    for (int j = 0; j <= nv; ++j)
+    {
+      for (int i = 0; i <= nu; ++i)
+      {
+        // Exact parameters at the ends so that neighbours evaluate the same boundary points.
+        const double u = i == nu ? 1.0 : static_cast<double>(i) / nu;
+        const double v = j == nv ? 1.0 : static_cast<double>(j) / nv;
+        const glm::dvec3 q = patch.Evaluate(u, v);
+        float* out = vertices + 3 * static_cast<size_t>(j * (nu + 1) + i);
+        out[0] = static_cast<float>(q.x);
+        out[1] = static_cast<float>(q.y);
+        out[2] = static_cast<float>(q.z);
+      }
+    }
+    const size_t triangleCount = static_cast<size_t>(2 * nu * nv);
+    unsigned int* indices = static_cast<unsigned int*>(rtcSetNewGeometryBuffer(geometry,
+      RTC_BUFFER_TYPE_INDEX,
+      0,
+      RTC_FORMAT_UINT3,
+      3 * sizeof(unsigned int),
+      triangleCount));
+    for (int j = 0; j < nv; ++j)
+    {
+      for (int i = 0; i < nu; ++i)
+      {
+        const unsigned int v00 = static_cast<unsigned int>(j * (nu + 1) + i);
+        const unsigned int v10 = v00 + 1;
+        const unsigned int v01 = v00 + static_cast<unsigned int>(nu + 1);
+        const unsigned int v11 = v01 + 1;
+        unsigned int* t = indices + 6 * static_cast<size_t>(j * nu + i);
+        // Counter-clockwise in (u, v), so cross(v1 - v0, v2 - v0) points like dQ/du x dQ/dv.
+        t[0] = v00;
+        t[1] = v10;
+        t[2] = v11;
+        t[3] = v00;
+        t[4] = v11;
+        t[5] = v01;
+      }
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometryByID(this->Scene, geometry, static_cast<unsigned int>(p));
+    rtcReleaseGeometry(geometry);
+    this->Triangles += triangleCount;
+  }
+
+  /// Patch parameters of a hit from its triangle and barycentric coordinates.
+  void HitParameters(size_t p, unsigned int primitive, float b1, float b2, double& u, double& v)
+    const
+  {
+    const int nu = this->QuadsU[p];
+    const int nv = this->QuadsV[p];
+    const int quad = static_cast<int>(primitive / 2);
+    const int i = quad % nu;
+    const int j = quad / nu;
+    if (primitive % 2 == 0)
+    {
+      u = (i + b1 + b2) / nu;
+      v = (j + b2) / static_cast<double>(nv);
+    }
+    else
+    {
+      u = (i + b1) / static_cast<double>(nu);
+      v = (j + b1 + b2) / nv;
+    }
+  }
+};
+
+RayCaster::RayCaster(std::vector<RayCastPatch> patches, const RayCasterOptions& options)
+  : Impl(std::make_unique<Implementation>(std::move(patches), options))
+{
+}
+
+RayCaster::~RayCaster() = default;
+
+bool RayCaster::Intersect(const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  float tNear,
+  const RayFilter& filter,
+  bool coherent,
+  TriangleHit& hit) const
+{
+  const Implementation& impl = *this->Impl;
+  FilterContext context;
+  rtcInitIntersectContext(&context.Context);
+  context.Context.filter = FilterHit;
+  if (coherent)
+  {
+    context.Context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  }
+  context.Filter = filter;
+  RTCRayHit rayHit = MakeRayHit(origin, direction, tNear);
+  rtcIntersect1(impl.Scene, &context.Context, &rayHit);
+  if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
+  {
+    return false;
+  }
+  hit.Patch = rayHit.hit.geomID;
+  impl.HitParameters(hit.Patch, rayHit.hit.primID, rayHit.hit.u, rayHit.hit.v, hit.U, hit.V);
+  hit.Distance = rayHit.ray.tfar;
+  hit.FrontSide = rayHit.hit.Ng_x * rayHit.ray.dir_x + rayHit.hit.Ng_y * rayHit.ray.dir_y +
+      rayHit.hit.Ng_z * rayHit.ray.dir_z <
+    0.0f;
+  hit.TriangleNormal = glm::dvec3(rayHit.hit.Ng_x, rayHit.hit.Ng_y, rayHit.hit.Ng_z);
+  return true;
+}
+
+bool RayCaster::Refine(std::size_t patch,
+  const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  double& u,
+  double& v,
+  double& t) const
+{
+  double refinedU = u;
+  double refinedV = v;
+  double refinedT = t;
+  // Accept the refinement only where it stays on the patch near the triangle's point.
+  constexpr double margin = 1e-3;
+  if (IntersectRayPatch(
+        *this->Impl->Patches[patch].Geometry, origin, direction, refinedU, refinedV, refinedT) &&
+    refinedU >= -margin && refinedU <= 1.0 + margin && refinedV >= -margin &&
+    refinedV <= 1.0 + margin)
+  {
+    u = refinedU;
+    v = refinedV;
+    t = refinedT;
+    return true;
+  }
+  return false;
+}
+
+bool RayCaster::CastRay(const glm::dvec3& origin, const glm::dvec3& direction, RayHit& hit) const
+{
+  // No filter: nothing is excluded, and back sides are hits (opaque surfaces).
+  TriangleHit triangle;
+  if (!this->Intersect(origin, direction, 0.0f, RayFilter(), false, triangle))
+  {
+    return false;
+  }
+  hit.Patch = triangle.Patch;
+  hit.U = triangle.U;
+  hit.V = triangle.V;
+  hit.T = triangle.Distance;
+  if (this->Impl->Options.RefineHits)
+  {
+    double u = hit.U;
+    double v = hit.V;
+    double t = hit.T;
+    if (this->Refine(hit.Patch, origin, direction, u, v, t))
+    {
+      hit.U = std::clamp(u, 0.0, 1.0);
+      hit.V = std::clamp(v, 0.0, 1.0);
+      hit.T = t;
+    }
+  }
+  glm::dvec3 q;
+  glm::dvec3 qu;
+  glm::dvec3 qv;
+  EvaluatePointAndPartials(*this->Impl->Patches[hit.Patch].Geometry, hit.U, hit.V, q, qu, qv);
+  glm::dvec3 normal = glm::cross(qu, qv);
+  if (!(glm::length(normal) > 0.0))
+  {
+    normal = triangle.TriangleNormal;
+  }
+  hit.FrontSide = glm::dot(normal, direction) < 0.0;
+  return true;
+}
+
+bool RayCaster::FirstHit(const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  double tNear,
+  std::size_t& patch,
+  double& distance,
+  bool& front) const
+{
+  // Every side counts: the caller asks which one it met.
+  TriangleHit hit;
+  if (!this->Intersect(origin, direction, static_cast<float>(tNear), RayFilter(), false, hit))
+  {
+    return false;
+  }
+  patch = hit.Patch;
+  distance = hit.Distance;
+  front = hit.FrontSide;
+  return true;
+}
+
+std::size_t RayCaster::PatchCount() const
+{
+  return this->Impl->Patches.size();
+}
+
+std::size_t RayCaster::TriangleCount() const
+{
+  return this->Impl->Triangles;
+}
+
+void RayCaster::Resolution(std::size_t patch, int& quadsU, int& quadsV) const
+{
+  quadsU = this->Impl->QuadsU[patch];
+  quadsV = this->Impl->QuadsV[patch];
+}
+
+} // namespace sphcover
