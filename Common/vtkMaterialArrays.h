@@ -5,7 +5,7 @@
  * one tuple at a time: the one reading shared by the surface grids (cell data, read by
  * vtkSurfaceGridAdapter) and the characteristic points (point data, read by
  * vtkIlluminationAdapter for the propagation and rendering filters). vtkSurfaceGridBuilder
- * writes the arrays (SPEC §4.1).
+ * writes the arrays (Documentation/Pipeline.md#reader).
  *
  * Arrays of the attribute set: `Diffuse`, `Emission` (3 components, required), `MaterialType`
  * (missing: diffuse), `Specular` (3), `PhongExponent` (required for a non-diffuse material),

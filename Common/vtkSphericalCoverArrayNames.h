@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file vtkSphericalCoverArrayNames.h
- * @brief The names of the arrays every stage reads and writes (SPEC §4): one place for all.
+ * @brief The names of the arrays every stage reads and writes (Documentation/Pipeline.md): one
+ * place for all.
  *
  * ParaView users colour by these names and scripts read them, so they are a contract.
  */
@@ -10,7 +11,7 @@
 
 namespace vtkSphericalCoverArrayNames
 {
-// Reader output, cell data (SPEC §4.1).
+// Reader output, cell data (Documentation/Pipeline.md#reader).
 constexpr const char* SurfaceId = "SurfaceId";
 constexpr const char* SurfaceNameId = "SurfaceNameId";
 constexpr const char* MaterialId = "MaterialId";
@@ -37,8 +38,8 @@ constexpr const char* SourceFile = "SourceFile";
 /// so that a saved solution can tell the scene it was solved from.
 constexpr const char* SceneFingerprint = "SceneFingerprint";
 
-
-// Interval subdivision (SPEC §4.2): patches (cell data) and characteristic points (point data).
+// Interval subdivision (Documentation/Pipeline.md#interval-subdivision): patches (cell data) and
+// characteristic points (point data).
 constexpr const char* PatchId = "PatchId";
 /// Cover points: the cell of the cover's input (the subdivision's Patches) a point's patch was
 /// cut from by the cover's refinement (PatchId numbers the refined patches).
@@ -57,7 +58,8 @@ constexpr const char* SubdivisionStatistics = "SubdivisionStatistics";
 /// phi_bins and the tolerances of the four criteria), its properties or the scene's.
 constexpr const char* SubdivisionSettings = "SubdivisionSettings";
 
-// Spherical cover (SPEC §4.3): points' point data, the cover in field data, the strip table.
+// Spherical cover (Documentation/Pipeline.md#spherical-cover): points' point data, the cover in
+// field data, the strip table.
 constexpr const char* Tangents = "Tangents";
 constexpr const char* CoveredProjectedSolidAngle = "CoveredProjectedSolidAngle";
 constexpr const char* VisibleSources = "VisibleSources";
@@ -74,12 +76,13 @@ constexpr const char* PhiBegin = "PhiBegin";
 constexpr const char* PhiEnd = "PhiEnd";
 constexpr const char* R = "R";
 
-// Hemisphere extractor (SPEC §4.6): cell data of the hemisphere image and mesh (with Source,
-// SurfaceId, R).
+// Hemisphere extractor (Documentation/Pipeline.md#inspection-filters): cell data of the hemisphere
+// image and mesh (with Source, SurfaceId, R).
 /// The cosine-weighted measure of a (theta, phi) cell, dphi (cos 2 theta0 - cos 2 theta1) / 4.
 constexpr const char* ProjectedSolidAngle = "ProjectedSolidAngle";
 
-// Propagation (SPEC §4.4): points' point data, field data, the convergence history.
+// Propagation (Documentation/Pipeline.md#light-propagation): points' point data, field data, the
+// convergence history.
 constexpr const char* Irradiance = "Irradiance";
 constexpr const char* Radiosity = "Radiosity";
 constexpr const char* Brightness = "Brightness";
@@ -103,7 +106,7 @@ constexpr const char* SurfaceFormFactors = "SurfaceFormFactors";
 /// Field data, named components: CharacteristicPoints, Strips, RelativeImbalance.
 constexpr const char* SolutionStatistics = "SolutionStatistics";
 
-// Rendering (SPEC §4.5): point data of the image (with SurfaceId).
+// Rendering (Documentation/Pipeline.md#rendering): point data of the image (with SurfaceId).
 constexpr const char* Radiance = "Radiance";
 constexpr const char* Depth = "Depth";
 constexpr const char* RGB = "RGB";

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkSurfaceGridBuilder
- * @brief Turns a Core scene into the reader output of SPEC §4.1.
+ * @brief Turns a Core scene into the reader output of Documentation/Pipeline.md#reader.
  *
  * One cell per surface: `VTK_BEZIER_QUADRILATERAL` with the `HigherOrderDegrees` cell array
  * and VTK's point ordering for higher-order quadrilaterals (corners, edges in increasing

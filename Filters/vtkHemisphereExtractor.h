@@ -2,8 +2,8 @@
 /**
  * @class vtkHemisphereExtractor
  * @brief One characteristic point's hemisphere H_i of the spherical cover (paper §3.3), for
- * inspection (SPEC §4.6): as an image of its (theta, phi) cells and as a 3-D hemisphere placed
- * at the point.
+ * inspection (Documentation/Pipeline.md#inspection-filters): as an image of its (theta, phi) cells
+ * and as a 3-D hemisphere placed at the point.
  *
  * Input: the first output of vtkSphericalCoverFilter (or that output saved and read back): the
  * characteristic points with point data `Normals`, `Tangents`, `SurfaceId` and the cover in
@@ -23,11 +23,11 @@
  *    surfaces of one `.bpt` model share it), -1 where none;
  *  - `R` (float): the mean distance of the cell's strip to its source, NaN where none;
  *  - `ProjectedSolidAngle` (double): the cell's cosine-weighted measure
- *    dphi (cos 2 theta0 - cos 2 theta1) / 4 (SPEC §4.3), whatever its source: the cells sum to
- *    pi, those with a source to the point's `CoveredProjectedSolidAngle`.
+ *    dphi (cos 2 theta0 - cos 2 theta1) / 4 (Documentation/Pipeline.md#spherical-cover), whatever
+ * its source: the cells sum to pi, those with a source to the point's `CoveredProjectedSolidAngle`.
  * `Radiance` (the incident radiance of each cell) is not produced yet: it will be added once the
- * light propagation stage (SPEC §4.4) stores incident radiance with the cover; until then the
- * extractor shows geometry only and makes up no values.
+ * light propagation stage (Documentation/Pipeline.md#light-propagation) stores incident radiance
+ * with the cover; until then the extractor shows geometry only and makes up no values.
  *
  * Output 1 (vtkPolyData): the hemisphere as a 3-D mesh of radius Radius centred on the point,
  * in the point's frame: N (`Normals`, theta = 0), T (`Tangents`, phi = 0) and B = N x T

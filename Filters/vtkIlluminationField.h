@@ -2,8 +2,8 @@
 /**
  * @class vtkIlluminationField
  * @brief The illumination over all surfaces as a lit mesh, for interactive walk-throughs in
- * ParaView's own render view (SPEC §4.6): the view-independent result of the method (paper
- * §2.5, §5.3) shown without ray casting a new image for every view.
+ * ParaView's own render view (Documentation/Pipeline.md#inspection-filters): the view-independent
+ * result of the method (paper §2.5, §5.3) shown without ray casting a new image for every view.
  *
  * Inputs as vtkRadianceImageFilter: port 0 the illumination (vtkLightPropagationFilter's first
  * output), port 1 the patches (vtkIntervalSubdivisionFilter's first output). Every patch is

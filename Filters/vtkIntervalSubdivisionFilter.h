@@ -5,7 +5,7 @@
  * characteristic points, by interval range tests over whole patches.
  *
  * Input: surfaces as vtkPatchSceneReader writes them (any dataset of Bezier quadrilaterals,
- * quads and triangles with the material cell arrays of SPEC §4.1).
+ * quads and triangles with the material cell arrays of Documentation/Pipeline.md#reader).
  *
  * Every pair (characteristic point P_i, patch Q_j) is tested against the criteria of paper
  * §4.2: self-shadowing (§4.2.1), hemispherical containment (§4.2.2), spherical shape (§4.2.3:

@@ -2,7 +2,7 @@
 /**
  * @class vtkRadianceImageFilter
  * @brief The final rendering of paper §5.3: an HDR image of the equilibrium illumination seen
- * through a pinhole camera (SPEC §4.5).
+ * through a pinhole camera (Documentation/Pipeline.md#rendering).
  *
  * Inputs:
  *  - port 0, the illumination: vtkLightPropagationFilter's first output, the characteristic

@@ -5,8 +5,9 @@
  *
  * The .bpt format: the number of patches, then for each patch a line "du dv" and
  * (du+1)(dv+1) control points "x y z", u fastest. Any whitespace (tabs, CR LF) and C number
- * syntax (exponent notation) are accepted. The output is that of vtkPatchSceneReader (SPEC
- * §4.1), every patch with the material "default" (white diffuse, reflectance 0.8) and all
+ * syntax (exponent notation) are accepted. The output is that of vtkPatchSceneReader
+ * (Documentation/Pipeline.md#reader
+ * ), every patch with the material "default" (white diffuse, reflectance 0.8) and all
  * patches named after the file.
  */
 #ifndef vtkBPTReader_h

@@ -4,9 +4,9 @@
  * @brief Reads an OpenEXR image into a 2-D vtkImageData: R, G, B as the float point array
  * `Radiance` (3 components) and every other channel as a float array of its own name.
  *
- * The inverse of vtkOpenEXRWriter (SPEC §4.5): the extent is the file's data window, rows
- * are flipped back (EXR scanline y is VTK row ymin + ymax - y) and the origin and spacing
- * come from the writer's `vtkOrigin` / `vtkSpacing` attributes (0 and 1 in files from other
+ * The inverse of vtkOpenEXRWriter (Documentation/Pipeline.md#rendering): the extent is the file's
+ * data window, rows are flipped back (EXR scanline y is VTK row ymin + ymax - y) and the origin and
+ * spacing come from the writer's `vtkOrigin` / `vtkSpacing` attributes (0 and 1 in files from other
  * tools), so a write/read round trip gives the identical image, bit for bit for float data.
  * Half and 32-bit unsigned channels are converted to float. `Radiance` is formed only when
  * all of R, G and B exist; otherwise each of them is an array of its own. `Radiance` is the

@@ -3,7 +3,8 @@
  * @class vtkOpenEXRWriter
  * @brief Writes a 2-D vtkImageData as an OpenEXR file: a 3-component point array as the
  * channels R, G, B (32-bit float, or half) plus optional single-component arrays as extra
- * channels (SPEC §4.5: the HDR image of the rendered radiance, paper §5.3).
+ * channels (Documentation/Pipeline.md#rendering: the HDR image of the rendered radiance, paper
+ * §5.3).
  *
  * Radiance is a physical quantity spanning orders of magnitude (emitters next to dark
  * corners), so it is stored in floating point, not tone-mapped: OpenEXR is the standard

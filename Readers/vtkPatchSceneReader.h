@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @class vtkPatchSceneReader
- * @brief Reads a `.scene` file (SPEC §3): the surfaces of the environment as exact curved
- * patches, their materials, cameras and solver settings.
+ * @brief Reads a `.scene` file (Data/scenes/FORMAT.md): the surfaces of the environment as exact
+ * curved patches, their materials, cameras and solver settings.
  *
- * Output (SPEC §4.1): a vtkUnstructuredGrid with one cell per surface S_i of paper §4.3,
- * `VTK_BEZIER_QUADRILATERAL` (with the `HigherOrderDegrees` cell array), `VTK_QUAD` for
+ * Output (Documentation/Pipeline.md#reader): a vtkUnstructuredGrid with one cell per surface S_i of
+ * paper §4.3, `VTK_BEZIER_QUADRILATERAL` (with the `HigherOrderDegrees` cell array), `VTK_QUAD` for
  * bilinear patches, `VTK_TRIANGLE` for mesh triangles. Cell data: `SurfaceId`,
  * `SurfaceNameId`, `MaterialId`, `MaterialType`, `Emission` (3), `Diffuse` (3), `Specular` (3),
  * `PhongExponent`, `TwoSided`. Field data: `SurfaceNames`, `MaterialNames`,

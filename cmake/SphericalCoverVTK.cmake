@@ -1,6 +1,6 @@
 # VTK modules (Common/, Readers/, Filters/), their Python wrapping (package `sphericalcover`), the
 # ParaView plug-in and the command-line program, all built against the VTK that Debian's
-# ParaView 5.11 bundles (SPEC §2): a system VTK would conflict with python3-paraview.
+# ParaView 5.11 bundles (README.md#layout): a system VTK would conflict with python3-paraview.
 
 # Listing components keeps ParaView from dragging in its Qt client targets.
 find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager)

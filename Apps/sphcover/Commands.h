@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Commands.h
- * @brief The subcommands of `sphcover` (SPEC §5), one file each: they run the VTK pipeline and
- * print or write what it gives. Errors throw one line (main prints it); the return value is
- * the exit status.
+ * @brief The subcommands of `sphcover` (README.md#command-line), one file each: they run the VTK
+ * pipeline and print or write what it gives. Errors throw one line (main prints it); the return
+ * value is the exit status.
  */
 #ifndef SPHCOVER_COMMANDS_H
 #define SPHCOVER_COMMANDS_H

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file Report.h
- * @brief The JSON report of SPEC §5 (solve, render --report): per named surface its area and
- * area-weighted mean irradiance and exitant radiance, the form factors between named surfaces
- * (area-weighted over the source surface), the energy balance and the counts. The figures are
- * vtkLightPropagationFilter's (its output's field data, Core's SolutionFigures); this only
+ * @brief The JSON report of README.md#command-line (solve, render --report): per named surface its
+ * area and area-weighted mean irradiance and exitant radiance, the form factors between named
+ * surfaces (area-weighted over the source surface), the energy balance and the counts. The figures
+ * are vtkLightPropagationFilter's (its output's field data, Core's SolutionFigures); this only
  * formats them, with the timings the commands measure (`timings_s`; render adds `image`).
  */
 #ifndef SPHCOVER_REPORT_H

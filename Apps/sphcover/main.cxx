@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file main.cxx
- * @brief `sphcover`: the command-line program (SPEC §5): its options and the dispatch to the
- * commands (Commands.h), which run the VTK pipeline and format what it gives.
+ * @brief `sphcover`: the command-line program (README.md#command-line): its options and the
+ * dispatch to the commands (Commands.h), which run the VTK pipeline and format what it gives.
  *
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
@@ -135,7 +135,7 @@ int main(int argc, char** argv)
   // Before any thread starts: an interrupted run leaves no partial output behind.
   sphcover_cli::WatchTerminationSignals();
 
-  // ParaView's VTK selects the Sequential SMP backend unless told otherwise (SPEC §2).
+  // ParaView's VTK selects the Sequential SMP backend unless told otherwise (README.md#layout).
   vtkSMPTools::SetBackend("STDThread");
   vtkSMPTools::Initialize(options.Threads);
 

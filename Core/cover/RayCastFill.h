@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file RayCastFill.h
- * @brief The second R-buffer fill (SPEC §4.3, paper §4.3 Step 2): the sample rays of every
- * cell are cast from P_i through the RayCaster's tessellation of the exact patches, and the
- * first front side hit is mapped back to its patch.
+ * @brief The second R-buffer fill (Documentation/Pipeline.md#spherical-cover, paper §4.3 Step 2):
+ * the sample rays of every cell are cast from P_i through the RayCaster's tessellation of the exact
+ * patches, and the first front side hit is mapped back to its patch.
  *
  * Rays: origin P_i (a vertex of its own patch's tessellation, so a ray never starts inside one
  * of its triangles), the sample directions of HemisphereGrid in world coordinates, cast in

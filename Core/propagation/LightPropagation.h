@@ -97,7 +97,8 @@ struct ShotRecord
   std::size_t Shooter = 0;
   /// Unshot power the shooter sent, W summed over the bands (its U_j before the shot).
   double ShotPower = 0.0;
-  /// ShotPower / emitted power (the "MaxChange" of SPEC §4.4 for BrightestFirst).
+  /// ShotPower / emitted power (the "MaxChange" of Documentation/Pipeline.md#light-propagation for
+  /// BrightestFirst).
   double RelativeChange = 0.0;
   /// max_j U_j / emitted power after the shot: the convergence measure.
   double MaxUnshotRelative = 0.0;

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file SolutionFigures.h
- * @brief What an equilibrium amounts to per named surface (SPEC §5's report): each surface's
- * area, its area-weighted mean irradiance and exitant radiance, the form factors between the
- * named surfaces (paper §3.3, from the cover), the energy balance and the counts.
+ * @brief What an equilibrium amounts to per named surface (README.md#command-line's report): each
+ * surface's area, its area-weighted mean irradiance and exitant radiance, the form factors between
+ * the named surfaces (paper §3.3, from the cover), the energy balance and the counts.
  *
  * Inputs: the spherical cover, per characteristic point its surface (an index of the named
  * surfaces), area, irradiance E and exitant radiance L (paper §5.1's result), and the emitted

@@ -7,7 +7,8 @@
  * Visible surface ("Any standard visible surface algorithm may be used", §5.3): primary rays
  * from the eye through RayCaster::CastRay, the tessellation of the ray fill with the hit
  * refined on the exact Bezier patch, so the visible point's (surface, u, v) is exact up to the
- * refinement's tolerance. A back side of a one-sided surface has radiance 0 (SPEC §3).
+ * refinement's tolerance. A back side of a one-sided surface has radiance 0
+ * (Data/scenes/FORMAT.md).
  *
  * Brightness (§5.3.2, "bilinearly interpolating the I's"): the exitant radiance I of the
  * characteristic points around (u, v) (CharacteristicPointInterpolator, §3.4 Fig. 6),

@@ -381,7 +381,8 @@ std::vector<BezierPatch> SceneParser::ParseGeometry(const std::string& type,
 {
   if (type == "bilinear")
   {
-    // SPEC order P(0,0), P(1,0), P(1,1), P(0,1) -> row-major u fastest: P00, P10, P01, P11.
+    // Data/scenes/FORMAT.md's order P(0,0), P(1,0), P(1,1), P(0,1) -> row-major u fastest: P00,
+    // P10, P01, P11.
     auto quad =
       this->ParsePoints(this->Require(j, pointer, "points"), Child(pointer, "points"), 1, 1);
     std::vector<glm::dvec3> cp = quad[0].ControlPoints();

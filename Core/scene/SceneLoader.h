@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file SceneLoader.h
- * @brief Reads the `.scene` JSON format (SPEC §3, Data/scenes/FORMAT.md) into a Scene.
+ * @brief Reads the `.scene` JSON format (Data/scenes/FORMAT.md) into a Scene.
  *
  * Validation is strict: unknown keys, wrong types, non-finite numbers, out-of-range
  * reflectances, wrong point counts, unknown materials and degenerate patches are errors.

@@ -101,7 +101,7 @@ reader = vtkPatchSceneReader()
 reader.SetFileName(os.path.join(arguments.data, "scenes", arguments.scene + ".scene"))
 
 # The subdivision stops splitting a patch that would project to about one cell of the
-# hemisphere grid (SPEC §4.2), so it is given the cover's grid too.
+# hemisphere grid (Documentation/Pipeline.md#interval-subdivision), so it is given the cover's grid too.
 subdivision = vtkIntervalSubdivisionFilter()
 subdivision.SetInputConnection(reader.GetOutputPort())
 subdivision.SetMaxLevel(arguments.max_level)

@@ -3,8 +3,8 @@
  * @file BenchmarkCoverRefinement.cxx
  * @brief The R-buffer refinement of paper §4.3 Steps 3 and 5 (CoverRefinement.h) on the Cornell
  * box and the teapot room at the scenes' settings: interval subdivision, cover, refinement,
- * cover over the refined patches (SPEC §7: speed is measured by a benchmark, never by timed
- * tests).
+ * cover over the refined patches (Documentation/Verification.md#quality-bars: speed is measured by
+ * a benchmark, never by timed tests).
  *
  *   BenchmarkCoverRefinement [--threads N] [--extra-levels K] [--enclosures 0|1]
  *                            [--horizons 0|1] [--hemispheres 0|1] [--scene name.scene]...

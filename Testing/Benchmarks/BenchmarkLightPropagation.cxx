@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file BenchmarkLightPropagation.cxx
- * @brief Progressive light propagation (paper §5.1, §5.2) with all reflectance kinds (SPEC §7:
- * speed is measured by a benchmark, never by timed tests).
+ * @brief Progressive light propagation (paper §5.1, §5.2) with all reflectance kinds
+ * (Documentation/Verification.md#quality-bars: speed is measured by a benchmark, never by timed
+ * tests).
  *
  *   BenchmarkLightPropagation [--threads N] [--tolerance T] [--refine K] [--max-shots N]
  *                             [--no-costs] [--scene name.scene]...

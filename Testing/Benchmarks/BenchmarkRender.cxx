@@ -2,8 +2,8 @@
 /**
  * @file BenchmarkRender.cxx
  * @brief Speed of the final rendering (paper §5.3) from a solved state, against the limit of
- * casting the same primary rays with raw Embree (SPEC §7: speed is measured by a benchmark
- * program, never by timed tests).
+ * casting the same primary rays with raw Embree (Documentation/Verification.md#quality-bars: speed
+ * is measured by a benchmark program, never by timed tests).
  *
  *   BenchmarkRender [--threads N] [--size 512] [--spp 1] [--max-level L]
  *

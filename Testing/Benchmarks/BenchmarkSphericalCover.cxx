@@ -2,8 +2,9 @@
 /**
  * @file BenchmarkSphericalCover.cxx
  * @brief Speed and memory of the spherical cover (paper §3.3, §4.3 Steps 2-4) on the Cornell
- * box split uniformly at several resolutions, with both R-buffer fills (SPEC §7: speed and
- * memory are measured by a benchmark program, never by timed tests).
+ * box split uniformly at several resolutions, with both R-buffer fills
+ * (Documentation/Verification.md#quality-bars: speed and memory are measured by a benchmark
+ * program, never by timed tests).
  *
  *   BenchmarkSphericalCover [--threads N] [--splits 1,2,3,4,6] [--scene path.scene]
  *   BenchmarkSphericalCover --pipeline [--scene path.scene]...

@@ -2,7 +2,8 @@
 // The exchange balance of a point-sampled cover (Core/propagation/ExchangeBalance.h): the balanced
 // throughput keeps every row (each hemisphere gathers its covered measure: the white furnace
 // stays exact) and matches every column to it (each source delivers what its own hemisphere
-// sends: a closed scene's equilibrium absorbs what it emits, SPEC §4.4 / issue 5's 0.1%).
+// sends: a closed scene's equilibrium absorbs what it emits,
+// Documentation/Pipeline.md#light-propagation / issue 5's 0.1%).
 #include "propagation/ExchangeBalance.h"
 
 #include "CoverTestUtilities.h"
@@ -146,8 +147,9 @@ TEST(ExchangeBalance, ClosedNonUniformSceneAbsorbsWhatItEmits)
 
 TEST(ExchangeBalance, FurnaceStaysUniform)
 {
-  // Rows are kept, so a uniform incident radiance still gives pi L: the white furnace (SPEC §6)
-  // with balanced exchange, in the flat and the curved enclosure, every point within 0.5%.
+  // Rows are kept, so a uniform incident radiance still gives pi L: the white furnace
+  // (Documentation/Verification.md#correctness-references) with balanced exchange, in the flat and
+  // the curved enclosure, every point within 0.5%.
   for (const char* name : { "furnace_box.scene", "furnace_sphere.scene" })
   {
     CoveredScene setup(name, 2);

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // Progressive light propagation over the spherical cover (paper §5.1, diffuse): the white
-// furnace (SPEC §6) in a flat and a curved enclosure, energy balance, independence of the
-// shooting order, Howell's parallel rectangles with one lamp, the O(column) cost of a shot
-// (§5.2), progress, abort and the shot limit, and the material checks.
+// furnace (Documentation/Verification.md#correctness-references) in a flat and a curved enclosure,
+// energy balance, independence of the shooting order, Howell's parallel rectangles with one lamp,
+// the O(column) cost of a shot (§5.2), progress, abort and the shot limit, and the material checks.
 #include "propagation/LightPropagation.h"
 
 #include "CoverTestUtilities.h"
@@ -44,8 +44,8 @@ double WorstFurnaceError(const LightPropagation& propagation, const std::vector<
 
 TEST(LightPropagation, WhiteFurnaceIsUniformInFlatAndCurvedEnclosures)
 {
-  // SPEC §6: a closed enclosure with uniform emission Le and reflectance rho has radiance
-  // Le / (1 - rho) everywhere, whatever its shape.
+  // Documentation/Verification.md#correctness-references: a closed enclosure with uniform emission
+  // Le and reflectance rho has radiance Le / (1 - rho) everywhere, whatever its shape.
   for (const char* name : { "furnace_box.scene", "furnace_sphere.scene" })
   {
     const bool sphere = std::string(name) == "furnace_sphere.scene";

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The final rendering of paper §5.3: the white furnace renders uniform (SPEC §6); a linear
-// field over a square seen head-on renders the analytic (u, v) of each pixel's visible point
-// (camera conventions, visible surface, §5.3.2 interpolation and edge extrapolation), with the
-// analytic depth; the image does not depend on the thread count; abort; bad cameras are
-// refused with one clear message.
+// The final rendering of paper §5.3: the white furnace renders uniform
+// (Documentation/Verification.md#correctness-references); a linear field over a square seen head-on
+// renders the analytic (u, v) of each pixel's visible point (camera conventions, visible surface,
+// §5.3.2 interpolation and edge extrapolation), with the analytic depth; the image does not depend
+// on the thread count; abort; bad cameras are refused with one clear message.
 #include "math/Constants.h"
 #include "render/RadianceRenderer.h"
 
@@ -58,7 +58,8 @@ Camera HeadOn()
 
 TEST(RadianceRenderer, WhiteFurnaceRendersUniform)
 {
-  // SPEC §6: radiance Le / (1 - rho) everywhere in a closed furnace, so on every pixel.
+  // Documentation/Verification.md#correctness-references: radiance Le / (1 - rho) everywhere in a
+  // closed furnace, so on every pixel.
   for (const char* name : { "furnace_box.scene", "furnace_sphere.scene" })
   {
     const Scene scene = LoadSceneFile(ScenePath(name));

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The .bpt reader and the .scene loader of Core: formats (CRLF, tabs, exponent notation),
-// the geometry conventions of SPEC §3 (point order, front side, transforms, flip), defaults,
-// and located error messages.
+// the geometry conventions of Data/scenes/FORMAT.md (point order, front side, transforms, flip),
+// defaults, and located error messages.
 #include "scene/BptReader.h"
 #include "scene/InputError.h"
 #include "scene/MeshFileCheck.h"
@@ -108,7 +108,7 @@ TEST(SceneLoader, BilinearPointOrderAndFrontSide)
   const Scene scene = QuadWith("");
   ASSERT_EQ(scene.Surfaces.size(), 1u);
   const BezierPatch& quad = scene.Surfaces[0].Patch;
-  // SPEC §3: points are P(0,0), P(1,0), P(1,1), P(0,1).
+  // Data/scenes/FORMAT.md: points are P(0,0), P(1,0), P(1,1), P(0,1).
   EXPECT_EQ(quad.ControlPoint(0, 0), glm::dvec3(0, 0, 0));
   EXPECT_EQ(quad.ControlPoint(1, 0), glm::dvec3(2, 0, 0));
   EXPECT_EQ(quad.ControlPoint(1, 1), glm::dvec3(2, 1, 0));

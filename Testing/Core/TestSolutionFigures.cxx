@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// SolutionFigures (the report's figures, SPEC §5): on Howell's parallel rectangles (lamp A
-// facing white B) each surface's area is the sum of its patches', B's mean irradiance is
-// pi Le F_BA (it is lit directly only), the form factors are the cover's per surface, the
-// imbalance is LightPropagation's; inconsistent input is refused.
+// SolutionFigures (the report's figures, README.md#command-line): on Howell's parallel rectangles
+// (lamp A facing white B) each surface's area is the sum of its patches', B's mean irradiance is pi
+// Le F_BA (it is lit directly only), the form factors are the cover's per surface, the imbalance is
+// LightPropagation's; inconsistent input is refused.
 #include "CoverTestUtilities.h"
 
 #include "propagation/SolutionFigures.h"

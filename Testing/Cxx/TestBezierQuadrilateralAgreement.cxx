@@ -120,7 +120,7 @@ int TestBezierQuadrilateralAgreement(int, char*[])
     ++failures;
   }
 
-  // The cell types are the contract of SPEC §4.1.
+  // The cell types are the contract of Documentation/Pipeline.md#reader.
   vtkNew<vtkUnstructuredGrid> grid;
   vtkSurfaceGridBuilder::Build(randomScene, grid);
   for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkHemisphereExtractor (SPEC §4.6), facts:
+// vtkHemisphereExtractor (Documentation/Pipeline.md#inspection-filters), facts:
 // - for every characteristic point of the Cornell box (MaxLevel 2), the image's Source is the
 //   cover's row (SphericalCover::ExpandRow), SurfaceId and SurfaceNameId are the source's, the
 //   cells with a source sum to the point's CoveredProjectedSolidAngle and all cells to pi (1e-12);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkIlluminationField (SPEC §4.6): the lit surfaces for walk-throughs in a render window.
-// - the white furnace (SPEC §6): every vertex's Radiance within 0.5% of Le / (1 - rho);
+// vtkIlluminationField (Documentation/Pipeline.md#inspection-filters): the lit surfaces for
+// walk-throughs in a render window.
+// - the white furnace (Documentation/Verification.md#correctness-references): every vertex's
+// Radiance within 0.5% of Le / (1 - rho);
 // - the field agrees with the image filter: the pixel at the image centre (one sample) and the
 //   field interpolated at the same visible point come from the same §5.3.2 interpolation;
 // - bad input (characteristic points without illumination): one clear error;

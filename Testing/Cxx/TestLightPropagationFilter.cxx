@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkLightPropagationFilter (SPEC §4.4), through the whole pipeline of VTK filters:
+// vtkLightPropagationFilter (Documentation/Pipeline.md#light-propagation), through the whole
+// pipeline of VTK filters:
 // - white furnace in a closed curved enclosure (the subdivided Bezier sphere): every point's
 //   exitant radiance is Le / (1 - rho) per band within 0.5%, and emitted = absorbed power;
 // - the Cornell box: colour bleeds from the red and green walls onto the back wall (its red /

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// Bad input for the OpenEXR reader and writer (SPEC §4.5, bad-input standard):
+// Bad input for the OpenEXR reader and writer (Documentation/Pipeline.md#rendering, bad-input
+// standard):
 // - the reader on an empty file, a text file, truncated files (pixels, header), a corrupt
 //   header, an unsupported version field, corrupt pixel data, a missing file, no file name and
 //   a data window beyond MaximumPixels, a header attribute claiming more bytes than the file

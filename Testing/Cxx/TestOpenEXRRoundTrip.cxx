@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkOpenEXRWriter -> vtkOpenEXRReader (SPEC §4.5):
+// vtkOpenEXRWriter -> vtkOpenEXRReader (Documentation/Pipeline.md#rendering):
 // - float data round-trips bit for bit (random bit patterns over the whole float range:
 //   denormals, -0, the largest finite values, infinities, a NaN) for every lossless
 //   compression, with a non-zero extent origin, origin and spacing, and extra channels;

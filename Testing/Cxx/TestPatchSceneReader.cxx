@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The readers' output contract (SPEC §4.1) on every scene and model shipped in Data/:
+// The readers' output contract (Documentation/Pipeline.md#reader) on every scene and model shipped
+// in Data/:
 // - every scene reads; one cell per surface; the named cell and field arrays exist with the
 //   right number of components;
 // - the output converts back to the same Core scene (vtkSurfaceGridAdapter): control points

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkRadianceImageFilter (paper §5.3, SPEC §4.5):
-// - white furnace (SPEC §6), flat and curved, diffuse and the tabulated clay, seen from the
+// vtkRadianceImageFilter (paper §5.3, Documentation/Pipeline.md#rendering):
+// - white furnace (Documentation/Verification.md#correctness-references), flat and curved, diffuse
+// and the tabulated clay, seen from the
 //   scenes' cameras inside: every pixel's Radiance within 0.5% of Le / (1 - rho);
 // - consistency with the solution: the back wall of the Cornell box seen head-on (the view
 //   axis along its normal, so every pixel covers the same wall area) has a mean Radiance equal

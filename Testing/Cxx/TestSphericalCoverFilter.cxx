@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkSphericalCoverFilter (SPEC §4.3):
+// vtkSphericalCoverFilter (Documentation/Pipeline.md#spherical-cover):
 // - inside closed enclosures (the 8-patch Bezier sphere, subdivided; the box) every
 //   characteristic point's CoveredProjectedSolidAngle is pi;
 // - a built cover written with VTK's XML writer and read back is identical, array for array

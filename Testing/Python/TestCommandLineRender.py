@@ -1,4 +1,4 @@
-"""`sphcover render` (SPEC §5, paper §5.3): the Cornell box rendered to PNG through the scene's
+"""`sphcover render` (README.md#command-line, paper §5.3): the Cornell box rendered to PNG through the scene's
 camera at a small size (read back by VTK: the size asked for, the lamp the brightest pixel, the
 red wall red and the green wall green); the report's timings include the render; a solution
 saved by `sphcover solve -o` and rendered with --solution gives the identical image (the

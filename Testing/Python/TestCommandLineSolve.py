@@ -1,4 +1,4 @@
-"""`sphcover solve`: the report of SPEC §5 (surfaces with mean irradiance and exitant radiance,
+"""`sphcover solve`: the report of README.md#command-line (surfaces with mean irradiance and exitant radiance,
 form factors, energy, counts, timings): Howell's closed forms C-11 (parallel opposed
 rectangles) and C-14 (perpendicular rectangles with a common edge) within 0.5% at the scenes'
 default settings, and C-41 (coaxial parallel disks, two configurations), dimensions read from
@@ -146,7 +146,7 @@ if perpendicular:
         failures.append(f"ParaView does not open the solution ({expected} expected): "
                         f"{opened.stdout.strip()} {opened.stderr.strip()[-300:]}")
 
-# Howell C-41, coaxial parallel disks (SPEC §6): curved-boundary patches with a collapsed edge
+# Howell C-41, coaxial parallel disks (Documentation/Verification.md#correctness-references): curved-boundary patches with a collapsed edge
 # (Data/models/unit_disk.bpt, four cubic quarter-disks). The shipped scene (radii 1 and 0.5 at
 # 0.8) and equal disks at a distance of their radius, written beside it; radii and separation
 # read from the scene's transforms (the model is the unit disk).
@@ -169,7 +169,7 @@ for label, scene_file, scene in [("disks", disks_file, disks_scene), ("equal dis
     check_pair(report, f"{label} r_A={r_a} r_B={r_b} at {separation}", "C-41",
                f_disks(r_a, r_b, separation), f_disks(r_b, r_a, separation))
 
-# White furnace (SPEC §6): every surface's mean exitant radiance is Le / (1 - rho), and the
+# White furnace (Documentation/Verification.md#correctness-references): every surface's mean exitant radiance is Le / (1 - rho), and the
 # closed box absorbs what it emits; material values read from the scene.
 furnace_file = f"{data}/scenes/furnace_box.scene"
 furnace = solve(furnace_file)

@@ -1,5 +1,5 @@
 """`sphcover subdivide`: writes the patches and characteristic points as a multiblock file that
-VTK reads back with the SPEC §4.2 arrays; the same counts for 1 and 2 threads; --set overrides
+VTK reads back with the Documentation/Pipeline.md#interval-subdivision arrays; the same counts for 1 and 2 threads; --set overrides
 the scene's settings; a bad setting or an unwritable output fails with one line and leaves no
 file behind."""
 import os

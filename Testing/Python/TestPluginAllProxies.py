@@ -7,7 +7,7 @@ proxy added later without a check here makes this test fail.
   that reaches the VTK object (its getter returns it), and set back to the default;
 - multi-output proxies label their ports (ParaView shows the names);
 - on the Cornell box at small settings, every output port has the data type and the named
-  arrays (with their component counts) of SPEC §4, and the stages' counts agree (one
+  arrays (with their component counts) of Documentation/Pipeline.md, and the stages' counts agree (one
   characteristic point and one cover point per patch, ThetaBins x PhiBins hemisphere cells);
 - the OpenEXR writer writes a hemisphere image that the OpenEXR reader reads back;
 - the long stages (reader, subdivision, cover, propagation) report progress to ParaView.
@@ -145,7 +145,7 @@ def check_declaration(group, name, element):
 
 
 # ---------------------------------------------------------------------------------------------
-# Outputs on the Cornell box: type and named arrays (components) per SPEC §4.
+# Outputs on the Cornell box: type and named arrays (components) per Documentation/Pipeline.md.
 
 MATERIAL_CELLS = {"SurfaceId": 1, "MaterialId": 1, "Emission": 3, "Diffuse": 3, "Specular": 3,
                   "PhongExponent": 1}
@@ -285,7 +285,7 @@ def check_propagation():
 
 def check_hemisphere():
     check_port_names(hemisphere, ["Hemisphere Image", "Hemisphere Mesh"])
-    # SPEC §4.6 also names Radiance, which comes with the incident radiance per cell (see
+    # Documentation/Pipeline.md#inspection-filters also names Radiance, which comes with the incident radiance per cell (see
     # vtkHemisphereExtractor.h); the geometric arrays are checked here.
     cells = {"Source": 1, "SurfaceId": 1, "R": 1, "ProjectedSolidAngle": 1}
     image = check_output("HemisphereExtractor Hemisphere Image", output(hemisphere, 0),

@@ -1,7 +1,7 @@
 """pvbatch: the filter proxies of the plug-in (Interval Subdivision, Spherical Cover).
 - every property's XML default equals the C++ constructor's value (the wrapped class's getter);
 - every property can be set to a non-default value and back;
-- on the Cornell box the output ports carry the SPEC §4.2 / §4.3 data: patches and
+- on the Cornell box the output ports carry the Documentation/Pipeline.md#interval-subdivision and #spherical-cover data: patches and
   characteristic points, whose areas add up to the surfaces' areas; cover points with their
   covered projected solid angles and the strip table;
 - a bad property value makes the update fail without a crash (empty output)."""

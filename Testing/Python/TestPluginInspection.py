@@ -1,4 +1,4 @@
-"""pvbatch: the inspection proxy of the plug-in (Hemisphere Extractor, SPEC §4.6).
+"""pvbatch: the inspection proxy of the plug-in (Hemisphere Extractor, Documentation/Pipeline.md#inspection-filters).
 - every property's XML default equals the C++ constructor's value;
 - on the closed furnace box the "Hemisphere Image" port is a vtkImageData of PhiBins x ThetaBins
   cells in which every cell has a source, and the "Hemisphere Mesh" port has one cell per cell;

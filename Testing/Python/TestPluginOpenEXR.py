@@ -1,4 +1,4 @@
-"""pvbatch: the plug-in's OpenEXR writer and reader proxies (SPEC §4.5).
+"""pvbatch: the plug-in's OpenEXR writer and reader proxies (Documentation/Pipeline.md#rendering).
 - "Save Data" on image data with a .exr name picks the OpenEXR Writer; every property's XML
   default equals the C++ constructor's value;
 - the file it writes (a float Radiance, a double Depth as extra channel, a non-zero extent

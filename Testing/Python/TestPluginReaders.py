@@ -1,5 +1,5 @@
 """pvbatch: the plug-in loads, its readers open the shipped scenes by extension and by name,
-the output has the cells and named arrays of SPEC §4.1 and shows in a render view (the curved
+the output has the cells and named arrays of Documentation/Pipeline.md#reader and shows in a render view (the curved
 Bezier cells are drawn: the image is not blank). A malformed scene gives an empty output
 instead of a crash."""
 import os

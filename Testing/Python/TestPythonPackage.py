@@ -1,6 +1,6 @@
 """`import sphericalcover` from /usr/bin/python3 (ParaView's vtkmodules): the readers run in a
-plain VTK pipeline and produce the SPEC §4.1 arrays; reader -> subdivision -> cover -> hemisphere
-extractor runs and gives the SPEC §4.6 image and mesh."""
+plain VTK pipeline and produce the Documentation/Pipeline.md#reader arrays; reader -> subdivision -> cover -> hemisphere
+extractor runs and gives the Documentation/Pipeline.md#inspection-filters image and mesh."""
 import sys
 
 from sphericalcover import (vtkBPTReader, vtkHemisphereExtractor, vtkIntervalSubdivisionFilter,
