@@ -16,11 +16,13 @@
 #include <vtkDataArray.h>
 #include <vtkDataSet.h>
 #include <vtkDemandDrivenPipeline.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -58,6 +60,191 @@ vtkDataArray* FrameArray(vtkDataSet* input, const char* name, vtkIdType count)
   return array && array->GetNumberOfComponents() == 3 && array->GetNumberOfTuples() == count
     ? array
     : nullptr;
+}
+
+/// The cover held by `input`, or why it holds none.
+std::string LoadCover(vtkDataSet* input, sphcover::SphericalCover& cover)
+{
+  try
+  {
+    return vtkSphericalCoverArrays::Load(input, cover);
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+}
+
+/// The cell arrays both outputs share, one value per cell of the cover's grid.
+struct HemisphereCells
+{
+  vtkSmartPointer<vtkIntArray> Source;
+  vtkSmartPointer<vtkIntArray> Surface;
+  vtkSmartPointer<vtkIntArray> SurfaceName; // null when the input has no SurfaceNameId
+  vtkSmartPointer<vtkFloatArray> Depth;
+  vtkSmartPointer<vtkDoubleArray> Measure;
+
+  void AddTo(vtkCellData* cd) const
+  {
+    cd->SetScalars(this->Source);
+    cd->AddArray(this->Surface);
+    if (this->SurfaceName)
+    {
+      cd->AddArray(this->SurfaceName);
+    }
+    cd->AddArray(this->Depth);
+    cd->AddArray(this->Measure);
+  }
+};
+
+/// The strips of every source of row `receiver` painted back into the grid's cells (source,
+/// its surface and surface name, depth; no source: NoSource, -1, NaN), with each cell's
+/// projected solid angle.
+HemisphereCells PaintReceiverStrips(const sphcover::SphericalCover& cover,
+  size_t receiver,
+  vtkDataArray* surfaceOfPatch,
+  vtkDataArray* nameOfPatch)
+{
+  const sphcover::HemisphereGrid& grid = cover.Grid();
+  const vtkIdType cells = grid.CellCount();
+  HemisphereCells out;
+  out.Source = vtkNamedArrays::Int(names::Source, 1, cells);
+  out.Surface = vtkNamedArrays::Int(names::SurfaceId, 1, cells);
+  out.SurfaceName = nameOfPatch ? vtkNamedArrays::Int(names::SurfaceNameId, 1, cells) : nullptr;
+  out.Depth = vtkNamedArrays::New<vtkFloatArray>(names::R, 1, cells);
+  out.Measure = vtkNamedArrays::Double(names::ProjectedSolidAngle, 1, cells);
+  out.Source->FillValue(sphcover::RBuffer::NoSource);
+  out.Surface->FillValue(-1);
+  if (out.SurfaceName)
+  {
+    out.SurfaceName->FillValue(-1);
+  }
+  out.Depth->FillValue(std::numeric_limits<float>::quiet_NaN());
+  for (vtkIdType cell = 0; cell < cells; ++cell)
+  {
+    out.Measure->SetValue(cell, grid.CellMeasureOfCell(static_cast<int>(cell)));
+  }
+  for (size_t e = cover.EntryBegin(receiver); e < cover.EntryEnd(receiver); ++e)
+  {
+    const uint32_t j = cover.EntryAt(e).Source;
+    const int surfaceId =
+      surfaceOfPatch ? static_cast<int>(surfaceOfPatch->GetComponent(j, 0)) : -1;
+    const int nameId = nameOfPatch ? static_cast<int>(nameOfPatch->GetComponent(j, 0)) : -1;
+    for (size_t s = cover.StripBegin(e); s < cover.StripEnd(e); ++s)
+    {
+      const sphcover::SphericalCover::Strip& strip = cover.StripAt(s);
+      for (int column = strip.PhiBegin; column < strip.PhiEnd; ++column)
+      {
+        const vtkIdType cell = grid.CellIndex(strip.Row, column);
+        out.Source->SetValue(cell, static_cast<int>(j));
+        out.Surface->SetValue(cell, surfaceId);
+        if (out.SurfaceName)
+        {
+          out.SurfaceName->SetValue(cell, nameId);
+        }
+        out.Depth->SetValue(cell, cover.StripDepth(s));
+      }
+    }
+  }
+  return out;
+}
+
+/// Output 0: cell (column, row) of the image is the cover's cell row * PhiBins + column,
+/// because VTK numbers an image's cells with x (phi) fastest.
+void WriteCellImage(const sphcover::HemisphereGrid& grid,
+  const HemisphereCells& cells,
+  vtkImageData* image,
+  vtkInformation* imageInfo)
+{
+  image->SetExtent(0, grid.PhiBins(), 0, grid.ThetaBins(), 0, 0);
+  image->SetSpacing(grid.PhiStep(), grid.ThetaStep(), 1.0);
+  image->SetOrigin(0.0, 0.0, 0.0);
+  cells.AddTo(image->GetCellData());
+  // The data pass may see a cover whose bins differ from what RequestInformation published
+  // (when it could not read them); the extent of the data is the truth.
+  imageInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), image->GetExtent(), 6);
+}
+
+/// The frame the cover was built in at characteristic point `id`. HemisphereFrame is the
+/// Core's own convention (B = N x T, T re-orthogonalised), so the mesh cannot drift from it.
+sphcover::HemisphereFrame FrameOfPoint(vtkDataSet* input,
+  vtkDataArray* normals,
+  vtkDataArray* tangents,
+  vtkIdType id)
+{
+  double p[3];
+  input->GetPoint(id, p);
+  double n[3];
+  double t[3];
+  normals->GetTuple(id, n);
+  tangents->GetTuple(id, t);
+  const glm::dvec3 tangent(t[0], t[1], t[2]);
+  return sphcover::HemisphereFrame::FromPartials(
+    glm::dvec3(p[0], p[1], p[2]), glm::dvec3(n[0], n[1], n[2]), tangent, tangent);
+}
+
+/// Output 1: the 3-D hemisphere of `radius` around the frame's origin, one cell per cell of
+/// the grid in the cover's order.
+void BuildHemisphereMesh(const sphcover::HemisphereGrid& grid,
+  const sphcover::HemisphereFrame& frame,
+  double radius,
+  const HemisphereCells& cells,
+  vtkPolyData* mesh)
+{
+  const int thetaBins = grid.ThetaBins();
+  const int phiBins = grid.PhiBins();
+  // Points: the pole, then rows 1..ThetaBins of PhiBins points each (phi wraps around).
+  const vtkIdType pointCount = 1 + static_cast<vtkIdType>(thetaBins) * phiBins;
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(pointCount);
+  auto pointNormals = vtkNamedArrays::Double(names::Normals, 3, pointCount);
+  auto place = [&](vtkIdType id, const glm::dvec3& local)
+  {
+    const glm::dvec3 direction = frame.ToWorld(local);
+    const glm::dvec3 x = frame.Origin + radius * direction;
+    points->SetPoint(id, x.x, x.y, x.z);
+    pointNormals->SetTuple3(id, direction.x, direction.y, direction.z);
+  };
+  place(0, glm::dvec3(0.0, 0.0, 1.0));
+  auto pointOf = [phiBins](int row, int column) -> vtkIdType
+  { return 1 + static_cast<vtkIdType>(row - 1) * phiBins + (column % phiBins); };
+  for (int row = 1; row <= thetaBins; ++row)
+  {
+    for (int column = 0; column < phiBins; ++column)
+    {
+      place(pointOf(row, column),
+        sphcover::HemisphereGrid::LocalDirection(grid.RowTheta(row), column * grid.PhiStep()));
+    }
+  }
+  // Cells in the cover's order; counter-clockwise seen from outside (theta then phi), so their
+  // normals point away from the centre like the point normals.
+  const vtkIdType cellCount = grid.CellCount();
+  vtkNew<vtkCellArray> polys;
+  polys->AllocateExact(cellCount, 4 * cellCount);
+  for (int row = 0; row < thetaBins; ++row)
+  {
+    for (int column = 0; column < phiBins; ++column)
+    {
+      if (row == 0)
+      {
+        const vtkIdType ids[3] = { 0, pointOf(1, column), pointOf(1, column + 1) };
+        polys->InsertNextCell(3, ids);
+      }
+      else
+      {
+        const vtkIdType ids[4] = { pointOf(row, column),
+          pointOf(row + 1, column),
+          pointOf(row + 1, column + 1),
+          pointOf(row, column + 1) };
+        polys->InsertNextCell(4, ids);
+      }
+    }
+  }
+  mesh->SetPoints(points);
+  mesh->SetPolys(polys);
+  mesh->GetPointData()->SetNormals(pointNormals);
+  cells.AddTo(mesh->GetCellData());
 }
 }
 
@@ -172,15 +359,7 @@ int vtkHemisphereExtractor::RequestData(vtkInformation*,
     return 0;
   }
   sphcover::SphericalCover cover;
-  std::string problem;
-  try
-  {
-    problem = vtkSphericalCoverArrays::Load(input, cover);
-  }
-  catch (const std::exception& e)
-  {
-    problem = e.what();
-  }
+  const std::string problem = LoadCover(input, cover);
   if (!problem.empty())
   {
     vtkErrorMacro(<< "Cannot extract a hemisphere: " << problem << ".");
@@ -207,81 +386,10 @@ int vtkHemisphereExtractor::RequestData(vtkInformation*,
   // name id colours a whole object alike.
   vtkDataArray* nameOfPatch = input->GetPointData()->GetArray(names::SurfaceNameId);
 
-  // Cell data: the strips of every source of row PointId painted back into the cell array.
-  const sphcover::HemisphereGrid& grid = cover.Grid();
-  const vtkIdType cells = grid.CellCount();
-  auto source = vtkNamedArrays::Int(names::Source, 1, cells);
-  auto surface = vtkNamedArrays::Int(names::SurfaceId, 1, cells);
-  auto surfaceName = nameOfPatch ? vtkNamedArrays::Int(names::SurfaceNameId, 1, cells) : nullptr;
-  auto depth = vtkNamedArrays::New<vtkFloatArray>(names::R, 1, cells);
-  auto measure = vtkNamedArrays::Double(names::ProjectedSolidAngle, 1, cells);
-  source->FillValue(sphcover::RBuffer::NoSource);
-  surface->FillValue(-1);
-  if (surfaceName)
-  {
-    surfaceName->FillValue(-1);
-  }
-  depth->FillValue(std::numeric_limits<float>::quiet_NaN());
-  for (vtkIdType cell = 0; cell < cells; ++cell)
-  {
-    measure->SetValue(cell, grid.CellMeasureOfCell(static_cast<int>(cell)));
-  }
-  const size_t receiver = static_cast<size_t>(this->PointId);
-  for (size_t e = cover.EntryBegin(receiver); e < cover.EntryEnd(receiver); ++e)
-  {
-    const uint32_t j = cover.EntryAt(e).Source;
-    const int surfaceId =
-      surfaceOfPatch ? static_cast<int>(surfaceOfPatch->GetComponent(j, 0)) : -1;
-    const int nameId = nameOfPatch ? static_cast<int>(nameOfPatch->GetComponent(j, 0)) : -1;
-    for (size_t s = cover.StripBegin(e); s < cover.StripEnd(e); ++s)
-    {
-      const sphcover::SphericalCover::Strip& strip = cover.StripAt(s);
-      for (int column = strip.PhiBegin; column < strip.PhiEnd; ++column)
-      {
-        const vtkIdType cell = grid.CellIndex(strip.Row, column);
-        source->SetValue(cell, static_cast<int>(j));
-        surface->SetValue(cell, surfaceId);
-        if (surfaceName)
-        {
-          surfaceName->SetValue(cell, nameId);
-        }
-        depth->SetValue(cell, cover.StripDepth(s));
-      }
-    }
-  }
+  const HemisphereCells cells =
+    PaintReceiverStrips(cover, static_cast<size_t>(this->PointId), surfaceOfPatch, nameOfPatch);
+  WriteCellImage(cover.Grid(), cells, image, outputVector->GetInformationObject(0));
 
-  // Output 0: cell (column, row) of the image is the cover's cell row * PhiBins + column,
-  // because VTK numbers an image's cells with x (phi) fastest.
-  const int thetaBins = grid.ThetaBins();
-  const int phiBins = grid.PhiBins();
-  image->SetExtent(0, phiBins, 0, thetaBins, 0, 0);
-  image->SetSpacing(grid.PhiStep(), grid.ThetaStep(), 1.0);
-  image->SetOrigin(0.0, 0.0, 0.0);
-  vtkCellData* imageCells = image->GetCellData();
-  imageCells->SetScalars(source);
-  imageCells->AddArray(surface);
-  if (surfaceName)
-  {
-    imageCells->AddArray(surfaceName);
-  }
-  imageCells->AddArray(depth);
-  imageCells->AddArray(measure);
-  // The data pass may see a cover whose bins differ from what RequestInformation published
-  // (when it could not read them); the extent of the data is the truth.
-  vtkInformation* imageInfo = outputVector->GetInformationObject(0);
-  imageInfo->Set(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), image->GetExtent(), 6);
-
-  // Output 1: the 3-D hemisphere in the frame the cover was built in. HemisphereFrame is the
-  // Core's own convention (B = N x T, T re-orthogonalised), so the mesh cannot drift from it.
-  double p[3];
-  input->GetPoint(this->PointId, p);
-  double n[3];
-  double t[3];
-  normals->GetTuple(this->PointId, n);
-  tangents->GetTuple(this->PointId, t);
-  const glm::dvec3 tangent(t[0], t[1], t[2]);
-  const sphcover::HemisphereFrame frame = sphcover::HemisphereFrame::FromPartials(
-    glm::dvec3(p[0], p[1], p[2]), glm::dvec3(n[0], n[1], n[2]), tangent, tangent);
   double radius = this->Radius;
   if (radius == 0.0)
   {
@@ -291,66 +399,8 @@ int vtkHemisphereExtractor::RequestData(vtkInformation*,
       radius = 1.0; // a single point has no extent to scale by
     }
   }
-
-  // Points: the pole, then rows 1..ThetaBins of PhiBins points each (phi wraps around).
-  const vtkIdType pointCount = 1 + static_cast<vtkIdType>(thetaBins) * phiBins;
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(pointCount);
-  auto pointNormals = vtkNamedArrays::Double(names::Normals, 3, pointCount);
-  auto place = [&](vtkIdType id, const glm::dvec3& local)
-  {
-    const glm::dvec3 direction = frame.ToWorld(local);
-    const glm::dvec3 x = frame.Origin + radius * direction;
-    points->SetPoint(id, x.x, x.y, x.z);
-    pointNormals->SetTuple3(id, direction.x, direction.y, direction.z);
-  };
-  place(0, glm::dvec3(0.0, 0.0, 1.0));
-  auto pointOf = [phiBins](int row, int column) -> vtkIdType
-  { return 1 + static_cast<vtkIdType>(row - 1) * phiBins + (column % phiBins); };
-  for (int row = 1; row <= thetaBins; ++row)
-  {
-    for (int column = 0; column < phiBins; ++column)
-    {
-      place(pointOf(row, column),
-        sphcover::HemisphereGrid::LocalDirection(grid.RowTheta(row), column * grid.PhiStep()));
-    }
-  }
-  // Cells in the cover's order; counter-clockwise seen from outside (theta then phi), so their
-  // normals point away from the centre like the point normals.
-  vtkNew<vtkCellArray> polys;
-  polys->AllocateExact(cells, 4 * cells);
-  for (int row = 0; row < thetaBins; ++row)
-  {
-    for (int column = 0; column < phiBins; ++column)
-    {
-      if (row == 0)
-      {
-        const vtkIdType ids[3] = { 0, pointOf(1, column), pointOf(1, column + 1) };
-        polys->InsertNextCell(3, ids);
-      }
-      else
-      {
-        const vtkIdType ids[4] = { pointOf(row, column),
-          pointOf(row + 1, column),
-          pointOf(row + 1, column + 1),
-          pointOf(row, column + 1) };
-        polys->InsertNextCell(4, ids);
-      }
-    }
-  }
-  mesh->SetPoints(points);
-  mesh->SetPolys(polys);
-  mesh->GetPointData()->SetNormals(pointNormals);
-  vtkCellData* meshCells = mesh->GetCellData();
-  meshCells->SetScalars(source);
-  meshCells->AddArray(surface);
-  if (surfaceName)
-  {
-    meshCells->AddArray(surfaceName);
-  }
-  meshCells->AddArray(depth);
-  meshCells->AddArray(measure);
+  BuildHemisphereMesh(
+    cover.Grid(), FrameOfPoint(input, normals, tangents, this->PointId), radius, cells, mesh);
   return 1;
 }
 

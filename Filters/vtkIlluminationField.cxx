@@ -30,6 +30,144 @@
 
 namespace names = vtkSphericalCoverArrayNames;
 
+namespace
+{
+/// The field's point arrays: position, Radiance, Normals and SurfaceId, (n + 1)^2 points per
+/// patch.
+struct FieldPoints
+{
+  vtkNew<vtkPoints> Points;
+  vtkNew<vtkFloatArray> Radiance;
+  vtkNew<vtkFloatArray> Normals;
+  vtkNew<vtkIntArray> SurfaceId;
+
+  explicit FieldPoints(vtkIdType count)
+  {
+    this->Points->SetDataTypeToDouble();
+    this->Points->SetNumberOfPoints(count);
+    this->Radiance->SetName(names::Radiance);
+    this->Radiance->SetNumberOfComponents(3);
+    this->Radiance->SetNumberOfTuples(count);
+    this->Normals->SetName(names::Normals);
+    this->Normals->SetNumberOfComponents(3);
+    this->Normals->SetNumberOfTuples(count);
+    this->SurfaceId->SetName(names::SurfaceId);
+    this->SurfaceId->SetNumberOfTuples(count);
+  }
+};
+
+/// Patch k's block of the field: its (n + 1) x (n + 1) parameter grid, each point with the
+/// patch's position, normal and interpolated exitant radiance there (paper §5.3.2).
+void SamplePatch(const sphcover::Patch& patch,
+  size_t k,
+  int n,
+  const vtkIlluminationAdapter::Illumination& lit,
+  FieldPoints& field)
+{
+  const vtkIdType perPatch = static_cast<vtkIdType>(n + 1) * (n + 1);
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= n; ++i)
+    {
+      const double s = i == n ? 1.0 : static_cast<double>(i) / n;
+      const double t = j == n ? 1.0 : static_cast<double>(j) / n;
+      const vtkIdType id = static_cast<vtkIdType>(k) * perPatch + j * (n + 1) + i;
+      const glm::dvec3 q = patch.Geometry.Evaluate(s, t);
+      glm::dvec3 normal = glm::cross(patch.Geometry.PartialU(s, t), patch.Geometry.PartialV(s, t));
+      const double length = glm::length(normal);
+      normal = length > 0.0 ? normal / length : patch.Normal;
+      const double u = patch.Domain.U0 + s * (patch.Domain.U1 - patch.Domain.U0);
+      const double v = patch.Domain.V0 + t * (patch.Domain.V1 - patch.Domain.V0);
+      const glm::dvec3 l = sphcover::InterpolateRadiance(
+        lit.Interpolator, lit.ExitantRadiance, patch.SurfaceIndex, u, v);
+      field.Points->SetPoint(id, q.x, q.y, q.z);
+      field.Radiance->SetTypedTuple(id,
+        std::array<float, 3>{
+          static_cast<float>(l.x), static_cast<float>(l.y), static_cast<float>(l.z) }
+          .data());
+      field.Normals->SetTypedTuple(id,
+        std::array<float, 3>{
+          static_cast<float>(normal.x), static_cast<float>(normal.y), static_cast<float>(normal.z) }
+          .data());
+      field.SurfaceId->SetValue(id, patch.SurfaceIndex);
+    }
+  }
+}
+
+/// Every patch's block of the field, in ten batches reporting progress up to 0.9; false, with
+/// a warning or the error reported, when aborted or failed.
+bool SampleField(vtkIlluminationField* self,
+  const std::vector<sphcover::Patch>& patches,
+  int n,
+  const vtkIlluminationAdapter::Illumination& lit,
+  FieldPoints& field)
+{
+  try
+  {
+    // Each patch writes its own block of points: no shared state, any thread count.
+    const sphcover::ParallelFor parallelFor = vtkSMPParallelFor::Make();
+    const size_t batch = std::max<size_t>(1, patches.size() / 10);
+    for (size_t first = 0; first < patches.size(); first += batch)
+    {
+      const size_t last = std::min(patches.size(), first + batch);
+      parallelFor(last - first,
+        [&](size_t begin, size_t end)
+        {
+          for (size_t k = first + begin; k < first + end; ++k)
+          {
+            SamplePatch(patches[k], k, n, lit, field);
+          }
+        });
+      self->UpdateProgress(0.9 * static_cast<double>(last) / static_cast<double>(patches.size()));
+      if (self->GetAbortExecute())
+      {
+        vtkWarningWithObjectMacro(self, "Illumination field aborted.");
+        return false;
+      }
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(self, << "Cannot build the illumination field: " << e.what());
+    return false;
+  }
+  return true;
+}
+
+/// The output: the field's points, n x n quads per patch with their PatchId.
+void WriteField(FieldPoints& field, vtkIdType patchCount, int n, vtkPolyData* output)
+{
+  const vtkIdType perPatch = static_cast<vtkIdType>(n + 1) * (n + 1);
+  vtkNew<vtkCellArray> quads;
+  quads->AllocateExact(patchCount * n * n, patchCount * n * n * 4);
+  vtkNew<vtkIntArray> patchId;
+  patchId->SetName(names::PatchId);
+  patchId->SetNumberOfTuples(patchCount * n * n);
+  vtkIdType cell = 0;
+  for (vtkIdType k = 0; k < patchCount; ++k)
+  {
+    for (int j = 0; j < n; ++j)
+    {
+      for (int i = 0; i < n; ++i)
+      {
+        const vtkIdType v00 = k * perPatch + j * (n + 1) + i;
+        // Counter-clockwise in (u, v): the quad's normal is the patch's front side.
+        const vtkIdType quad[4] = { v00, v00 + 1, v00 + n + 2, v00 + n + 1 };
+        quads->InsertNextCell(4, quad);
+        patchId->SetValue(cell++, static_cast<int>(k));
+      }
+    }
+  }
+  output->Initialize();
+  output->SetPoints(field.Points);
+  output->SetPolys(quads);
+  output->GetPointData()->AddArray(field.Radiance);
+  output->GetPointData()->SetNormals(field.Normals);
+  output->GetPointData()->AddArray(field.SurfaceId);
+  output->GetCellData()->AddArray(patchId);
+}
+}
+
 vtkStandardNewMacro(vtkIlluminationField);
 
 vtkIlluminationField::vtkIlluminationField()
@@ -91,106 +229,12 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   const int n = this->Resolution;
   const vtkIdType perPatch = static_cast<vtkIdType>(n + 1) * (n + 1);
   const vtkIdType patchCount = static_cast<vtkIdType>(patches.size());
-  vtkNew<vtkPoints> points;
-  points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(patchCount * perPatch);
-  vtkNew<vtkFloatArray> radiance;
-  radiance->SetName(names::Radiance);
-  radiance->SetNumberOfComponents(3);
-  radiance->SetNumberOfTuples(patchCount * perPatch);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName(names::Normals);
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(patchCount * perPatch);
-  vtkNew<vtkIntArray> surfaceId;
-  surfaceId->SetName(names::SurfaceId);
-  surfaceId->SetNumberOfTuples(patchCount * perPatch);
-  try
+  FieldPoints field(patchCount * perPatch);
+  if (!SampleField(this, patches, n, lit, field))
   {
-    // Each patch writes its own block of points: no shared state, any thread count.
-    const sphcover::ParallelFor parallelFor = vtkSMPParallelFor::Make();
-    const size_t batch = std::max<size_t>(1, patches.size() / 10);
-    for (size_t first = 0; first < patches.size(); first += batch)
-    {
-      const size_t last = std::min(patches.size(), first + batch);
-      parallelFor(last - first,
-        [&](size_t begin, size_t end)
-        {
-          for (size_t k = first + begin; k < first + end; ++k)
-          {
-            const sphcover::Patch& patch = patches[k];
-            for (int j = 0; j <= n; ++j)
-            {
-              for (int i = 0; i <= n; ++i)
-              {
-                const double s = i == n ? 1.0 : static_cast<double>(i) / n;
-                const double t = j == n ? 1.0 : static_cast<double>(j) / n;
-                const vtkIdType id = static_cast<vtkIdType>(k) * perPatch + j * (n + 1) + i;
-                const glm::dvec3 q = patch.Geometry.Evaluate(s, t);
-                glm::dvec3 normal =
-                  glm::cross(patch.Geometry.PartialU(s, t), patch.Geometry.PartialV(s, t));
-                const double length = glm::length(normal);
-                normal = length > 0.0 ? normal / length : patch.Normal;
-                const double u = patch.Domain.U0 + s * (patch.Domain.U1 - patch.Domain.U0);
-                const double v = patch.Domain.V0 + t * (patch.Domain.V1 - patch.Domain.V0);
-                const glm::dvec3 l = sphcover::InterpolateRadiance(
-                  lit.Interpolator, lit.ExitantRadiance, patch.SurfaceIndex, u, v);
-                points->SetPoint(id, q.x, q.y, q.z);
-                radiance->SetTypedTuple(id,
-                  std::array<float, 3>{
-                    static_cast<float>(l.x), static_cast<float>(l.y), static_cast<float>(l.z) }
-                    .data());
-                normals->SetTypedTuple(id,
-                  std::array<float, 3>{ static_cast<float>(normal.x),
-                    static_cast<float>(normal.y),
-                    static_cast<float>(normal.z) }
-                    .data());
-                surfaceId->SetValue(id, patch.SurfaceIndex);
-              }
-            }
-          }
-        });
-      this->UpdateProgress(0.9 * static_cast<double>(last) / static_cast<double>(patches.size()));
-      if (this->GetAbortExecute())
-      {
-        vtkWarningMacro("Illumination field aborted.");
-        return 0;
-      }
-    }
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Cannot build the illumination field: " << e.what());
     return 0;
   }
-
-  vtkNew<vtkCellArray> quads;
-  quads->AllocateExact(patchCount * n * n, patchCount * n * n * 4);
-  vtkNew<vtkIntArray> patchId;
-  patchId->SetName(names::PatchId);
-  patchId->SetNumberOfTuples(patchCount * n * n);
-  vtkIdType cell = 0;
-  for (vtkIdType k = 0; k < patchCount; ++k)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      for (int i = 0; i < n; ++i)
-      {
-        const vtkIdType v00 = k * perPatch + j * (n + 1) + i;
-        // Counter-clockwise in (u, v): the quad's normal is the patch's front side.
-        const vtkIdType quad[4] = { v00, v00 + 1, v00 + n + 2, v00 + n + 1 };
-        quads->InsertNextCell(4, quad);
-        patchId->SetValue(cell++, static_cast<int>(k));
-      }
-    }
-  }
-  output->Initialize();
-  output->SetPoints(points);
-  output->SetPolys(quads);
-  output->GetPointData()->AddArray(radiance);
-  output->GetPointData()->SetNormals(normals);
-  output->GetPointData()->AddArray(surfaceId);
-  output->GetCellData()->AddArray(patchId);
+  WriteField(field, patchCount, n, output);
   this->UpdateProgress(1.0);
   return 1;
 }

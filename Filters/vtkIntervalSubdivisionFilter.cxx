@@ -59,6 +59,147 @@ double OrScene(double property, double scene)
 {
   return property == vtkIntervalSubdivisionFilter::SCENE_SETTING ? scene : property;
 }
+
+/// The subdivision's settings from the filter's properties, those left at SCENE_SETTING taking
+/// the scene's settings block.
+sphcover::SubdivisionSettings SubdivisionSettingsOf(vtkIntervalSubdivisionFilter* self,
+  vtkDataObject* input)
+{
+  const sphcover::SceneSettings fromScene = SceneSettingsOf(input);
+  sphcover::SubdivisionSettings settings;
+  settings.Method = self->GetRangeMethod() == vtkIntervalSubdivisionFilter::NATURAL_INTERVAL
+    ? sphcover::RangeMethod::NaturalInterval
+    : sphcover::RangeMethod::Bernstein;
+  settings.MaxLevel = OrScene(self->GetMaxLevel(), fromScene.MaxLevel);
+  settings.MaximumPatches = static_cast<size_t>(self->GetMaximumPatches());
+  settings.MemoryLimitBytes = static_cast<size_t>(self->GetMemoryLimit() * 1024.0 * 1024.0);
+  settings.MaximumPairTests = static_cast<size_t>(self->GetMaximumPairTests());
+  settings.ThetaBins = OrScene(self->GetThetaBins(), fromScene.ThetaBins);
+  settings.PhiBins = OrScene(self->GetPhiBins(), fromScene.PhiBins);
+  const bool enabled[4] = { self->GetSelfShadowing(),
+    self->GetHemisphericalContainment(),
+    self->GetSphericalShape(),
+    self->GetCharacterisability() };
+  const double tolerances[4] = { OrScene(self->GetSelfShadowingTolerance(), fromScene.Tolerance),
+    OrScene(self->GetHemisphericalContainmentTolerance(), fromScene.Tolerance),
+    OrScene(self->GetSphericalShapeTolerance(), fromScene.Tolerance),
+    OrScene(self->GetCharacterisabilityTolerance(), fromScene.Tolerance) };
+  for (int c = 0; c < sphcover::NumberOfCriteria; ++c)
+  {
+    settings.Enabled[c] = enabled[c];
+    settings.Tolerance[c] = tolerances[c];
+  }
+  return settings;
+}
+
+/// Output 0: the patches with their exact geometry and materials; in field data the input's,
+/// the SubdivisionStatistics and the settings used (SubdivisionSettings), for the next stages
+/// (the cover's grid) and for the user to see.
+void WritePatchCells(vtkDataSet* input,
+  const sphcover::Scene& scene,
+  const std::vector<sphcover::Patch>& patches,
+  const sphcover::SubdivisionSettings& settings,
+  vtkIdType pairTests,
+  int sweeps,
+  vtkUnstructuredGrid* patchesOut)
+{
+  std::vector<const sphcover::BezierPatch*> geometry;
+  std::vector<int> surfaceOfPatch;
+  for (const sphcover::Patch& patch : patches)
+  {
+    geometry.push_back(&patch.Geometry);
+    surfaceOfPatch.push_back(patch.SurfaceIndex);
+  }
+  patchesOut->Initialize();
+  vtkSurfaceGridBuilder::BuildCells(geometry, patchesOut);
+  vtkSurfaceGridBuilder::AddMaterialArrays(scene, surfaceOfPatch, patchesOut);
+  patchesOut->GetFieldData()->PassData(input->GetFieldData());
+  auto statistics = vtkNamedArrays::Double(names::SubdivisionStatistics, 2, 1);
+  statistics->SetComponentName(0, "PairTests");
+  statistics->SetComponentName(1, "Sweeps");
+  statistics->SetComponent(0, 0, static_cast<double>(pairTests));
+  statistics->SetComponent(0, 1, sweeps);
+  patchesOut->GetFieldData()->AddArray(statistics);
+  auto used = vtkNamedArrays::Double(names::SubdivisionSettings, 7, 1);
+  const char* usedNames[7] = { "max_level",
+    "theta_bins",
+    "phi_bins",
+    "self_shadowing_tolerance",
+    "hemispherical_containment_tolerance",
+    "spherical_shape_tolerance",
+    "characterisability_tolerance" };
+  const double usedValues[7] = { double(settings.MaxLevel),
+    double(settings.ThetaBins),
+    double(settings.PhiBins),
+    settings.Tolerance[0],
+    settings.Tolerance[1],
+    settings.Tolerance[2],
+    settings.Tolerance[3] };
+  for (int k = 0; k < 7; ++k)
+  {
+    used->SetComponentName(k, usedNames[k]);
+  }
+  used->SetTuple(0, usedValues);
+  patchesOut->GetFieldData()->AddArray(used);
+}
+
+/// The patches' attributes (SurfaceId, PatchId, Level, UVRange, Area, SplitReason, with the
+/// reasons' names) as output 0's cell data, and output 1: the characteristic points, with the
+/// attributes of their patches.
+void WritePatchAttributes(const std::vector<sphcover::Patch>& patches,
+  vtkUnstructuredGrid* patchesOut,
+  vtkPolyData* pointsOut)
+{
+  const vtkIdType count = static_cast<vtkIdType>(patches.size());
+  auto surfaceId = vtkNamedArrays::Int(names::SurfaceId, 1, count);
+  auto patchId = vtkNamedArrays::Int(names::PatchId, 1, count);
+  auto level = vtkNamedArrays::Int(names::Level, 1, count);
+  auto reason = vtkNamedArrays::Int(names::SplitReason, 1, count);
+  auto uvRange = vtkNamedArrays::Double(names::UVRange, 4, count);
+  auto area = vtkNamedArrays::Double(names::Area, 1, count);
+  for (int k = 0; k < 4; ++k)
+  {
+    uvRange->SetComponentName(k, k == 0 ? "u0" : k == 1 ? "u1" : k == 2 ? "v0" : "v1");
+  }
+  vtkSurfaceGridBuilder::BuildCharacteristicPoints(patches, pointsOut);
+  auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
+  auto uv = vtkNamedArrays::Double(names::UV, 2, count);
+  for (vtkIdType p = 0; p < count; ++p)
+  {
+    const sphcover::Patch& patch = patches[static_cast<size_t>(p)];
+    surfaceId->SetValue(p, patch.SurfaceIndex);
+    patchId->SetValue(p, static_cast<int>(p));
+    level->SetValue(p, patch.Level);
+    reason->SetValue(p, static_cast<int>(patch.Reason));
+    const double range[4] = { patch.Domain.U0, patch.Domain.U1, patch.Domain.V0, patch.Domain.V1 };
+    uvRange->SetTuple(p, range);
+    area->SetValue(p, patch.Area);
+    normals->SetTuple(p, &patch.Normal[0]);
+    const double centre[2] = { patch.Domain.CenterU(), patch.Domain.CenterV() };
+    uv->SetTuple(p, centre);
+  }
+  vtkCellData* cd = patchesOut->GetCellData();
+  cd->AddArray(surfaceId);
+  cd->AddArray(patchId);
+  cd->AddArray(level);
+  cd->AddArray(uvRange);
+  cd->AddArray(area);
+  cd->AddArray(reason);
+  cd->SetActiveScalars(names::SplitReason);
+  vtkNew<vtkStringArray> reasonNames;
+  reasonNames->SetName(names::SplitReasonNames);
+  for (int r = 0; r <= static_cast<int>(sphcover::SplitReason::RBuffer); ++r)
+  {
+    reasonNames->InsertNextValue(sphcover::SplitReasonName(static_cast<sphcover::SplitReason>(r)));
+  }
+  patchesOut->GetFieldData()->AddArray(reasonNames);
+
+  vtkPointData* pd = pointsOut->GetPointData();
+  pd->SetNormals(normals);
+  pd->AddArray(surfaceId);
+  pd->AddArray(uv);
+  pd->AddArray(level);
+}
 }
 
 vtkStandardNewMacro(vtkIntervalSubdivisionFilter);
@@ -114,30 +255,7 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
     return 1;
   }
 
-  // The properties left at SCENE_SETTING take the scene's settings block.
-  const sphcover::SceneSettings fromScene = SceneSettingsOf(input);
-  sphcover::SubdivisionSettings settings;
-  settings.Method = this->RangeMethod == NATURAL_INTERVAL ? sphcover::RangeMethod::NaturalInterval
-                                                          : sphcover::RangeMethod::Bernstein;
-  settings.MaxLevel = OrScene(this->MaxLevel, fromScene.MaxLevel);
-  settings.MaximumPatches = static_cast<size_t>(this->MaximumPatches);
-  settings.MemoryLimitBytes = static_cast<size_t>(this->MemoryLimit * 1024.0 * 1024.0);
-  settings.MaximumPairTests = static_cast<size_t>(this->MaximumPairTests);
-  settings.ThetaBins = OrScene(this->ThetaBins, fromScene.ThetaBins);
-  settings.PhiBins = OrScene(this->PhiBins, fromScene.PhiBins);
-  const bool enabled[4] = { this->SelfShadowing,
-    this->HemisphericalContainment,
-    this->SphericalShape,
-    this->Characterisability };
-  const double tolerances[4] = { OrScene(this->SelfShadowingTolerance, fromScene.Tolerance),
-    OrScene(this->HemisphericalContainmentTolerance, fromScene.Tolerance),
-    OrScene(this->SphericalShapeTolerance, fromScene.Tolerance),
-    OrScene(this->CharacterisabilityTolerance, fromScene.Tolerance) };
-  for (int c = 0; c < sphcover::NumberOfCriteria; ++c)
-  {
-    settings.Enabled[c] = enabled[c];
-    settings.Tolerance[c] = tolerances[c];
-  }
+  const sphcover::SubdivisionSettings settings = SubdivisionSettingsOf(this, input);
   const std::string problem = settings.Problem();
   if (!problem.empty())
   {
@@ -180,97 +298,8 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
     return 0;
   }
 
-  // Output 0: the patches with their exact geometry.
-  const vtkIdType count = static_cast<vtkIdType>(patches.size());
-  std::vector<const sphcover::BezierPatch*> geometry;
-  std::vector<int> surfaceOfPatch;
-  for (const sphcover::Patch& patch : patches)
-  {
-    geometry.push_back(&patch.Geometry);
-    surfaceOfPatch.push_back(patch.SurfaceIndex);
-  }
-  patchesOut->Initialize();
-  vtkSurfaceGridBuilder::BuildCells(geometry, patchesOut);
-  vtkSurfaceGridBuilder::AddMaterialArrays(scene, surfaceOfPatch, patchesOut);
-  patchesOut->GetFieldData()->PassData(input->GetFieldData());
-  auto statistics = vtkNamedArrays::Double(names::SubdivisionStatistics, 2, 1);
-  statistics->SetComponentName(0, "PairTests");
-  statistics->SetComponentName(1, "Sweeps");
-  statistics->SetComponent(0, 0, static_cast<double>(this->PairTests));
-  statistics->SetComponent(0, 1, sweeps);
-  patchesOut->GetFieldData()->AddArray(statistics);
-  // The values used, for the next stages (the cover's grid) and for the user to see.
-  auto used = vtkNamedArrays::Double(names::SubdivisionSettings, 7, 1);
-  const char* usedNames[7] = { "max_level",
-    "theta_bins",
-    "phi_bins",
-    "self_shadowing_tolerance",
-    "hemispherical_containment_tolerance",
-    "spherical_shape_tolerance",
-    "characterisability_tolerance" };
-  const double usedValues[7] = { double(settings.MaxLevel),
-    double(settings.ThetaBins),
-    double(settings.PhiBins),
-    tolerances[0],
-    tolerances[1],
-    tolerances[2],
-    tolerances[3] };
-  for (int k = 0; k < 7; ++k)
-  {
-    used->SetComponentName(k, usedNames[k]);
-  }
-  used->SetTuple(0, usedValues);
-  patchesOut->GetFieldData()->AddArray(used);
-
-  auto surfaceId = vtkNamedArrays::Int(names::SurfaceId, 1, count);
-  auto patchId = vtkNamedArrays::Int(names::PatchId, 1, count);
-  auto level = vtkNamedArrays::Int(names::Level, 1, count);
-  auto reason = vtkNamedArrays::Int(names::SplitReason, 1, count);
-  auto uvRange = vtkNamedArrays::Double(names::UVRange, 4, count);
-  auto area = vtkNamedArrays::Double(names::Area, 1, count);
-  for (int k = 0; k < 4; ++k)
-  {
-    uvRange->SetComponentName(k, k == 0 ? "u0" : k == 1 ? "u1" : k == 2 ? "v0" : "v1");
-  }
-  // Output 1: the characteristic points, with the attributes of their patches.
-  vtkSurfaceGridBuilder::BuildCharacteristicPoints(patches, pointsOut);
-  auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
-  auto uv = vtkNamedArrays::Double(names::UV, 2, count);
-  for (vtkIdType p = 0; p < count; ++p)
-  {
-    const sphcover::Patch& patch = patches[static_cast<size_t>(p)];
-    surfaceId->SetValue(p, patch.SurfaceIndex);
-    patchId->SetValue(p, static_cast<int>(p));
-    level->SetValue(p, patch.Level);
-    reason->SetValue(p, static_cast<int>(patch.Reason));
-    const double range[4] = { patch.Domain.U0, patch.Domain.U1, patch.Domain.V0, patch.Domain.V1 };
-    uvRange->SetTuple(p, range);
-    area->SetValue(p, patch.Area);
-    normals->SetTuple(p, &patch.Normal[0]);
-    const double centre[2] = { patch.Domain.CenterU(), patch.Domain.CenterV() };
-    uv->SetTuple(p, centre);
-  }
-  vtkCellData* cd = patchesOut->GetCellData();
-  cd->AddArray(surfaceId);
-  cd->AddArray(patchId);
-  cd->AddArray(level);
-  cd->AddArray(uvRange);
-  cd->AddArray(area);
-  cd->AddArray(reason);
-  cd->SetActiveScalars(names::SplitReason);
-  vtkNew<vtkStringArray> reasonNames;
-  reasonNames->SetName(names::SplitReasonNames);
-  for (int r = 0; r <= static_cast<int>(sphcover::SplitReason::RBuffer); ++r)
-  {
-    reasonNames->InsertNextValue(sphcover::SplitReasonName(static_cast<sphcover::SplitReason>(r)));
-  }
-  patchesOut->GetFieldData()->AddArray(reasonNames);
-
-  vtkPointData* pd = pointsOut->GetPointData();
-  pd->SetNormals(normals);
-  pd->AddArray(surfaceId);
-  pd->AddArray(uv);
-  pd->AddArray(level);
+  WritePatchCells(input, scene, patches, settings, this->PairTests, sweeps, patchesOut);
+  WritePatchAttributes(patches, patchesOut, pointsOut);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -148,6 +148,176 @@ std::string StoreFigures(const sphcover::SphericalCover& cover, vtkPolyData* poi
   fd->AddArray(statistics);
   return std::string();
 }
+
+/// The cover, materials and surface names of the cover points `input`, checked before the
+/// propagation: "" or the problem. The figures are per named surface: a point that names none
+/// is refused before the propagation, not after it.
+std::string ReadPropagationInput(vtkPolyData* input,
+  double memoryLimit,
+  sphcover::SphericalCover& cover,
+  std::vector<sphcover::Material>& materials,
+  bool& named)
+{
+  const std::string problem = vtkSphericalCoverArrays::Load(input, cover);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  std::string materialProblem;
+  if (!vtkIlluminationAdapter::ReadMaterials(input, materials, materialProblem))
+  {
+    return materialProblem;
+  }
+  named = HasSurfaceNames(input);
+  if (named)
+  {
+    sphcover::PointIllumination surfaces;
+    const std::string surfaceProblem = ReadSurfaces(input, surfaces);
+    if (!surfaceProblem.empty())
+    {
+      return surfaceProblem;
+    }
+  }
+  const double needed =
+    static_cast<double>(sphcover::LightPropagation::EstimateBytes(cover, materials)) /
+    (1024.0 * 1024.0);
+  if (needed > memoryLimit)
+  {
+    std::ostringstream text;
+    text << "it would need about " << static_cast<int>(needed) << " MiB (state of "
+         << cover.EntryCount() << " regions and weight tables of a " << cover.Options().ThetaBins
+         << " x " << cover.Options().PhiBins << " grid), more than MemoryLimit (" << memoryLimit
+         << " MiB); use a coarser grid or fewer patches.";
+    return text.str();
+  }
+  return std::string();
+}
+
+/// The progressive shooting of paper §5.1 (up to 95% of the progress), after the exchange
+/// balance if asked for (the first 5%); false, with a warning, when aborted.
+bool Propagate(vtkLightPropagationFilter* self,
+  const sphcover::SphericalCover& cover,
+  vtkPolyData* input,
+  sphcover::LightPropagation& propagation)
+{
+  sphcover::PropagationSettings settings;
+  settings.ConvergenceTolerance = self->GetConvergenceTolerance();
+  settings.MaximumShots = static_cast<size_t>(self->GetMaximumShots());
+  settings.Order = self->GetShootingOrder() == vtkLightPropagationFilter::FIXED_ORDER
+    ? sphcover::ShootingOrder::FixedOrder
+    : sphcover::ShootingOrder::BrightestFirst;
+  // The points' hemisphere frames (vtkSphericalCoverFilter's Normals and Tangents), for the
+  // receivers a non-diffuse point's hemisphere does not hold (LightPropagation::SetFrames).
+  std::vector<sphcover::HemisphereFrame> frames;
+  if (vtkIlluminationAdapter::ReadFrames(input, frames))
+  {
+    propagation.SetFrames(std::move(frames));
+  }
+  bool aborted = false;
+  // The balance is a few passes over the entries (~1 s for the Cornell box's 6.5M): the
+  // first 5% of the progress.
+  if (self->GetBalanceExchanges())
+  {
+    const sphcover::ExchangeBalance balance(cover,
+      {},
+      [self, &aborted](double fraction)
+      {
+        self->UpdateProgress(0.05 * fraction);
+        aborted = self->GetAbortExecute() != 0;
+        return !aborted;
+      });
+    if (aborted)
+    {
+      vtkWarningWithObjectMacro(self, "Light propagation aborted.");
+      return false;
+    }
+    propagation.SetExchangeFactors(balance.EntryFactors());
+  }
+  propagation.Run(settings,
+    [self, &aborted](double fraction)
+    {
+      self->UpdateProgress(0.05 + 0.9 * fraction);
+      aborted = self->GetAbortExecute() != 0;
+      return !aborted;
+    });
+  if (aborted)
+  {
+    vtkWarningWithObjectMacro(self, "Light propagation aborted.");
+    return false;
+  }
+  return true;
+}
+
+/// Output 0's own arrays: per point Irradiance, Radiosity and Brightness; in field data the
+/// regions' IncidentRadiance, the EnergyBalance and the PropagationStatistics.
+void WriteIllumination(const sphcover::LightPropagation& propagation,
+  int shots,
+  double elapsed,
+  vtkPolyData* output)
+{
+  const vtkIdType count = output->GetNumberOfPoints();
+  auto irradiance = vtkNamedArrays::Double(names::Irradiance, 3, count);
+  auto radiosity = vtkNamedArrays::Double(names::Radiosity, 3, count);
+  auto brightness = vtkNamedArrays::Double(names::Brightness, 3, count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const glm::dvec3 e = propagation.Irradiance(static_cast<size_t>(i));
+    const glm::dvec3 l = propagation.ExitantRadiance(static_cast<size_t>(i));
+    const glm::dvec3 b = propagation.Brightness(static_cast<size_t>(i));
+    irradiance->SetTuple(i, &e[0]);
+    radiosity->SetTuple(i, &l[0]);
+    brightness->SetTuple(i, &b[0]);
+  }
+  output->GetPointData()->AddArray(irradiance);
+  output->GetPointData()->AddArray(radiosity);
+  output->GetPointData()->AddArray(brightness);
+
+  const std::vector<glm::dvec3>& incident = propagation.IncidentRadiances();
+  auto regions =
+    vtkNamedArrays::Double(names::IncidentRadiance, 3, static_cast<vtkIdType>(incident.size()));
+  for (size_t e = 0; e < incident.size(); ++e)
+  {
+    regions->SetTuple(static_cast<vtkIdType>(e), &incident[e][0]);
+  }
+  output->GetFieldData()->AddArray(regions);
+  const sphcover::EnergyBalance energy = propagation.Energy();
+  auto balance = vtkNamedArrays::Double(names::EnergyBalance, 3, 2);
+  balance->SetTuple(0, &energy.Emitted[0]);
+  balance->SetTuple(1, &energy.Absorbed[0]);
+  output->GetFieldData()->AddArray(balance);
+  auto statistics = vtkNamedArrays::Double(names::PropagationStatistics, 2, 1);
+  statistics->SetComponentName(0, "Shots");
+  statistics->SetComponentName(1, "Seconds");
+  statistics->SetComponent(0, 0, static_cast<double>(shots));
+  statistics->SetComponent(0, 1, elapsed);
+  output->GetFieldData()->AddArray(statistics);
+}
+
+/// Output 1: one row per shot (shooter, relative change, unshot energy, seconds).
+void WriteShotHistory(const std::vector<sphcover::ShotRecord>& shots, vtkTable* history)
+{
+  const vtkIdType rows = static_cast<vtkIdType>(shots.size());
+  auto shot = vtkNamedArrays::Int(names::Shot, 1, rows);
+  auto shooter = vtkNamedArrays::Int(names::Shooter, 1, rows);
+  auto change = vtkNamedArrays::Double(names::MaxChange, 1, rows);
+  auto unshot = vtkNamedArrays::Double(names::UnshotEnergy, 1, rows);
+  auto seconds = vtkNamedArrays::Double(names::Seconds, 1, rows);
+  for (vtkIdType k = 0; k < rows; ++k)
+  {
+    const sphcover::ShotRecord& record = shots[static_cast<size_t>(k)];
+    shot->SetValue(k, static_cast<int>(record.Shot));
+    shooter->SetValue(k, static_cast<int>(record.Shooter));
+    change->SetValue(k, record.RelativeChange);
+    unshot->SetValue(k, record.UnshotEnergy);
+    seconds->SetValue(k, record.Seconds);
+  }
+  history->Initialize();
+  history->AddColumn(shot);
+  history->AddColumn(shooter);
+  history->AddColumn(change);
+  history->AddColumn(unshot);
+  history->AddColumn(seconds);
+}
 }
 
 vtkStandardNewMacro(vtkLightPropagationFilter);
@@ -217,92 +387,22 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   }
 
   sphcover::SphericalCover cover;
-  const std::string problem = vtkSphericalCoverArrays::Load(input, cover);
+  std::vector<sphcover::Material> materials;
+  bool named = false;
+  const std::string problem =
+    ReadPropagationInput(input, this->MemoryLimit, cover, materials, named);
   if (!problem.empty())
   {
     vtkErrorMacro(<< "Cannot propagate light: " << problem);
     return 0;
   }
-  std::vector<sphcover::Material> materials;
-  std::string materialProblem;
-  if (!vtkIlluminationAdapter::ReadMaterials(input, materials, materialProblem))
-  {
-    vtkErrorMacro(<< "Cannot propagate light: " << materialProblem);
-    return 0;
-  }
-  // The figures are per named surface: a point that names none is refused before the
-  // propagation, not after it.
-  const bool named = HasSurfaceNames(input);
-  if (named)
-  {
-    sphcover::PointIllumination surfaces;
-    const std::string surfaceProblem = ReadSurfaces(input, surfaces);
-    if (!surfaceProblem.empty())
-    {
-      vtkErrorMacro(<< "Cannot propagate light: " << surfaceProblem);
-      return 0;
-    }
-  }
-  const vtkIdType count = input->GetNumberOfPoints();
-  const double needed =
-    static_cast<double>(sphcover::LightPropagation::EstimateBytes(cover, materials)) /
-    (1024.0 * 1024.0);
-  if (needed > this->MemoryLimit)
-  {
-    vtkErrorMacro(<< "Cannot propagate light: it would need about " << static_cast<int>(needed)
-                  << " MiB (state of " << cover.EntryCount() << " regions and weight tables of a "
-                  << cover.Options().ThetaBins << " x " << cover.Options().PhiBins
-                  << " grid), more than MemoryLimit (" << this->MemoryLimit
-                  << " MiB); use a coarser grid or fewer patches.");
-    return 0;
-  }
 
-  sphcover::PropagationSettings settings;
-  settings.ConvergenceTolerance = this->ConvergenceTolerance;
-  settings.MaximumShots = static_cast<size_t>(this->MaximumShots);
-  settings.Order = this->ShootingOrder == FIXED_ORDER ? sphcover::ShootingOrder::FixedOrder
-                                                      : sphcover::ShootingOrder::BrightestFirst;
   try
   {
     const auto start = std::chrono::steady_clock::now();
     sphcover::LightPropagation propagation(cover, materials);
-    // The points' hemisphere frames (vtkSphericalCoverFilter's Normals and Tangents), for the
-    // receivers a non-diffuse point's hemisphere does not hold (LightPropagation::SetFrames).
-    std::vector<sphcover::HemisphereFrame> frames;
-    if (vtkIlluminationAdapter::ReadFrames(input, frames))
+    if (!Propagate(this, cover, input, propagation))
     {
-      propagation.SetFrames(std::move(frames));
-    }
-    bool aborted = false;
-    // The balance is a few passes over the entries (~1 s for the Cornell box's 6.5M): the
-    // first 5% of the progress.
-    if (this->BalanceExchanges)
-    {
-      const sphcover::ExchangeBalance balance(cover,
-        {},
-        [this, &aborted](double fraction)
-        {
-          this->UpdateProgress(0.05 * fraction);
-          aborted = this->GetAbortExecute() != 0;
-          return !aborted;
-        });
-      if (aborted)
-      {
-        vtkWarningMacro("Light propagation aborted.");
-        return 0;
-      }
-      propagation.SetExchangeFactors(balance.EntryFactors());
-    }
-    propagation.Run(settings,
-      [this, &aborted](double fraction)
-      {
-        this->UpdateProgress(0.05 + 0.9 * fraction);
-        aborted = this->GetAbortExecute() != 0;
-        return !aborted;
-      });
-    if (aborted)
-    {
-      vtkWarningMacro("Light propagation aborted.");
       return 0;
     }
     this->Shots = static_cast<int>(propagation.History().size());
@@ -310,41 +410,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     output->ShallowCopy(input);
-    auto irradiance = vtkNamedArrays::Double(names::Irradiance, 3, count);
-    auto radiosity = vtkNamedArrays::Double(names::Radiosity, 3, count);
-    auto brightness = vtkNamedArrays::Double(names::Brightness, 3, count);
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      const glm::dvec3 e = propagation.Irradiance(static_cast<size_t>(i));
-      const glm::dvec3 l = propagation.ExitantRadiance(static_cast<size_t>(i));
-      const glm::dvec3 b = propagation.Brightness(static_cast<size_t>(i));
-      irradiance->SetTuple(i, &e[0]);
-      radiosity->SetTuple(i, &l[0]);
-      brightness->SetTuple(i, &b[0]);
-    }
-    output->GetPointData()->AddArray(irradiance);
-    output->GetPointData()->AddArray(radiosity);
-    output->GetPointData()->AddArray(brightness);
-
-    const std::vector<glm::dvec3>& incident = propagation.IncidentRadiances();
-    auto regions =
-      vtkNamedArrays::Double(names::IncidentRadiance, 3, static_cast<vtkIdType>(incident.size()));
-    for (size_t e = 0; e < incident.size(); ++e)
-    {
-      regions->SetTuple(static_cast<vtkIdType>(e), &incident[e][0]);
-    }
-    output->GetFieldData()->AddArray(regions);
-    const sphcover::EnergyBalance energy = propagation.Energy();
-    auto balance = vtkNamedArrays::Double(names::EnergyBalance, 3, 2);
-    balance->SetTuple(0, &energy.Emitted[0]);
-    balance->SetTuple(1, &energy.Absorbed[0]);
-    output->GetFieldData()->AddArray(balance);
-    auto statistics = vtkNamedArrays::Double(names::PropagationStatistics, 2, 1);
-    statistics->SetComponentName(0, "Shots");
-    statistics->SetComponentName(1, "Seconds");
-    statistics->SetComponent(0, 0, static_cast<double>(this->Shots));
-    statistics->SetComponent(0, 1, elapsed);
-    output->GetFieldData()->AddArray(statistics);
+    WriteIllumination(propagation, this->Shots, elapsed, output);
     if (named)
     {
       const std::string figuresProblem = StoreFigures(cover, output);
@@ -355,29 +421,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
         return 0;
       }
     }
-
-    const std::vector<sphcover::ShotRecord>& shots = propagation.History();
-    const vtkIdType rows = static_cast<vtkIdType>(shots.size());
-    auto shot = vtkNamedArrays::Int(names::Shot, 1, rows);
-    auto shooter = vtkNamedArrays::Int(names::Shooter, 1, rows);
-    auto change = vtkNamedArrays::Double(names::MaxChange, 1, rows);
-    auto unshot = vtkNamedArrays::Double(names::UnshotEnergy, 1, rows);
-    auto seconds = vtkNamedArrays::Double(names::Seconds, 1, rows);
-    for (vtkIdType k = 0; k < rows; ++k)
-    {
-      const sphcover::ShotRecord& record = shots[static_cast<size_t>(k)];
-      shot->SetValue(k, static_cast<int>(record.Shot));
-      shooter->SetValue(k, static_cast<int>(record.Shooter));
-      change->SetValue(k, record.RelativeChange);
-      unshot->SetValue(k, record.UnshotEnergy);
-      seconds->SetValue(k, record.Seconds);
-    }
-    history->Initialize();
-    history->AddColumn(shot);
-    history->AddColumn(shooter);
-    history->AddColumn(change);
-    history->AddColumn(unshot);
-    history->AddColumn(seconds);
+    WriteShotHistory(propagation.History(), history);
   }
   catch (const std::exception& e)
   {

@@ -80,6 +80,151 @@ std::string CameraList(vtkFieldData* fd)
   }
   return list;
 }
+
+/// The camera of the pose properties, used without CameraName: each left at its default is the
+/// scene's first camera's (the former defaults without one); the view is the user's once
+/// Position and FocalPoint differ.
+sphcover::Camera PoseOf(const double position3[3],
+  const double focalPoint3[3],
+  const double viewUp3[3],
+  double viewAngle,
+  vtkFieldData* illumination,
+  vtkFieldData* patches)
+{
+  sphcover::Camera scene;
+  if (!vtkSceneCameras::Find(illumination, "", scene) && !vtkSceneCameras::Find(patches, "", scene))
+  {
+    scene.Position = glm::dvec3(0.0, 0.0, 1.0);
+    scene.FocalPoint = glm::dvec3(0.0, 0.0, 0.0);
+    scene.ViewUp = glm::dvec3(0.0, 1.0, 0.0);
+    scene.ViewAngle = 30.0;
+  }
+  const glm::dvec3 position(position3[0], position3[1], position3[2]);
+  const glm::dvec3 focalPoint(focalPoint3[0], focalPoint3[1], focalPoint3[2]);
+  const glm::dvec3 viewUp(viewUp3[0], viewUp3[1], viewUp3[2]);
+  const bool ownView = position != focalPoint;
+  const bool sceneOnly = !ownView && viewUp == glm::dvec3(0.0) && viewAngle == 0.0;
+  sphcover::Camera camera;
+  camera.Name = sceneOnly ? scene.Name : std::string();
+  camera.Position = ownView ? position : scene.Position;
+  camera.FocalPoint = ownView ? focalPoint : scene.FocalPoint;
+  camera.ViewUp = viewUp != glm::dvec3(0.0) ? viewUp : scene.ViewUp;
+  camera.ViewAngle = viewAngle != 0.0 ? viewAngle : scene.ViewAngle;
+  return camera;
+}
+
+/// The renderer's budget from the filter's properties (MemoryLimit in MiB), clamped to what
+/// size_t holds.
+sphcover::RenderSettings RenderSettingsOf(vtkRadianceImageFilter* self)
+{
+  sphcover::RenderSettings settings;
+  settings.SamplesPerPixel = self->GetSamplesPerPixel();
+  settings.MemoryLimitBytes = static_cast<size_t>(
+    std::min(self->GetMemoryLimit() * 1024.0 * 1024.0, static_cast<double>(SIZE_MAX / 2)));
+  settings.MaximumSamples =
+    static_cast<size_t>(std::min(self->GetMaximumSamples(), static_cast<double>(SIZE_MAX / 2)));
+  return settings;
+}
+
+/// The radiance image of the patches lit by `lit` seen by `camera` (paper §5.3), reporting
+/// progress up to 0.95; false, with a warning or the error reported, when the inputs do not
+/// belong to one solution, the rendering was aborted or failed.
+bool RenderImage(vtkRadianceImageFilter* self,
+  std::vector<sphcover::Patch> patches,
+  vtkIlluminationAdapter::Illumination& lit,
+  const sphcover::Camera& camera,
+  const sphcover::RenderSettings& settings,
+  sphcover::RenderedImage& image)
+{
+  try
+  {
+    // Every patch's surface must hold characteristic points, or the two inputs do not belong
+    // to one solution.
+    std::set<int> missing;
+    for (const sphcover::Patch& patch : patches)
+    {
+      if (!lit.Interpolator.HasPoints(patch.SurfaceIndex))
+      {
+        missing.insert(patch.SurfaceIndex);
+      }
+    }
+    if (!missing.empty())
+    {
+      vtkErrorWithObjectMacro(self,
+        << "Cannot render: surface " << *missing.begin()
+        << " of the patches has no characteristic point in the illumination; the "
+           "two inputs do not come from one solution.");
+      return false;
+    }
+    sphcover::RadianceRenderer renderer(std::move(patches),
+      std::move(lit.Interpolator),
+      std::move(lit.ExitantRadiance),
+      std::move(lit.TwoSidedSurface));
+    if (lit.Directional)
+    {
+      // Non-diffuse surfaces: the BRDF toward the eye applied to the interpolated incident
+      // radiance E of the cover (paper §5.3.1).
+      renderer.SetDirectionalIllumination(std::move(*lit.Directional));
+    }
+    const bool completed = renderer.Render(camera,
+      settings,
+      image,
+      vtkSMPParallelFor::Make(),
+      [self](double fraction)
+      {
+        self->UpdateProgress(0.95 * fraction);
+        return !self->GetAbortExecute();
+      });
+    if (!completed)
+    {
+      vtkWarningWithObjectMacro(self, "Rendering aborted.");
+      return false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(self, << "Cannot render: " << e.what());
+    return false;
+  }
+  return true;
+}
+
+/// The output image: per pixel Radiance, Depth and SurfaceId, and as its scalars the RGB bytes
+/// of the exposed radiance, sRGB-encoded.
+void WriteImage(const sphcover::RenderedImage& image, double exposure, vtkImageData* output)
+{
+  const vtkIdType pixels = static_cast<vtkIdType>(image.Width) * image.Height;
+  output->Initialize();
+  output->SetExtent(0, image.Width - 1, 0, image.Height - 1, 0, 0);
+  output->SetSpacing(1.0, 1.0, 1.0);
+  output->SetOrigin(0.0, 0.0, 0.0);
+  vtkNew<vtkFloatArray> radiance;
+  radiance->SetName(names::Radiance);
+  radiance->SetNumberOfComponents(3);
+  radiance->SetNumberOfTuples(pixels);
+  std::copy(image.Radiance.begin(), image.Radiance.end(), radiance->GetPointer(0));
+  vtkNew<vtkFloatArray> depth;
+  depth->SetName(names::Depth);
+  depth->SetNumberOfTuples(pixels);
+  std::copy(image.Depth.begin(), image.Depth.end(), depth->GetPointer(0));
+  vtkNew<vtkIntArray> surface;
+  surface->SetName(names::SurfaceId);
+  surface->SetNumberOfTuples(pixels);
+  std::copy(image.SurfaceId.begin(), image.SurfaceId.end(), surface->GetPointer(0));
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName(names::RGB);
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(pixels);
+  unsigned char* bytes = rgb->GetPointer(0);
+  for (size_t k = 0; k < image.Radiance.size(); ++k)
+  {
+    bytes[k] = EncodeSRGB(exposure * image.Radiance[k]);
+  }
+  output->GetPointData()->AddArray(radiance);
+  output->GetPointData()->AddArray(depth);
+  output->GetPointData()->AddArray(surface);
+  output->GetPointData()->SetScalars(rgb);
+}
 }
 
 vtkRadianceImageFilter::vtkRadianceImageFilter()
@@ -175,36 +320,16 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   }
   else
   {
-    // Each pose property left at its default is the scene's first camera's (the former
-    // defaults without one); the view is the user's once Position and FocalPoint differ.
-    sphcover::Camera scene;
-    if (!vtkSceneCameras::Find(illumination->GetFieldData(), "", scene) &&
-      !vtkSceneCameras::Find(patchesInput->GetFieldData(), "", scene))
-    {
-      scene.Position = glm::dvec3(0.0, 0.0, 1.0);
-      scene.FocalPoint = glm::dvec3(0.0, 0.0, 0.0);
-      scene.ViewUp = glm::dvec3(0.0, 1.0, 0.0);
-      scene.ViewAngle = 30.0;
-    }
-    const glm::dvec3 position(this->Position[0], this->Position[1], this->Position[2]);
-    const glm::dvec3 focalPoint(this->FocalPoint[0], this->FocalPoint[1], this->FocalPoint[2]);
-    const glm::dvec3 viewUp(this->ViewUp[0], this->ViewUp[1], this->ViewUp[2]);
-    const bool ownView = position != focalPoint;
-    const bool sceneOnly = !ownView && viewUp == glm::dvec3(0.0) && this->ViewAngle == 0.0;
-    camera.Name = sceneOnly ? scene.Name : std::string();
-    camera.Position = ownView ? position : scene.Position;
-    camera.FocalPoint = ownView ? focalPoint : scene.FocalPoint;
-    camera.ViewUp = viewUp != glm::dvec3(0.0) ? viewUp : scene.ViewUp;
-    camera.ViewAngle = this->ViewAngle != 0.0 ? this->ViewAngle : scene.ViewAngle;
+    camera = PoseOf(this->Position,
+      this->FocalPoint,
+      this->ViewUp,
+      this->ViewAngle,
+      illumination->GetFieldData(),
+      patchesInput->GetFieldData());
   }
   // The size announced by RequestInformation, from the same pipeline information.
   this->ImageSize(inputVector, camera.Width, camera.Height);
-  sphcover::RenderSettings settings;
-  settings.SamplesPerPixel = this->SamplesPerPixel;
-  settings.MemoryLimitBytes = static_cast<size_t>(
-    std::min(this->MemoryLimit * 1024.0 * 1024.0, static_cast<double>(SIZE_MAX / 2)));
-  settings.MaximumSamples =
-    static_cast<size_t>(std::min(this->MaximumSamples, static_cast<double>(SIZE_MAX / 2)));
+  const sphcover::RenderSettings settings = RenderSettingsOf(this);
   if (!(this->Exposure > 0.0 && std::isfinite(this->Exposure)))
   {
     vtkErrorMacro(<< "Cannot render: Exposure " << this->Exposure
@@ -219,87 +344,11 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   }
 
   sphcover::RenderedImage image;
-  try
+  if (!RenderImage(this, std::move(patches), lit, camera, settings, image))
   {
-    // Every patch's surface must hold characteristic points, or the two inputs do not belong
-    // to one solution.
-    std::set<int> missing;
-    for (const sphcover::Patch& patch : patches)
-    {
-      if (!lit.Interpolator.HasPoints(patch.SurfaceIndex))
-      {
-        missing.insert(patch.SurfaceIndex);
-      }
-    }
-    if (!missing.empty())
-    {
-      vtkErrorMacro(<< "Cannot render: surface " << *missing.begin()
-                    << " of the patches has no characteristic point in the illumination; the "
-                       "two inputs do not come from one solution.");
-      return 0;
-    }
-    sphcover::RadianceRenderer renderer(std::move(patches),
-      std::move(lit.Interpolator),
-      std::move(lit.ExitantRadiance),
-      std::move(lit.TwoSidedSurface));
-    if (lit.Directional)
-    {
-      // Non-diffuse surfaces: the BRDF toward the eye applied to the interpolated incident
-      // radiance E of the cover (paper §5.3.1).
-      renderer.SetDirectionalIllumination(std::move(*lit.Directional));
-    }
-    const bool completed = renderer.Render(camera,
-      settings,
-      image,
-      vtkSMPParallelFor::Make(),
-      [this](double fraction)
-      {
-        this->UpdateProgress(0.95 * fraction);
-        return !this->GetAbortExecute();
-      });
-    if (!completed)
-    {
-      vtkWarningMacro("Rendering aborted.");
-      return 0;
-    }
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Cannot render: " << e.what());
     return 0;
   }
-
-  const vtkIdType pixels = static_cast<vtkIdType>(image.Width) * image.Height;
-  output->Initialize();
-  output->SetExtent(0, image.Width - 1, 0, image.Height - 1, 0, 0);
-  output->SetSpacing(1.0, 1.0, 1.0);
-  output->SetOrigin(0.0, 0.0, 0.0);
-  vtkNew<vtkFloatArray> radiance;
-  radiance->SetName(names::Radiance);
-  radiance->SetNumberOfComponents(3);
-  radiance->SetNumberOfTuples(pixels);
-  std::copy(image.Radiance.begin(), image.Radiance.end(), radiance->GetPointer(0));
-  vtkNew<vtkFloatArray> depth;
-  depth->SetName(names::Depth);
-  depth->SetNumberOfTuples(pixels);
-  std::copy(image.Depth.begin(), image.Depth.end(), depth->GetPointer(0));
-  vtkNew<vtkIntArray> surface;
-  surface->SetName(names::SurfaceId);
-  surface->SetNumberOfTuples(pixels);
-  std::copy(image.SurfaceId.begin(), image.SurfaceId.end(), surface->GetPointer(0));
-  vtkNew<vtkUnsignedCharArray> rgb;
-  rgb->SetName(names::RGB);
-  rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(pixels);
-  unsigned char* bytes = rgb->GetPointer(0);
-  for (size_t k = 0; k < image.Radiance.size(); ++k)
-  {
-    bytes[k] = EncodeSRGB(this->Exposure * image.Radiance[k]);
-  }
-  output->GetPointData()->AddArray(radiance);
-  output->GetPointData()->AddArray(depth);
-  output->GetPointData()->AddArray(surface);
-  output->GetPointData()->SetScalars(rgb);
+  WriteImage(image, this->Exposure, output);
   this->UpdateProgress(1.0);
   return 1;
 }

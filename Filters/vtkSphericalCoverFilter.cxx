@@ -60,6 +60,332 @@ void GridOf(vtkDataObject* input, int& thetaBins, int& phiBins)
     phiBins = static_cast<int>(scene->GetComponent(0, 1));
   }
 }
+
+/// What the cover may use: the threads that build R-buffers at once and the MemoryLimit in
+/// bytes.
+struct MemoryBudget
+{
+  std::size_t Threads;
+  std::size_t LimitBytes;
+};
+
+/// The cover's options from the filter's properties, the grid left at SCENE_SETTING being the
+/// input's (the subdivision's or the scene's); false, with the error reported, for an empty grid.
+bool CoverOptionsOf(vtkSphericalCoverFilter* self,
+  vtkDataObject* input,
+  sphcover::SphericalCoverOptions& options)
+{
+  int inputTheta = 0;
+  int inputPhi = 0;
+  GridOf(input, inputTheta, inputPhi);
+  const int sceneSetting = vtkSphericalCoverFilter::SCENE_SETTING;
+  options.ThetaBins = self->GetThetaBins() == sceneSetting ? inputTheta : self->GetThetaBins();
+  options.PhiBins = self->GetPhiBins() == sceneSetting ? inputPhi : self->GetPhiBins();
+  if (options.ThetaBins < 1 || options.PhiBins < 1)
+  {
+    vtkErrorWithObjectMacro(self,
+      << "Cannot build the spherical cover: ThetaBins and PhiBins must be >= 1 (or "
+      << vtkSphericalCoverFilter::SCENE_SETTING << ", the input's grid), got " << options.ThetaBins
+      << " and " << options.PhiBins << ".");
+    return false;
+  }
+  options.SamplesTheta = self->GetSamplesPerCell();
+  options.SamplesPhi = self->GetSamplesPerCell();
+  options.Fill = self->GetFillMethod() == vtkSphericalCoverFilter::RAY_CASTING
+    ? sphcover::RBufferFill::RayCasting
+    : sphcover::RBufferFill::Projection;
+  options.FillOptions.BackFacesOcclude = self->GetBackFacesOcclude();
+  return true;
+}
+
+/// Whether the cover's memory fits the budget; false, with the error reported, when it does
+/// not. Without patches this is the working memory of the grid on every thread (the
+/// refinement builds R-buffers too), from the options alone; with them, an estimate of the
+/// cover from a few rows actually built.
+bool MemoryFits(vtkSphericalCoverFilter* self,
+  const std::vector<sphcover::Patch>& patches,
+  const sphcover::SphericalCoverOptions& options,
+  const MemoryBudget& budget)
+{
+  const std::string memory =
+    sphcover::SphericalCover::MemoryProblem(patches, options, budget.Threads, budget.LimitBytes);
+  if (!memory.empty())
+  {
+    vtkErrorWithObjectMacro(
+      self, << "Cannot build the spherical cover: " << memory << " (MemoryLimit).");
+    return false;
+  }
+  return true;
+}
+
+/// Each cell's probes may reach into its neighbours, within the surface it was cut from: that
+/// surface's unit square in the cell's own parameters; the cell's group is that surface.
+void ProbeExtentsOf(const std::vector<sphcover::Patch>& patches,
+  std::vector<sphcover::UVRect>& extents,
+  std::vector<int>& groups)
+{
+  for (const sphcover::Patch& patch : patches)
+  {
+    const sphcover::UVRect& d = patch.Domain;
+    const double du = d.U1 - d.U0;
+    const double dv = d.V1 - d.V0;
+    extents.push_back(du > 0.0 && dv > 0.0
+        ? sphcover::UVRect{ -d.U0 / du, (1.0 - d.U0) / du, -d.V0 / dv, (1.0 - d.V0) / dv }
+        : sphcover::UVRect::Unit());
+    groups.push_back(patch.SurfaceIndex);
+  }
+}
+
+/// The refined pieces of whole cells mapped back to the cells' surfaces and parameter
+/// rectangles, with the cell each piece was cut from.
+std::vector<sphcover::Patch> PiecesInCells(std::vector<sphcover::Patch> pieces,
+  const std::vector<sphcover::Patch>& patches,
+  std::vector<vtkIdType>& cellOfPatch)
+{
+  std::vector<sphcover::Patch> refined;
+  refined.reserve(pieces.size());
+  cellOfPatch.clear();
+  for (sphcover::Patch& piece : pieces)
+  {
+    const size_t cell = static_cast<size_t>(piece.SurfaceIndex);
+    const sphcover::UVRect& whole = patches[cell].Domain;
+    const sphcover::UVRect part = piece.Domain;
+    // An unsplit cell keeps its rectangle exactly; a piece's is mapped into it.
+    piece.Domain = piece.Reason == sphcover::SplitReason::None
+      ? whole
+      : sphcover::UVRect{ whole.U0 + (whole.U1 - whole.U0) * part.U0,
+          whole.U0 + (whole.U1 - whole.U0) * part.U1,
+          whole.V0 + (whole.V1 - whole.V0) * part.V0,
+          whole.V0 + (whole.V1 - whole.V0) * part.V1 };
+    piece.SurfaceIndex = patches[cell].SurfaceIndex;
+    refined.push_back(std::move(piece));
+    cellOfPatch.push_back(static_cast<vtkIdType>(cell));
+  }
+  return refined;
+}
+
+/// The R-buffer refinement (paper §4.2.5 / §4.3 Steps 3 and 5) of the patches, reporting
+/// progress up to refinementShare; replaces patches and cellOfPatch by the pieces. False, with
+/// a warning or the error reported, when aborted or failed.
+bool RefinePatches(vtkSphericalCoverFilter* self,
+  const sphcover::Scene& scene,
+  const sphcover::SphericalCoverOptions& options,
+  double refinementShare,
+  std::vector<sphcover::Patch>& patches,
+  std::vector<vtkIdType>& cellOfPatch)
+{
+  // The refinement cuts pieces from the scene's surfaces; here each input cell is a surface
+  // of its own (vtkSurfaceGridAdapter), so the patches are refined as whole cells and their
+  // pieces mapped back to the cells' surfaces and parameter rectangles afterwards.
+  std::vector<sphcover::Patch> cells;
+  int deepest = 0;
+  for (size_t c = 0; c < patches.size(); ++c)
+  {
+    cells.emplace_back(
+      static_cast<int>(c), sphcover::UVRect::Unit(), patches[c].Level, scene.Surfaces[c].Patch);
+    deepest = std::max(deepest, patches[c].Level);
+  }
+  sphcover::RefinementSettings settings;
+  settings.Cover = options;
+  settings.MaxLevel = deepest + self->GetRefinementLevels();
+  settings.AnalyseHemispheres = self->GetRefinement() == vtkSphericalCoverFilter::REFINEMENT_FULL;
+  try
+  {
+    sphcover::CoverRefinement refinement(scene, std::move(cells), settings);
+    std::vector<sphcover::UVRect> extents;
+    std::vector<int> groups;
+    ProbeExtentsOf(patches, extents, groups);
+    refinement.SetProbeExtents(std::move(extents), std::move(groups));
+    const bool completed = refinement.Run(
+      [self, refinementShare](double fraction)
+      {
+        self->UpdateProgress(refinementShare * fraction);
+        return !self->GetAbortExecute();
+      },
+      vtkSMPParallelFor::Make());
+    if (!completed)
+    {
+      vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+      return false;
+    }
+    patches = PiecesInCells(refinement.Patches(), patches, cellOfPatch);
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(self, << "Cover refinement failed: " << e.what());
+    return false;
+  }
+  return true;
+}
+
+/// The spherical cover of the patches (paper §3.3), reporting progress from coverStart to
+/// 0.95; false, with a warning or the error reported, when it does not fit the budget, was
+/// aborted or failed.
+bool BuildCover(vtkSphericalCoverFilter* self,
+  const std::vector<sphcover::Patch>& patches,
+  const sphcover::SphericalCoverOptions& options,
+  const MemoryBudget& budget,
+  double coverStart,
+  sphcover::SphericalCover& cover)
+{
+  try
+  {
+    if (!MemoryFits(self, patches, options, budget))
+    {
+      return false;
+    }
+    const bool completed = cover.Build(patches,
+      options,
+      vtkSMPParallelFor::Make(),
+      [self, coverStart](double fraction)
+      {
+        self->UpdateProgress(coverStart + (0.95 - coverStart) * fraction);
+        return !self->GetAbortExecute();
+      });
+    if (!completed)
+    {
+      vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+      return false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(self, << "Spherical cover failed: " << e.what());
+    return false;
+  }
+  return true;
+}
+
+/// Each point gets the cell data of the input patch it was cut from; after a refinement, a
+/// piece's own UVRange, Level and SplitReason replace its cell's.
+void CopyCellDataOfPatches(vtkDataSet* input,
+  const std::vector<sphcover::Patch>& patches,
+  const std::vector<vtkIdType>& cellOfPatch,
+  bool refined,
+  vtkPointData* pd)
+{
+  const vtkIdType count = static_cast<vtkIdType>(patches.size());
+  vtkCellData* cd = input->GetCellData();
+  pd->CopyAllocate(cd, count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    pd->CopyData(cd, cellOfPatch[static_cast<size_t>(i)], i);
+  }
+  pd->SetNumberOfTuples(count);
+  if (!refined)
+  {
+    return;
+  }
+  vtkDataArray* uvRange = pd->GetArray(names::UVRange);
+  vtkDataArray* level = pd->GetArray(names::Level);
+  vtkDataArray* reason = pd->GetArray(names::SplitReason);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const sphcover::Patch& patch = patches[static_cast<size_t>(i)];
+    if (patch.Reason != sphcover::SplitReason::RBuffer)
+    {
+      continue; // not split: its cell's values
+    }
+    if (uvRange && uvRange->GetNumberOfComponents() == 4)
+    {
+      const double rect[4] = { patch.Domain.U0, patch.Domain.U1, patch.Domain.V0, patch.Domain.V1 };
+      uvRange->SetTuple(i, rect);
+    }
+    if (level)
+    {
+      level->SetComponent(i, 0, patch.Level);
+    }
+    if (reason)
+    {
+      reason->SetComponent(i, 0, static_cast<double>(patch.Reason));
+    }
+  }
+}
+
+/// Output 0: the characteristic points with PatchId and Area; the patches' cell arrays
+/// (SurfaceId, materials, UV, Level, ...) become their point data, then the cover's own
+/// arrays, which take precedence.
+void WriteCharacteristicPoints(vtkDataSet* input,
+  const std::vector<sphcover::Patch>& patches,
+  const std::vector<vtkIdType>& cellOfPatch,
+  bool refined,
+  const sphcover::SphericalCover& cover,
+  vtkPolyData* pointsOut)
+{
+  const vtkIdType count = static_cast<vtkIdType>(patches.size());
+  auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
+  auto tangents = vtkNamedArrays::Double(names::Tangents, 3, count);
+  auto covered = vtkNamedArrays::Double(names::CoveredProjectedSolidAngle, 1, count);
+  auto visible = vtkNamedArrays::Int(names::VisibleSources, 1, count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const sphcover::Patch& patch = patches[static_cast<size_t>(i)];
+    const sphcover::HemisphereFrame frame = sphcover::HemisphereFrame::OfPatch(patch);
+    normals->SetTuple(i, &frame.Normal[0]);
+    tangents->SetTuple(i, &frame.Tangent[0]);
+    covered->SetValue(i, cover.CoveredProjectedSolidAngle(static_cast<size_t>(i)));
+    visible->SetValue(i, static_cast<int>(cover.VisibleSourceCount(static_cast<size_t>(i))));
+  }
+  vtkNew<vtkPolyData> characteristic;
+  vtkSurfaceGridBuilder::BuildCharacteristicPoints(patches, characteristic);
+  pointsOut->Initialize();
+  pointsOut->SetPoints(characteristic->GetPoints());
+  pointsOut->SetVerts(characteristic->GetVerts());
+  vtkPointData* pd = pointsOut->GetPointData();
+  CopyCellDataOfPatches(input, patches, cellOfPatch, refined, pd);
+  pd->RemoveArray(names::HigherOrderDegrees);
+  pd->SetNormals(normals);
+  pd->AddArray(tangents);
+  pd->AddArray(characteristic->GetPointData()->GetArray(names::Area));
+  pd->AddArray(characteristic->GetPointData()->GetArray(names::PatchId));
+  auto inputPatch = vtkNamedArrays::Int(names::InputPatchId, 1, count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    inputPatch->SetValue(i, static_cast<int>(cellOfPatch[static_cast<size_t>(i)]));
+  }
+  pd->AddArray(inputPatch);
+  pd->AddArray(covered);
+  pd->AddArray(visible);
+  pointsOut->GetFieldData()->PassData(input->GetFieldData());
+  vtkSphericalCoverArrays::Store(cover, pointsOut);
+}
+
+/// Output 1: the strips, one row each (receiver, source, theta row, phi range, depth), for
+/// the spreadsheet view.
+void WriteStrips(const sphcover::SphericalCover& cover, std::size_t patchCount, vtkTable* stripsOut)
+{
+  const vtkIdType strips = static_cast<vtkIdType>(cover.StripCount());
+  auto receiver = vtkNamedArrays::Int(names::Receiver, 1, strips);
+  auto source = vtkNamedArrays::Int(names::Source, 1, strips);
+  auto theta = vtkNamedArrays::Int(names::Theta, 1, strips);
+  auto phiBegin = vtkNamedArrays::Int(names::PhiBegin, 1, strips);
+  auto phiEnd = vtkNamedArrays::Int(names::PhiEnd, 1, strips);
+  auto depth = vtkNamedArrays::New<vtkFloatArray>(names::R, 1, strips);
+  vtkIdType k = 0;
+  for (size_t i = 0; i < patchCount; ++i)
+  {
+    for (size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+    {
+      for (size_t s = cover.StripBegin(e); s < cover.StripEnd(e); ++s, ++k)
+      {
+        const sphcover::SphericalCover::Strip& strip = cover.StripAt(s);
+        receiver->SetValue(k, static_cast<int>(i));
+        source->SetValue(k, static_cast<int>(cover.EntryAt(e).Source));
+        theta->SetValue(k, strip.Row);
+        phiBegin->SetValue(k, strip.PhiBegin);
+        phiEnd->SetValue(k, strip.PhiEnd);
+        depth->SetValue(k, cover.StripDepth(s));
+      }
+    }
+  }
+  stripsOut->Initialize();
+  stripsOut->AddColumn(receiver);
+  stripsOut->AddColumn(source);
+  stripsOut->AddColumn(theta);
+  stripsOut->AddColumn(phiBegin);
+  stripsOut->AddColumn(phiEnd);
+  stripsOut->AddColumn(depth);
+}
 }
 
 vtkStandardNewMacro(vtkSphericalCoverFilter);
@@ -114,40 +440,23 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     vtkErrorMacro(<< "Cannot build a spherical cover of this input: " << error);
     return 0;
   }
-
-  // The grid left at SCENE_SETTING is the input's (the subdivision's or the scene's).
-  int inputTheta = 0;
-  int inputPhi = 0;
-  GridOf(input, inputTheta, inputPhi);
   sphcover::SphericalCoverOptions options;
-  options.ThetaBins = this->ThetaBins == SCENE_SETTING ? inputTheta : this->ThetaBins;
-  options.PhiBins = this->PhiBins == SCENE_SETTING ? inputPhi : this->PhiBins;
-  if (options.ThetaBins < 1 || options.PhiBins < 1)
+  if (!CoverOptionsOf(this, input, options))
   {
-    vtkErrorMacro(<< "Cannot build the spherical cover: ThetaBins and PhiBins must be >= 1 (or "
-                  << SCENE_SETTING << ", the input's grid), got " << options.ThetaBins << " and "
-                  << options.PhiBins << ".");
     return 0;
   }
-  options.SamplesTheta = this->SamplesPerCell;
-  options.SamplesPhi = this->SamplesPerCell;
-  options.Fill = this->FillMethod == RAY_CASTING ? sphcover::RBufferFill::RayCasting
-                                                 : sphcover::RBufferFill::Projection;
-  options.FillOptions.BackFacesOcclude = this->BackFacesOcclude;
 
   // Refuse before any R-buffer exists what could not fit: first the working memory of the
   // grid on every thread (the refinement builds R-buffers too), from the options alone.
-  const std::size_t threads =
+  MemoryBudget budget;
+  budget.Threads =
     static_cast<std::size_t>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
-  const std::size_t limitBytes =
+  budget.LimitBytes =
     static_cast<std::size_t>(std::min(this->MemoryLimit * 1024.0 * 1024.0, 1.0e18));
   try
   {
-    const std::string memory =
-      sphcover::SphericalCover::MemoryProblem({}, options, threads, limitBytes);
-    if (!memory.empty())
+    if (!MemoryFits(this, {}, options, budget))
     {
-      vtkErrorMacro(<< "Cannot build the spherical cover: " << memory << " (MemoryLimit).");
       return 0;
     }
   }
@@ -164,228 +473,21 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     cellOfPatch[k] = static_cast<vtkIdType>(k);
   }
   const double refinementShare = this->Refinement == REFINEMENT_FULL ? 0.6 : 0.05;
-  if (this->Refinement != REFINEMENT_OFF && !patches.empty())
+  if (this->Refinement != REFINEMENT_OFF && !patches.empty() &&
+    !RefinePatches(this, scene, options, refinementShare, patches, cellOfPatch))
   {
-    // The refinement cuts pieces from the scene's surfaces; here each input cell is a surface
-    // of its own (vtkSurfaceGridAdapter), so the patches are refined as whole cells and their
-    // pieces mapped back to the cells' surfaces and parameter rectangles afterwards.
-    std::vector<sphcover::Patch> cells;
-    int deepest = 0;
-    for (size_t c = 0; c < patches.size(); ++c)
-    {
-      cells.emplace_back(
-        static_cast<int>(c), sphcover::UVRect::Unit(), patches[c].Level, scene.Surfaces[c].Patch);
-      deepest = std::max(deepest, patches[c].Level);
-    }
-    sphcover::RefinementSettings settings;
-    settings.Cover = options;
-    settings.MaxLevel = deepest + this->RefinementLevels;
-    settings.AnalyseHemispheres = this->Refinement == REFINEMENT_FULL;
-    try
-    {
-      sphcover::CoverRefinement refinement(scene, std::move(cells), settings);
-      // Each cell's probes may reach into its neighbours, within the surface it was cut from:
-      // that surface's unit square in the cell's own parameters.
-      std::vector<sphcover::UVRect> extents;
-      std::vector<int> groups;
-      for (const sphcover::Patch& patch : patches)
-      {
-        const sphcover::UVRect& d = patch.Domain;
-        const double du = d.U1 - d.U0;
-        const double dv = d.V1 - d.V0;
-        extents.push_back(du > 0.0 && dv > 0.0
-            ? sphcover::UVRect{ -d.U0 / du, (1.0 - d.U0) / du, -d.V0 / dv, (1.0 - d.V0) / dv }
-            : sphcover::UVRect::Unit());
-        groups.push_back(patch.SurfaceIndex);
-      }
-      refinement.SetProbeExtents(std::move(extents), std::move(groups));
-      const bool completed = refinement.Run(
-        [this, refinementShare](double fraction)
-        {
-          this->UpdateProgress(refinementShare * fraction);
-          return !this->GetAbortExecute();
-        },
-        vtkSMPParallelFor::Make());
-      if (!completed)
-      {
-        vtkWarningMacro("Spherical cover aborted.");
-        return 0;
-      }
-      std::vector<sphcover::Patch> pieces = refinement.Patches();
-      std::vector<sphcover::Patch> refined;
-      refined.reserve(pieces.size());
-      cellOfPatch.clear();
-      for (sphcover::Patch& piece : pieces)
-      {
-        const size_t cell = static_cast<size_t>(piece.SurfaceIndex);
-        const sphcover::UVRect& whole = patches[cell].Domain;
-        const sphcover::UVRect part = piece.Domain;
-        // An unsplit cell keeps its rectangle exactly; a piece's is mapped into it.
-        piece.Domain = piece.Reason == sphcover::SplitReason::None
-          ? whole
-          : sphcover::UVRect{ whole.U0 + (whole.U1 - whole.U0) * part.U0,
-              whole.U0 + (whole.U1 - whole.U0) * part.U1,
-              whole.V0 + (whole.V1 - whole.V0) * part.V0,
-              whole.V0 + (whole.V1 - whole.V0) * part.V1 };
-        piece.SurfaceIndex = patches[cell].SurfaceIndex;
-        refined.push_back(std::move(piece));
-        cellOfPatch.push_back(static_cast<vtkIdType>(cell));
-      }
-      patches = std::move(refined);
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorMacro(<< "Cover refinement failed: " << e.what());
-      return 0;
-    }
+    return 0;
   }
   const double coverStart = this->Refinement == REFINEMENT_OFF ? 0.0 : refinementShare;
 
   sphcover::SphericalCover cover;
-  try
+  if (!BuildCover(this, patches, options, budget, coverStart, cover))
   {
-    // Then the cover itself: an estimate from a few rows actually built.
-    const std::string memory =
-      sphcover::SphericalCover::MemoryProblem(patches, options, threads, limitBytes);
-    if (!memory.empty())
-    {
-      vtkErrorMacro(<< "Cannot build the spherical cover: " << memory << " (MemoryLimit).");
-      return 0;
-    }
-    const bool completed = cover.Build(patches,
-      options,
-      vtkSMPParallelFor::Make(),
-      [this, coverStart](double fraction)
-      {
-        this->UpdateProgress(coverStart + (0.95 - coverStart) * fraction);
-        return !this->GetAbortExecute();
-      });
-    if (!completed)
-    {
-      vtkWarningMacro("Spherical cover aborted.");
-      return 0;
-    }
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Spherical cover failed: " << e.what());
     return 0;
   }
-
-  // Output 0: the characteristic points and the cover.
-  const vtkIdType count = static_cast<vtkIdType>(patches.size());
-  auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
-  auto tangents = vtkNamedArrays::Double(names::Tangents, 3, count);
-  auto covered = vtkNamedArrays::Double(names::CoveredProjectedSolidAngle, 1, count);
-  auto visible = vtkNamedArrays::Int(names::VisibleSources, 1, count);
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    const sphcover::Patch& patch = patches[static_cast<size_t>(i)];
-    const sphcover::HemisphereFrame frame = sphcover::HemisphereFrame::OfPatch(patch);
-    normals->SetTuple(i, &frame.Normal[0]);
-    tangents->SetTuple(i, &frame.Tangent[0]);
-    covered->SetValue(i, cover.CoveredProjectedSolidAngle(static_cast<size_t>(i)));
-    visible->SetValue(i, static_cast<int>(cover.VisibleSourceCount(static_cast<size_t>(i))));
-  }
-  // The characteristic points with PatchId and Area; the patches' cell arrays (SurfaceId,
-  // materials, UV, Level, ...) become their point data, then the cover's own arrays, which
-  // take precedence.
-  vtkNew<vtkPolyData> characteristic;
-  vtkSurfaceGridBuilder::BuildCharacteristicPoints(patches, characteristic);
-  pointsOut->Initialize();
-  pointsOut->SetPoints(characteristic->GetPoints());
-  pointsOut->SetVerts(characteristic->GetVerts());
-  vtkPointData* pd = pointsOut->GetPointData();
-  {
-    // Each point gets the cell data of the input patch it was cut from; a piece's own
-    // UVRange, Level and SplitReason replace its cell's.
-    vtkCellData* cd = input->GetCellData();
-    pd->CopyAllocate(cd, count);
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      pd->CopyData(cd, cellOfPatch[static_cast<size_t>(i)], i);
-    }
-    pd->SetNumberOfTuples(count);
-    if (this->Refinement != REFINEMENT_OFF)
-    {
-      vtkDataArray* uvRange = pd->GetArray(names::UVRange);
-      vtkDataArray* level = pd->GetArray(names::Level);
-      vtkDataArray* reason = pd->GetArray(names::SplitReason);
-      for (vtkIdType i = 0; i < count; ++i)
-      {
-        const sphcover::Patch& patch = patches[static_cast<size_t>(i)];
-        if (patch.Reason != sphcover::SplitReason::RBuffer)
-        {
-          continue; // not split: its cell's values
-        }
-        if (uvRange && uvRange->GetNumberOfComponents() == 4)
-        {
-          const double rect[4] = {
-            patch.Domain.U0, patch.Domain.U1, patch.Domain.V0, patch.Domain.V1
-          };
-          uvRange->SetTuple(i, rect);
-        }
-        if (level)
-        {
-          level->SetComponent(i, 0, patch.Level);
-        }
-        if (reason)
-        {
-          reason->SetComponent(i, 0, static_cast<double>(patch.Reason));
-        }
-      }
-    }
-  }
-  pd->RemoveArray(names::HigherOrderDegrees);
-  pd->SetNormals(normals);
-  pd->AddArray(tangents);
-  pd->AddArray(characteristic->GetPointData()->GetArray(names::Area));
-  pd->AddArray(characteristic->GetPointData()->GetArray(names::PatchId));
-  {
-    auto inputPatch = vtkNamedArrays::Int(names::InputPatchId, 1, count);
-    for (vtkIdType i = 0; i < count; ++i)
-    {
-      inputPatch->SetValue(i, static_cast<int>(cellOfPatch[static_cast<size_t>(i)]));
-    }
-    pd->AddArray(inputPatch);
-  }
-  pd->AddArray(covered);
-  pd->AddArray(visible);
-  pointsOut->GetFieldData()->PassData(input->GetFieldData());
-  vtkSphericalCoverArrays::Store(cover, pointsOut);
-
-  // Output 1: the strips, for the spreadsheet view.
-  const vtkIdType strips = static_cast<vtkIdType>(cover.StripCount());
-  auto receiver = vtkNamedArrays::Int(names::Receiver, 1, strips);
-  auto source = vtkNamedArrays::Int(names::Source, 1, strips);
-  auto theta = vtkNamedArrays::Int(names::Theta, 1, strips);
-  auto phiBegin = vtkNamedArrays::Int(names::PhiBegin, 1, strips);
-  auto phiEnd = vtkNamedArrays::Int(names::PhiEnd, 1, strips);
-  auto depth = vtkNamedArrays::New<vtkFloatArray>(names::R, 1, strips);
-  vtkIdType k = 0;
-  for (size_t i = 0; i < patches.size(); ++i)
-  {
-    for (size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
-    {
-      for (size_t s = cover.StripBegin(e); s < cover.StripEnd(e); ++s, ++k)
-      {
-        const sphcover::SphericalCover::Strip& strip = cover.StripAt(s);
-        receiver->SetValue(k, static_cast<int>(i));
-        source->SetValue(k, static_cast<int>(cover.EntryAt(e).Source));
-        theta->SetValue(k, strip.Row);
-        phiBegin->SetValue(k, strip.PhiBegin);
-        phiEnd->SetValue(k, strip.PhiEnd);
-        depth->SetValue(k, cover.StripDepth(s));
-      }
-    }
-  }
-  stripsOut->Initialize();
-  stripsOut->AddColumn(receiver);
-  stripsOut->AddColumn(source);
-  stripsOut->AddColumn(theta);
-  stripsOut->AddColumn(phiBegin);
-  stripsOut->AddColumn(phiEnd);
-  stripsOut->AddColumn(depth);
+  WriteCharacteristicPoints(
+    input, patches, cellOfPatch, this->Refinement != REFINEMENT_OFF, cover, pointsOut);
+  WriteStrips(cover, patches.size(), stripsOut);
   this->UpdateProgress(1.0);
   return 1;
 }
