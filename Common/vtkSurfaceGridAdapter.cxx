@@ -17,10 +17,10 @@
 #include <vtkGenericCell.h>
 #include <vtkIdList.h>
 #include <vtkNew.h>
-#include <vtkPoints.h>
 #include <vtkStringArray.h>
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -64,6 +64,196 @@ bool CellIndex(double value,
     return false;
   }
   index = static_cast<int>(value);
+  return true;
+}
+
+/// The control points of a Bezier quadrilateral cell with `n` points, in the patch's row-major
+/// order, and its degrees (from HigherOrderDegrees, or equal ones from the point count): false,
+/// with the error, where the count does not match the degrees or a degree is out of range.
+bool BezierControlPoints(vtkDataSet* input,
+  vtkIdType c,
+  vtkIdList* ids,
+  vtkDataArray* degrees,
+  std::vector<glm::dvec3>& control,
+  int& du,
+  int& dv,
+  std::string& error)
+{
+  const vtkIdType n = ids->GetNumberOfIds();
+  if (degrees && degrees->GetNumberOfComponents() >= 2)
+  {
+    du = static_cast<int>(degrees->GetComponent(c, 0));
+    dv = static_cast<int>(degrees->GetComponent(c, 1));
+  }
+  else
+  {
+    // Without HigherOrderDegrees VTK assumes equal degrees from the point count.
+    du = dv = static_cast<int>(std::lround(std::sqrt(double(n)))) - 1;
+  }
+  if (du < 1 || dv < 1 || du > sphcover::BezierPatch::MaxDegree ||
+    dv > sphcover::BezierPatch::MaxDegree || (du + 1) * (dv + 1) != n)
+  {
+    error = "cell " + std::to_string(c) + ": Bezier quadrilateral with " + std::to_string(n) +
+      " points does not match degrees " + std::to_string(du) + " x " + std::to_string(dv);
+    return false;
+  }
+  control.resize(static_cast<size_t>(n));
+  for (int j = 0; j <= dv; ++j)
+  {
+    for (int i = 0; i <= du; ++i)
+    {
+      glm::dvec3& p = control[static_cast<size_t>(j * (du + 1) + i)];
+      input->GetPoint(ids->GetId(vtkSurfaceGridBuilder::VTKPointIndex(i, j, du, dv)), &p[0]);
+    }
+  }
+  return true;
+}
+
+/// Cell c as a Bezier patch: a quad is bilinear, a triangle a bilinear patch with its last
+/// corner repeated (`triangle` set), a Bezier quadrilateral keeps its degrees. False, with the
+/// error, for another cell type, a point that is not finite or a patch with no area.
+bool CellPatch(vtkDataSet* input,
+  vtkIdType c,
+  vtkIdList* ids,
+  vtkDataArray* degrees,
+  std::optional<sphcover::BezierPatch>& patch,
+  bool& triangle,
+  std::string& error)
+{
+  const int type = input->GetCellType(c);
+  input->GetCellPoints(c, ids);
+  const vtkIdType n = ids->GetNumberOfIds();
+  auto point = [&](vtkIdType k)
+  {
+    glm::dvec3 p;
+    input->GetPoint(ids->GetId(k), &p[0]);
+    return p;
+  };
+  std::vector<glm::dvec3> control;
+  int du = 1;
+  int dv = 1;
+  triangle = false;
+  if (type == VTK_QUAD && n == 4)
+  {
+    control = { point(0), point(1), point(3), point(2) };
+  }
+  else if (type == VTK_TRIANGLE && n == 3)
+  {
+    control = { point(0), point(1), point(2), point(2) };
+    triangle = true;
+  }
+  else if (type == VTK_BEZIER_QUADRILATERAL)
+  {
+    if (!BezierControlPoints(input, c, ids, degrees, control, du, dv, error))
+    {
+      return false;
+    }
+  }
+  else
+  {
+    error = "cell " + std::to_string(c) + ": unsupported cell type " + std::to_string(type) +
+      " (expected Bezier quadrilaterals, quads or triangles)";
+    return false;
+  }
+  for (const glm::dvec3& p : control)
+  {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+    {
+      error = "cell " + std::to_string(c) + ": a point is not finite";
+      return false;
+    }
+  }
+  patch.emplace(du, dv, std::move(control));
+  if (sphcover::IsDegeneratePatch(*patch))
+  {
+    error = "cell " + std::to_string(c) + ": degenerate patch (no area)";
+    return false;
+  }
+  return true;
+}
+
+/// The cell arrays and field arrays ToScene reads each cell's material and name from.
+struct CellAttributes
+{
+  vtkFieldData* Fields;
+  const vtkMaterialArrays& Materials;
+  vtkDataArray* MaterialId;
+  vtkDataArray* NameId;
+  vtkIdType MaterialLimit;
+  vtkIdType NameLimit;
+};
+
+/// Cell c's material index (its MaterialId), with the scene's materials grown to it by
+/// placeholders; the first cell of a material reads it into the scene (`materialRead` marks
+/// the ones read). False, with the error, for a bad id or material values.
+bool CellMaterial(const CellAttributes& attributes,
+  vtkIdType c,
+  sphcover::Scene& scene,
+  std::vector<char>& materialRead,
+  int& materialIndex,
+  std::string& error)
+{
+  if (!CellIndex(attributes.MaterialId->GetComponent(c, 0),
+        attributes.MaterialLimit,
+        names::MaterialId,
+        c,
+        materialIndex,
+        error))
+  {
+    return false;
+  }
+  const std::size_t index = static_cast<std::size_t>(materialIndex);
+  while (scene.Materials.size() <= index)
+  {
+    sphcover::Material placeholder;
+    placeholder.Name = NameOrFallback(attributes.Fields,
+      names::MaterialNames,
+      static_cast<vtkIdType>(scene.Materials.size()),
+      "material");
+    scene.Materials.push_back(placeholder);
+    materialRead.push_back(0);
+  }
+  if (!materialRead[index])
+  {
+    sphcover::Material material;
+    if (!attributes.Materials.Read(c, material, error))
+    {
+      return false;
+    }
+    if (material.Name.empty())
+    {
+      material.Name = scene.Materials[index].Name;
+    }
+    scene.Materials[index] = material;
+    materialRead[index] = 1;
+  }
+  return true;
+}
+
+/// Cell c's surface name index (its SurfaceNameId, 0 without the array), with the scene's
+/// surface names grown to it. False, with the error, for a bad id.
+bool CellSurfaceName(const CellAttributes& attributes,
+  vtkIdType c,
+  sphcover::Scene& scene,
+  int& nameIndex,
+  std::string& error)
+{
+  if (!CellIndex(attributes.NameId ? attributes.NameId->GetComponent(c, 0) : 0.0,
+        attributes.NameLimit,
+        names::SurfaceNameId,
+        c,
+        nameIndex,
+        error))
+  {
+    return false;
+  }
+  while (scene.SurfaceNames.size() <= static_cast<std::size_t>(nameIndex))
+  {
+    scene.SurfaceNames.push_back(NameOrFallback(attributes.Fields,
+      names::SurfaceNames,
+      static_cast<vtkIdType>(scene.SurfaceNames.size()),
+      "surface"));
+  }
   return true;
 }
 }
@@ -117,140 +307,34 @@ bool vtkSurfaceGridAdapter::ToScene(vtkDataSet* input,
     auto* array = vtkStringArray::SafeDownCast(fd ? fd->GetAbstractArray(name) : nullptr);
     return numberOfCells + (array ? array->GetNumberOfValues() : 0);
   };
-  const vtkIdType materialLimit = idLimit(names::MaterialNames);
-  const vtkIdType nameLimit = idLimit(names::SurfaceNames);
-  vtkDataArray* materialId = cd->GetArray(names::MaterialId);
+  const CellAttributes attributes{ fd,
+    materials,
+    cd->GetArray(names::MaterialId),
+    nameId,
+    idLimit(names::MaterialNames),
+    idLimit(names::SurfaceNames) };
   std::vector<char> materialRead;
   vtkNew<vtkIdList> ids;
-  vtkNew<vtkPoints> cellPoints;
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
-    const int type = input->GetCellType(c);
-    input->GetCellPoints(c, ids);
-    const vtkIdType n = ids->GetNumberOfIds();
-    auto point = [&](vtkIdType k)
-    {
-      glm::dvec3 p;
-      input->GetPoint(ids->GetId(k), &p[0]);
-      return p;
-    };
-    std::vector<glm::dvec3> control;
-    int du = 1;
-    int dv = 1;
+    std::optional<sphcover::BezierPatch> patch;
     bool triangle = false;
-    if (type == VTK_QUAD && n == 4)
+    if (!CellPatch(input, c, ids, degrees, patch, triangle, error))
     {
-      control = { point(0), point(1), point(3), point(2) };
-    }
-    else if (type == VTK_TRIANGLE && n == 3)
-    {
-      control = { point(0), point(1), point(2), point(2) };
-      triangle = true;
-    }
-    else if (type == VTK_BEZIER_QUADRILATERAL)
-    {
-      if (degrees && degrees->GetNumberOfComponents() >= 2)
-      {
-        du = static_cast<int>(degrees->GetComponent(c, 0));
-        dv = static_cast<int>(degrees->GetComponent(c, 1));
-      }
-      else
-      {
-        // Without HigherOrderDegrees VTK assumes equal degrees from the point count.
-        du = dv = static_cast<int>(std::lround(std::sqrt(double(n)))) - 1;
-      }
-      if (du < 1 || dv < 1 || du > sphcover::BezierPatch::MaxDegree ||
-        dv > sphcover::BezierPatch::MaxDegree || (du + 1) * (dv + 1) != n)
-      {
-        error = "cell " + std::to_string(c) + ": Bezier quadrilateral with " + std::to_string(n) +
-          " points does not match degrees " + std::to_string(du) + " x " + std::to_string(dv);
-        return false;
-      }
-      control.resize(static_cast<size_t>(n));
-      for (int j = 0; j <= dv; ++j)
-      {
-        for (int i = 0; i <= du; ++i)
-        {
-          control[static_cast<size_t>(j * (du + 1) + i)] =
-            point(vtkSurfaceGridBuilder::VTKPointIndex(i, j, du, dv));
-        }
-      }
-    }
-    else
-    {
-      error = "cell " + std::to_string(c) + ": unsupported cell type " + std::to_string(type) +
-        " (expected Bezier quadrilaterals, quads or triangles)";
       return false;
     }
-    for (const glm::dvec3& p : control)
-    {
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      {
-        error = "cell " + std::to_string(c) + ": a point is not finite";
-        return false;
-      }
-    }
-    sphcover::BezierPatch patch(du, dv, std::move(control));
-    if (sphcover::IsDegeneratePatch(patch))
-    {
-      error = "cell " + std::to_string(c) + ": degenerate patch (no area)";
-      return false;
-    }
-
     int materialIndex = 0;
-    if (hasMaterials)
-    {
-      if (!CellIndex(materialId->GetComponent(c, 0),
-            materialLimit,
-            names::MaterialId,
-            c,
-            materialIndex,
-            error))
-      {
-        return false;
-      }
-      const std::size_t index = static_cast<std::size_t>(materialIndex);
-      while (scene.Materials.size() <= index)
-      {
-        sphcover::Material placeholder;
-        placeholder.Name = NameOrFallback(
-          fd, names::MaterialNames, static_cast<vtkIdType>(scene.Materials.size()), "material");
-        scene.Materials.push_back(placeholder);
-        materialRead.push_back(0);
-      }
-      if (!materialRead[index])
-      {
-        sphcover::Material material;
-        if (!materials.Read(c, material, error))
-        {
-          return false;
-        }
-        if (material.Name.empty())
-        {
-          material.Name = scene.Materials[index].Name;
-        }
-        scene.Materials[index] = material;
-        materialRead[index] = 1;
-      }
-    }
-
-    int nameIndex = 0;
-    if (!CellIndex(nameId ? nameId->GetComponent(c, 0) : 0.0,
-          nameLimit,
-          names::SurfaceNameId,
-          c,
-          nameIndex,
-          error))
+    if (hasMaterials && !CellMaterial(attributes, c, scene, materialRead, materialIndex, error))
     {
       return false;
     }
-    while (scene.SurfaceNames.size() <= static_cast<std::size_t>(nameIndex))
+    int nameIndex = 0;
+    if (!CellSurfaceName(attributes, c, scene, nameIndex, error))
     {
-      scene.SurfaceNames.push_back(NameOrFallback(
-        fd, names::SurfaceNames, static_cast<vtkIdType>(scene.SurfaceNames.size()), "surface"));
+      return false;
     }
 
-    sphcover::Surface surface(std::move(patch), nameIndex, materialIndex);
+    sphcover::Surface surface(std::move(*patch), nameIndex, materialIndex);
     surface.IsTriangle = triangle;
     surface.TwoSided = twoSided && twoSided->GetComponent(c, 0) != 0.0;
     scene.Surfaces.push_back(std::move(surface));

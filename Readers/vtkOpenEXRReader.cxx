@@ -104,6 +104,97 @@ int FixedAttributeSize(const std::string& type)
   return it == sizes.end() ? 0 : it->second;
 }
 
+/// Reads a NUL-terminated attribute or type name; false where the file stops first or the
+/// name is longer than OpenEXR allows.
+bool ReadName(std::istream& in, std::string& name)
+{
+  constexpr std::size_t MaximumNameLength = 256; // with the "long names" flag; 32 without
+  name.clear();
+  char c = 0;
+  while (in.get(c) && c != '\0')
+  {
+    if (name.size() == MaximumNameLength)
+    {
+      return false;
+    }
+    name.push_back(c);
+  }
+  return static_cast<bool>(in);
+}
+
+[[noreturn]] void ThrowCorruptAttribute(const std::string& name,
+  const std::string& type,
+  const std::string& problem)
+{
+  throw std::runtime_error(
+    "corrupt header: the attribute '" + name + "' (" + type + ") " + problem);
+}
+
+/// The bytes OpenEXR 3.1 consumes for the value of a `type` attribute that starts at
+/// `valueStart` (read from `in`, `left` bytes before the file's end), in `holds`: -1 where it
+/// reads exactly the declared size. False where the file stops inside the value (left to
+/// OpenEXR's own message).
+bool ValueBytes(std::istream& in,
+  const std::string& type,
+  std::streamoff valueStart,
+  std::int64_t left,
+  std::int64_t& holds)
+{
+  holds = FixedAttributeSize(type);
+  if (holds == 0 && type == "chlist")
+  {
+    // Channels (name, 16 bytes) up to an empty name.
+    std::string channel;
+    while (ReadName(in, channel) && !channel.empty() && in.seekg(16, std::ios::cur))
+    {
+    }
+    if (!in)
+    {
+      return false;
+    }
+    holds = static_cast<std::int64_t>(in.tellg() - valueStart);
+  }
+  else if (holds == 0 && type == "preview")
+  {
+    unsigned char dimensions[8];
+    if (!in.read(reinterpret_cast<char*>(dimensions), 8))
+    {
+      return false;
+    }
+    const std::uint64_t width = static_cast<std::uint32_t>(LittleEndian32(dimensions));
+    const std::uint64_t height = static_cast<std::uint32_t>(LittleEndian32(dimensions + 4));
+    // 4 bytes per pixel; a product beyond the file cannot match (and must not wrap).
+    holds = width != 0 && height > static_cast<std::uint64_t>(left) / width
+      ? left + 1
+      : static_cast<std::int64_t>(8 + 4 * width * height);
+  }
+  else if (holds == 0)
+  {
+    holds = -1;
+  }
+  return true;
+}
+
+/// Reads a dataWindow value (min.x, min.y, max.x, max.y) and checks it against
+/// `maximumPixels`; false where the file stops inside it. An inverted window is left to
+/// OpenEXR's message.
+bool CheckDataWindowValue(std::istream& in, vtkIdType maximumPixels)
+{
+  unsigned char box[16];
+  if (!in.read(reinterpret_cast<char*>(box), 16))
+  {
+    return false;
+  }
+  const long long width = static_cast<long long>(LittleEndian32(box + 8)) - LittleEndian32(box) + 1;
+  const long long height =
+    static_cast<long long>(LittleEndian32(box + 12)) - LittleEndian32(box + 4) + 1;
+  if (width > 0 && height > 0)
+  {
+    CheckWindowSize(width, height, maximumPixels);
+  }
+  return true;
+}
+
 /**
  * Walks the attributes of the header(s) that follow the magic number and version field as
  * OpenEXR 3.1 reads them, and throws std::runtime_error for one whose declared size exceeds
@@ -124,25 +215,10 @@ void CheckAttributeSizes(std::istream& in,
   bool multiPart,
   vtkIdType maximumPixels)
 {
-  constexpr std::size_t MaximumNameLength = 256; // with the "long names" flag; 32 without
-  auto readName = [&](std::string& name)
-  {
-    name.clear();
-    char c = 0;
-    while (in.get(c) && c != '\0')
-    {
-      if (name.size() == MaximumNameLength)
-      {
-        return false;
-      }
-      name.push_back(c);
-    }
-    return static_cast<bool>(in);
-  };
   std::string name;
   std::string type;
   bool firstHeader = true;
-  while (readName(name))
+  while (ReadName(in, name))
   {
     if (name.empty()) // the end of a header
     {
@@ -154,75 +230,37 @@ void CheckAttributeSizes(std::istream& in,
       continue;
     }
     unsigned char size[4];
-    if (!readName(type) || !in.read(reinterpret_cast<char*>(size), 4))
+    if (!ReadName(in, type) || !in.read(reinterpret_cast<char*>(size), 4))
     {
       return;
     }
     const std::int64_t declared = LittleEndian32(size);
     const std::streamoff valueStart = in.tellg();
     const std::int64_t left = fileSize - static_cast<std::int64_t>(valueStart);
-    auto fail = [&](const std::string& problem)
-    {
-      throw std::runtime_error(
-        "corrupt header: the attribute '" + name + "' (" + type + ") " + problem);
-    };
     if (declared < 0 || declared > left)
     {
-      fail("claims " + std::to_string(declared) + " bytes, more than the " + std::to_string(left) +
-        " left in the file");
+      ThrowCorruptAttribute(name,
+        type,
+        "claims " + std::to_string(declared) + " bytes, more than the " + std::to_string(left) +
+          " left in the file");
     }
     // What OpenEXR will consume for this value; -1 where it reads exactly the declared size.
-    std::int64_t holds = FixedAttributeSize(type);
-    if (holds == 0 && type == "chlist")
+    std::int64_t holds = 0;
+    if (!ValueBytes(in, type, valueStart, left, holds))
     {
-      // Channels (name, 16 bytes) up to an empty name.
-      std::string channel;
-      while (readName(channel) && !channel.empty() && in.seekg(16, std::ios::cur))
-      {
-      }
-      if (!in)
-      {
-        return;
-      }
-      holds = static_cast<std::int64_t>(in.tellg() - valueStart);
-    }
-    else if (holds == 0 && type == "preview")
-    {
-      unsigned char dimensions[8];
-      if (!in.read(reinterpret_cast<char*>(dimensions), 8))
-      {
-        return;
-      }
-      const std::uint64_t width = static_cast<std::uint32_t>(LittleEndian32(dimensions));
-      const std::uint64_t height = static_cast<std::uint32_t>(LittleEndian32(dimensions + 4));
-      // 4 bytes per pixel; a product beyond the file cannot match (and must not wrap).
-      holds = width != 0 && height > static_cast<std::uint64_t>(left) / width
-        ? left + 1
-        : static_cast<std::int64_t>(8 + 4 * width * height);
-    }
-    else if (holds == 0)
-    {
-      holds = -1;
+      return;
     }
     if (holds >= 0 && holds != declared)
     {
-      fail("declares " + std::to_string(declared) + " bytes but its value holds " +
-        std::to_string(holds));
+      ThrowCorruptAttribute(name,
+        type,
+        "declares " + std::to_string(declared) + " bytes but its value holds " +
+          std::to_string(holds));
     }
     in.seekg(valueStart);
-    unsigned char box[16];
     if (firstHeader && name == "dataWindow" && type == "box2i" &&
-      in.read(reinterpret_cast<char*>(box), 16))
+      CheckDataWindowValue(in, maximumPixels))
     {
-      // min.x, min.y, max.x, max.y; an inverted window is left to OpenEXR's message.
-      const long long width =
-        static_cast<long long>(LittleEndian32(box + 8)) - LittleEndian32(box) + 1;
-      const long long height =
-        static_cast<long long>(LittleEndian32(box + 12)) - LittleEndian32(box + 4) + 1;
-      if (width > 0 && height > 0)
-      {
-        CheckWindowSize(width, height, maximumPixels);
-      }
       continue;
     }
     in.seekg(declared, std::ios::cur);
@@ -343,6 +381,39 @@ vtkSmartPointer<vtkFloatArray> NewFloatArray(const std::string& name,
   return array;
 }
 
+/// Allocates the arrays the channels are read into (`radiance` from R, G, B when the layout
+/// has colour, one array per other channel) and returns the frame buffer over them: OpenEXR
+/// writes straight into the arrays (converting half and uint to float) in EXR scanline order;
+/// the rows are flipped afterwards.
+Imf::FrameBuffer NewArraysFrameBuffer(const ImageLayout& layout,
+  vtkIdType pixels,
+  vtkSmartPointer<vtkFloatArray>& radiance,
+  std::vector<vtkSmartPointer<vtkFloatArray>>& others)
+{
+  Imf::FrameBuffer frameBuffer;
+  if (layout.HasColor)
+  {
+    radiance = NewFloatArray("Radiance", 3, pixels);
+    const char* rgb[3] = { "R", "G", "B" };
+    for (int c = 0; c < 3; ++c)
+    {
+      frameBuffer.insert(rgb[c],
+        Imf::Slice::Make(Imf::FLOAT,
+          radiance->GetPointer(c),
+          layout.Window,
+          3 * sizeof(float),
+          3 * sizeof(float) * layout.Width));
+    }
+  }
+  for (const std::string& name : layout.OtherChannels)
+  {
+    vtkSmartPointer<vtkFloatArray> array = NewFloatArray(name, 1, pixels);
+    frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, array->GetPointer(0), layout.Window));
+    others.push_back(array);
+  }
+  return frameBuffer;
+}
+
 /// Reverses the order of the rows of an array of `height` rows of `rowValues` floats.
 void FlipRows(float* values, int height, std::size_t rowValues)
 {
@@ -444,32 +515,9 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
     }
     const vtkIdType pixels = static_cast<vtkIdType>(layout.Width) * layout.Height;
 
-    // OpenEXR writes straight into the arrays (converting half and uint to float) in EXR
-    // scanline order; the rows are flipped afterwards.
-    Imf::FrameBuffer frameBuffer;
     vtkSmartPointer<vtkFloatArray> radiance;
     std::vector<vtkSmartPointer<vtkFloatArray>> others;
-    if (layout.HasColor)
-    {
-      radiance = NewFloatArray("Radiance", 3, pixels);
-      const char* rgb[3] = { "R", "G", "B" };
-      for (int c = 0; c < 3; ++c)
-      {
-        frameBuffer.insert(rgb[c],
-          Imf::Slice::Make(Imf::FLOAT,
-            radiance->GetPointer(c),
-            layout.Window,
-            3 * sizeof(float),
-            3 * sizeof(float) * layout.Width));
-      }
-    }
-    for (const std::string& name : layout.OtherChannels)
-    {
-      vtkSmartPointer<vtkFloatArray> array = NewFloatArray(name, 1, pixels);
-      frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, array->GetPointer(0), layout.Window));
-      others.push_back(array);
-    }
-    file.setFrameBuffer(frameBuffer);
+    file.setFrameBuffer(NewArraysFrameBuffer(layout, pixels, radiance, others));
     for (int y = layout.Window.min.y; y <= layout.Window.max.y; y += RowsPerBlock)
     {
       if (this->GetAbortExecute())

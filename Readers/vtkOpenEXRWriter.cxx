@@ -79,6 +79,192 @@ void RemoveQuietly(const std::string& path)
   std::error_code ignored;
   std::filesystem::remove(path, ignored);
 }
+
+/// The problem with the input image for an EXR file (empty when there is none): an empty
+/// extent, or a 3-D one (a file holds one XY slice).
+std::string ImageProblem(const int extent[6])
+{
+  if (extent[0] > extent[1] || extent[2] > extent[3] || extent[4] > extent[5])
+  {
+    return "the input image is empty";
+  }
+  if (extent[4] != extent[5])
+  {
+    std::ostringstream problem;
+    problem << "the input image is 3-D (z extent " << extent[4] << ".." << extent[5]
+            << "); an EXR file holds one XY slice";
+    return problem.str();
+  }
+  return std::string();
+}
+
+/// Adds the channels of the point array `name` (`role` in messages): R, G, B of a 3-component
+/// colour array (in `colorType`), or one FLOAT channel named after a 1-component array. Returns
+/// the problem (empty when there is none): a missing array, the wrong number of components, a
+/// type other than float or double, or a channel written twice.
+std::string AddArrayChannels(vtkPointData* pointData,
+  const std::string& name,
+  int components,
+  const char* role,
+  Imf::PixelType colorType,
+  std::vector<ChannelSource>& channels,
+  std::set<std::string>& channelNames)
+{
+  vtkDataArray* array = pointData->GetArray(name.c_str());
+  std::ostringstream problem;
+  if (name.empty())
+  {
+    problem << "an empty array name was given as " << role;
+  }
+  else if (!array)
+  {
+    problem << "the input has no point array '" << name << "' (" << role << ")";
+  }
+  else if (array->GetNumberOfComponents() != components)
+  {
+    problem << "the point array '" << name << "' (" << role << ") has "
+            << array->GetNumberOfComponents() << " components, not " << components;
+  }
+  else if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
+  {
+    problem << "the point array '" << name << "' (" << role << ") holds "
+            << array->GetDataTypeAsString() << " values, not float or double";
+  }
+  if (!problem.str().empty())
+  {
+    return problem.str();
+  }
+  if (components == 3)
+  {
+    const char* rgb[3] = { "R", "G", "B" };
+    for (int c = 0; c < 3; ++c)
+    {
+      channels.push_back({ rgb[c], array, c, colorType });
+      channelNames.insert(rgb[c]);
+    }
+    return std::string();
+  }
+  if (!channelNames.insert(name).second)
+  {
+    return "the channel '" + name + "' is written twice";
+  }
+  channels.push_back({ name, array, 0, Imf::FLOAT });
+  return std::string();
+}
+
+/// The channels: R, G, B from the colour array, then the extra single-component arrays.
+/// Returns the first problem (empty when there is none).
+std::string CollectChannels(vtkPointData* pointData,
+  const std::string& colorArrayName,
+  const std::vector<std::string>& channelArrays,
+  Imf::PixelType colorType,
+  std::vector<ChannelSource>& channels)
+{
+  std::set<std::string> channelNames;
+  std::string problem = AddArrayChannels(
+    pointData, colorArrayName, 3, "colour array", colorType, channels, channelNames);
+  for (std::size_t a = 0; problem.empty() && a < channelArrays.size(); ++a)
+  {
+    problem = AddArrayChannels(
+      pointData, channelArrays[a], 1, "extra channel", colorType, channels, channelNames);
+  }
+  return problem;
+}
+
+/// Planes of floats in EXR order, one per channel; HALF channels get a rounded copy instead
+/// (OpenEXR's output file does not convert between the frame buffer's and the file's pixel
+/// types). Throws std::bad_alloc when memory runs out.
+void CopyPlanes(const std::vector<ChannelSource>& channels,
+  int width,
+  int height,
+  std::vector<std::vector<float>>& planes,
+  std::vector<std::vector<Imath::half>>& halfPlanes)
+{
+  for (std::size_t k = 0; k < channels.size(); ++k)
+  {
+    planes[k].resize(static_cast<std::size_t>(width) * height);
+    if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(channels[k].Array,
+          CopyComponentFlipped{},
+          channels[k].Component,
+          width,
+          height,
+          planes[k].data()))
+    {
+      CopyComponentFlipped{}(
+        channels[k].Array, channels[k].Component, width, height, planes[k].data());
+    }
+    if (channels[k].Type == Imf::HALF)
+    {
+      halfPlanes[k].assign(planes[k].begin(), planes[k].end());
+      std::vector<float>().swap(planes[k]);
+    }
+  }
+}
+
+/// The file's header: the image's extent as data window (EXR's y grows downwards, so
+/// scanline y holds VTK row ymin + ymax - y), the compression, the vtkOrigin and vtkSpacing
+/// attributes and the channels.
+Imf::Header MakeHeader(vtkImageData* input,
+  const int extent[6],
+  int compression,
+  const std::vector<ChannelSource>& channels)
+{
+  const Imath::Box2i window(Imath::V2i(extent[0], extent[2]), Imath::V2i(extent[1], extent[3]));
+  Imf::Header header(window, window);
+  header.compression() = static_cast<Imf::Compression>(compression);
+  double origin[3];
+  double spacing[3];
+  input->GetOrigin(origin);
+  input->GetSpacing(spacing);
+  // The slice's z index moves into the origin: the file has no z extent.
+  const double sliceZ = origin[2] + extent[4] * spacing[2];
+  header.insert("vtkOrigin", Imf::V3dAttribute(Imath::V3d(origin[0], origin[1], sliceZ)));
+  header.insert("vtkSpacing", Imf::V3dAttribute(Imath::V3d(spacing[0], spacing[1], spacing[2])));
+  for (const ChannelSource& channel : channels)
+  {
+    header.channels().insert(channel.Channel, Imf::Channel(channel.Type));
+  }
+  return header;
+}
+
+/// The frame buffer OpenEXR reads the planes from, over the header's data window.
+Imf::FrameBuffer MakeFrameBuffer(const Imath::Box2i& window,
+  const std::vector<ChannelSource>& channels,
+  std::vector<std::vector<float>>& planes,
+  std::vector<std::vector<Imath::half>>& halfPlanes)
+{
+  Imf::FrameBuffer frameBuffer;
+  for (std::size_t k = 0; k < channels.size(); ++k)
+  {
+    frameBuffer.insert(channels[k].Channel,
+      channels[k].Type == Imf::HALF ? Imf::Slice::Make(Imf::HALF, halfPlanes[k].data(), window)
+                                    : Imf::Slice::Make(Imf::FLOAT, planes[k].data(), window));
+  }
+  return frameBuffer;
+}
+
+/// Writes the scanlines to `path`, RowsPerBlock at a time with the writer's progress, until
+/// all are written or the writer is aborted. Throws what OpenEXR throws.
+void WriteScanlines(vtkAlgorithm* writer,
+  const std::string& path,
+  const Imf::Header& header,
+  const Imf::FrameBuffer& frameBuffer,
+  int height)
+{
+  Imf::OutputFile file(path.c_str(), header);
+  file.setFrameBuffer(frameBuffer);
+  for (int written = 0; written < height;)
+  {
+    if (writer->GetAbortExecute())
+    {
+      break;
+    }
+    const int rows = std::min(RowsPerBlock, height - written);
+    file.writePixels(rows);
+    written += rows;
+    writer->UpdateProgress(static_cast<double>(written) / height);
+  }
+}
 }
 
 vtkOpenEXRWriter::vtkOpenEXRWriter()
@@ -152,109 +338,32 @@ void vtkOpenEXRWriter::WriteData()
   }
   int extent[6];
   input->GetExtent(extent);
-  if (extent[0] > extent[1] || extent[2] > extent[3] || extent[4] > extent[5])
+  const std::string imageProblem = ImageProblem(extent);
+  if (!imageProblem.empty())
   {
-    fail(vtkErrorCode::UserError, "the input image is empty");
-    return;
-  }
-  if (extent[4] != extent[5])
-  {
-    std::ostringstream problem;
-    problem << "the input image is 3-D (z extent " << extent[4] << ".." << extent[5]
-            << "); an EXR file holds one XY slice";
-    fail(vtkErrorCode::UserError, problem.str());
+    fail(vtkErrorCode::UserError, imageProblem);
     return;
   }
   const int width = extent[1] - extent[0] + 1;
   const int height = extent[3] - extent[2] + 1;
 
-  // The channels: R, G, B from the colour array, then the extra single-component arrays.
   std::vector<ChannelSource> channels;
-  std::set<std::string> channelNames;
-  auto addArray = [&](const std::string& name, int components, const char* role) -> bool
+  const std::string channelProblem = CollectChannels(input->GetPointData(),
+    this->ColorArrayName,
+    this->ChannelArrays,
+    this->PixelType == Half ? Imf::HALF : Imf::FLOAT,
+    channels);
+  if (!channelProblem.empty())
   {
-    vtkDataArray* array = input->GetPointData()->GetArray(name.c_str());
-    std::ostringstream problem;
-    if (name.empty())
-    {
-      problem << "an empty array name was given as " << role;
-    }
-    else if (!array)
-    {
-      problem << "the input has no point array '" << name << "' (" << role << ")";
-    }
-    else if (array->GetNumberOfComponents() != components)
-    {
-      problem << "the point array '" << name << "' (" << role << ") has "
-              << array->GetNumberOfComponents() << " components, not " << components;
-    }
-    else if (array->GetDataType() != VTK_FLOAT && array->GetDataType() != VTK_DOUBLE)
-    {
-      problem << "the point array '" << name << "' (" << role << ") holds "
-              << array->GetDataTypeAsString() << " values, not float or double";
-    }
-    if (!problem.str().empty())
-    {
-      fail(vtkErrorCode::UserError, problem.str());
-      return false;
-    }
-    if (components == 3)
-    {
-      const Imf::PixelType type = this->PixelType == Half ? Imf::HALF : Imf::FLOAT;
-      const char* rgb[3] = { "R", "G", "B" };
-      for (int c = 0; c < 3; ++c)
-      {
-        channels.push_back({ rgb[c], array, c, type });
-        channelNames.insert(rgb[c]);
-      }
-      return true;
-    }
-    if (!channelNames.insert(name).second)
-    {
-      fail(vtkErrorCode::UserError, "the channel '" + name + "' is written twice");
-      return false;
-    }
-    channels.push_back({ name, array, 0, Imf::FLOAT });
-    return true;
-  };
-  if (!addArray(this->ColorArrayName, 3, "colour array"))
-  {
+    fail(vtkErrorCode::UserError, channelProblem);
     return;
   }
-  for (const std::string& name : this->ChannelArrays)
-  {
-    if (!addArray(name, 1, "extra channel"))
-    {
-      return;
-    }
-  }
 
-  // Planes of floats in EXR order; HALF channels get a rounded copy (OpenEXR's output file
-  // does not convert between the frame buffer's and the file's pixel types).
   std::vector<std::vector<float>> planes(channels.size());
   std::vector<std::vector<Imath::half>> halfPlanes(channels.size());
   try
   {
-    for (std::size_t k = 0; k < channels.size(); ++k)
-    {
-      planes[k].resize(static_cast<std::size_t>(width) * height);
-      if (!vtkArrayDispatch::DispatchByValueType<vtkArrayDispatch::Reals>::Execute(
-            channels[k].Array,
-            CopyComponentFlipped{},
-            channels[k].Component,
-            width,
-            height,
-            planes[k].data()))
-      {
-        CopyComponentFlipped{}(
-          channels[k].Array, channels[k].Component, width, height, planes[k].data());
-      }
-      if (channels[k].Type == Imf::HALF)
-      {
-        halfPlanes[k].assign(planes[k].begin(), planes[k].end());
-        std::vector<float>().swap(planes[k]);
-      }
-    }
+    CopyPlanes(channels, width, height, planes, halfPlanes);
   }
   catch (const std::bad_alloc&)
   {
@@ -263,47 +372,14 @@ void vtkOpenEXRWriter::WriteData()
         " image");
     return;
   }
-
-  // EXR's y grows downwards; the data window keeps the image's extent (so non-zero extent
-  // origins survive) and scanline y holds VTK row ymin + ymax - y.
-  const Imath::Box2i window(Imath::V2i(extent[0], extent[2]), Imath::V2i(extent[1], extent[3]));
-  Imf::Header header(window, window);
-  header.compression() = static_cast<Imf::Compression>(this->Compression);
-  double origin[3];
-  double spacing[3];
-  input->GetOrigin(origin);
-  input->GetSpacing(spacing);
-  // The slice's z index moves into the origin: the file has no z extent.
-  const double sliceZ = origin[2] + extent[4] * spacing[2];
-  header.insert("vtkOrigin", Imf::V3dAttribute(Imath::V3d(origin[0], origin[1], sliceZ)));
-  header.insert("vtkSpacing", Imf::V3dAttribute(Imath::V3d(spacing[0], spacing[1], spacing[2])));
-  Imf::FrameBuffer frameBuffer;
-  for (std::size_t k = 0; k < channels.size(); ++k)
-  {
-    header.channels().insert(channels[k].Channel, Imf::Channel(channels[k].Type));
-    frameBuffer.insert(channels[k].Channel,
-      channels[k].Type == Imf::HALF ? Imf::Slice::Make(Imf::HALF, halfPlanes[k].data(), window)
-                                    : Imf::Slice::Make(Imf::FLOAT, planes[k].data(), window));
-  }
+  const Imf::Header header = MakeHeader(input, extent, this->Compression, channels);
+  const Imf::FrameBuffer frameBuffer =
+    MakeFrameBuffer(header.dataWindow(), channels, planes, halfPlanes);
 
   const std::string temporary = TemporaryName(this->FileName);
   try
   {
-    {
-      Imf::OutputFile file(temporary.c_str(), header);
-      file.setFrameBuffer(frameBuffer);
-      for (int written = 0; written < height;)
-      {
-        if (this->GetAbortExecute())
-        {
-          break;
-        }
-        const int rows = std::min(RowsPerBlock, height - written);
-        file.writePixels(rows);
-        written += rows;
-        this->UpdateProgress(static_cast<double>(written) / height);
-      }
-    }
+    WriteScanlines(this, temporary, header, frameBuffer, height);
     if (this->GetAbortExecute())
     {
       // Aborted by the user: no message, but no file either and Write() returns 0.

@@ -50,40 +50,47 @@ void ParseSize(const std::string& text, int& width, int& height)
     throw std::runtime_error("--size '" + text + "': expected WIDTHxHEIGHT, e.g. 640x480");
   }
 }
-}
 
-int RunRender(const Options& options)
+/// The image files -o and --png name: -o is the HDR image (.exr, Radiance and Depth) or a
+/// tone-mapped PNG; --png adds a tone-mapped PNG.
+struct RenderOutputs
 {
-  // The outputs, checked before any work: -o is the HDR image (.exr, Radiance and Depth) or a
-  // tone-mapped PNG; --png adds a tone-mapped PNG.
+  std::string Exr;
+  std::vector<std::string> Pngs;
+  /// The PNGs, then the EXR: the order the command lists them as written.
+  std::vector<std::string> Written;
+};
+
+/// The outputs, checked before any work (their paths and the exposure the PNGs are mapped with).
+RenderOutputs ChooseOutputs(const Options& options)
+{
   CheckOutputPath("-o", options.Output, { ".exr", ".png" }, "image");
   CheckOutputPath("--png", options.Png, { ".png" }, "image");
   CheckOutputPath("--report", options.Report, { ".json" }, "report");
-  std::string exr;
-  std::vector<std::string> pngs;
+  RenderOutputs outputs;
   if (!options.Output.empty())
   {
     if (ExtensionOf(options.Output) == ".exr")
     {
-      exr = options.Output;
+      outputs.Exr = options.Output;
     }
     else
     {
-      pngs.push_back(options.Output);
+      outputs.Pngs.push_back(options.Output);
     }
   }
   if (!options.Png.empty())
   {
-    pngs.push_back(options.Png);
+    outputs.Pngs.push_back(options.Png);
   }
-  if (exr.empty() && pngs.empty())
+  if (outputs.Exr.empty() && outputs.Pngs.empty())
   {
     throw std::runtime_error("no output: give -o out.exr, -o out.png or --png out.png");
   }
-  std::vector<std::string> outputs = pngs;
-  if (!exr.empty())
+  outputs.Written = outputs.Pngs;
+  if (!outputs.Exr.empty())
   {
-    outputs.push_back(exr);
+    outputs.Written.push_back(outputs.Exr);
   }
   // A zero, negative or non-finite exposure maps every radiance to black (or NaN).
   if (!(options.Exposure > 0.0 && std::isfinite(options.Exposure)))
@@ -92,6 +99,113 @@ int RunRender(const Options& options)
     text << "--exposure " << options.Exposure << ": must be a finite number > 0";
     throw std::runtime_error(text.str());
   }
+  return outputs;
+}
+
+/// What the renderer reads: the solved pipeline's outputs, or a saved solution's blocks
+/// through trivial producers.
+struct RenderSource
+{
+  nlohmann::json Timings;
+  vtkPolyData* Illumination = nullptr;
+  vtkAlgorithmOutput* IlluminationPort = nullptr;
+  vtkAlgorithmOutput* PatchesPort = nullptr;
+  vtkNew<vtkTrivialProducer> IlluminationProducer;
+  vtkNew<vtkTrivialProducer> PatchesProducer;
+};
+
+/// Solves the scene (no --solution) or reads --solution and checks that it was computed from
+/// this scene; `source` then names the illumination and patches the renderer reads.
+void ConnectSolution(const Options& options,
+  bool solving,
+  Solution& solution,
+  SavedSolution& saved,
+  ErrorCollector& errors,
+  RenderSource& source)
+{
+  if (solving)
+  {
+    solution.Solve(options);
+    source.IlluminationPort = solution.Propagation->GetOutputPort(0);
+    source.PatchesPort = solution.Subdivision->GetOutputPort(0);
+    source.Illumination = solution.Propagation->GetOutput();
+    source.Timings = solution.Timings();
+  }
+  else
+  {
+    saved.Read(options, errors);
+    source.Timings["read"] = saved.ReadSeconds;
+    saved.CheckFingerprint(options, solution.Reader->GetOutput());
+    source.Illumination = saved.Illumination;
+    source.PatchesProducer->SetOutput(saved.Patches);
+    source.IlluminationProducer->SetOutput(source.Illumination);
+    source.IlluminationPort = source.IlluminationProducer->GetOutputPort();
+    source.PatchesPort = source.PatchesProducer->GetOutputPort();
+  }
+}
+
+/// The image filter of paper §5.3 on `source`, through `camera` at width x height.
+void SetUpRender(vtkRadianceImageFilter* render,
+  const RenderSource& source,
+  const sphcover::Camera& camera,
+  int width,
+  int height,
+  const Options& options)
+{
+  render->SetInputConnection(0, source.IlluminationPort);
+  render->SetPatchesConnection(source.PatchesPort);
+  render->SetPosition(camera.Position.x, camera.Position.y, camera.Position.z);
+  render->SetFocalPoint(camera.FocalPoint.x, camera.FocalPoint.y, camera.FocalPoint.z);
+  render->SetViewUp(camera.ViewUp.x, camera.ViewUp.y, camera.ViewUp.z);
+  render->SetViewAngle(camera.ViewAngle);
+  render->SetWidth(width);
+  render->SetHeight(height);
+  render->SetSamplesPerPixel(options.SamplesPerPixel);
+  render->SetExposure(options.Exposure);
+  render->SetMemoryLimit(options.MemoryLimit);
+  render->SetMaximumSamples(options.MaxSamples);
+}
+
+/// The --report document: the solution's figures (a saved solution's computed again from its
+/// arrays: they are what the image shows), the timings and the image's camera and size.
+nlohmann::json RenderReport(const Options& options,
+  bool solving,
+  Solution& solution,
+  const SavedSolution& saved,
+  const RenderSource& source,
+  const sphcover::Camera& camera,
+  int width,
+  int height)
+{
+  nlohmann::json report;
+  if (solving)
+  {
+    report = SolutionReport(solution);
+  }
+  else
+  {
+    const std::string problem = vtkLightPropagationFilter::AddSolutionFigures(source.Illumination);
+    if (!problem.empty())
+    {
+      throw std::runtime_error(problem);
+    }
+    ReportCounts counts;
+    auto* patches = vtkDataSet::SafeDownCast(saved.Patches);
+    counts.Patches = patches ? patches->GetNumberOfCells() : -1;
+    report = Report(source.Illumination, counts);
+  }
+  report["timings_s"] = source.Timings;
+  report["image"] = { { "camera", camera.Name },
+    { "width", width },
+    { "height", height },
+    { "samples_per_pixel", options.SamplesPerPixel } };
+  return report;
+}
+}
+
+int RunRender(const Options& options)
+{
+  const RenderOutputs outputs = ChooseOutputs(options);
 
   // The scene (read once, its cameras and fingerprint in the reader's field data), then the
   // camera: --camera or the scene's first, --size or the camera's size.
@@ -111,86 +225,31 @@ int RunRender(const Options& options)
 
   SavedSolution saved;
   ErrorCollector errors;
-  nlohmann::json timings;
-  vtkPolyData* illumination = nullptr;
-  vtkAlgorithmOutput* illuminationPort = nullptr;
-  vtkAlgorithmOutput* patchesPort = nullptr;
-  vtkNew<vtkTrivialProducer> illuminationProducer;
-  vtkNew<vtkTrivialProducer> patchesProducer;
-  if (solving)
-  {
-    solution.Solve(options);
-    illuminationPort = solution.Propagation->GetOutputPort(0);
-    patchesPort = solution.Subdivision->GetOutputPort(0);
-    illumination = solution.Propagation->GetOutput();
-    timings = solution.Timings();
-  }
-  else
-  {
-    saved.Read(options, errors);
-    timings["read"] = saved.ReadSeconds;
-    saved.CheckFingerprint(options, solution.Reader->GetOutput());
-    illumination = saved.Illumination;
-    patchesProducer->SetOutput(saved.Patches);
-    illuminationProducer->SetOutput(illumination);
-    illuminationPort = illuminationProducer->GetOutputPort();
-    patchesPort = patchesProducer->GetOutputPort();
-  }
+  RenderSource source;
+  ConnectSolution(options, solving, solution, saved, errors, source);
 
   vtkNew<vtkRadianceImageFilter> render;
-  render->SetInputConnection(0, illuminationPort);
-  render->SetPatchesConnection(patchesPort);
-  render->SetPosition(camera.Position.x, camera.Position.y, camera.Position.z);
-  render->SetFocalPoint(camera.FocalPoint.x, camera.FocalPoint.y, camera.FocalPoint.z);
-  render->SetViewUp(camera.ViewUp.x, camera.ViewUp.y, camera.ViewUp.z);
-  render->SetViewAngle(camera.ViewAngle);
-  render->SetWidth(width);
-  render->SetHeight(height);
-  render->SetSamplesPerPixel(options.SamplesPerPixel);
-  render->SetExposure(options.Exposure);
-  render->SetMemoryLimit(options.MemoryLimit);
-  render->SetMaximumSamples(options.MaxSamples);
+  SetUpRender(render, source, camera, width, height, options);
   double renderSeconds = 0.0;
   {
     ProgressBar bar(render, "render", options.Quiet);
     Run(render, errors);
     renderSeconds = bar.Seconds();
   }
-  timings["render"] = renderSeconds;
+  source.Timings["render"] = renderSeconds;
 
   // The report is computed before any file is written: a solution it cannot read fails the
-  // command without leaving an image behind. A saved solution's figures are computed again
-  // from its arrays (they are what the image shows).
+  // command without leaving an image behind.
   nlohmann::json report;
   if (!options.Report.empty())
   {
-    if (solving)
-    {
-      report = SolutionReport(solution);
-    }
-    else
-    {
-      const std::string problem = vtkLightPropagationFilter::AddSolutionFigures(illumination);
-      if (!problem.empty())
-      {
-        throw std::runtime_error(problem);
-      }
-      ReportCounts counts;
-      auto* patches = vtkDataSet::SafeDownCast(saved.Patches);
-      counts.Patches = patches ? patches->GetNumberOfCells() : -1;
-      report = Report(illumination, counts);
-    }
-    report["timings_s"] = timings;
-    report["image"] = { { "camera", camera.Name },
-      { "width", width },
-      { "height", height },
-      { "samples_per_pixel", options.SamplesPerPixel } };
+    report = RenderReport(options, solving, solution, saved, source, camera, width, height);
   }
-  if (!exr.empty())
+  if (!outputs.Exr.empty())
   {
-    WriteExrAtomically(render->GetOutput(), exr);
+    WriteExrAtomically(render->GetOutput(), outputs.Exr);
   }
-  for (const std::string& png : pngs)
+  for (const std::string& png : outputs.Pngs)
   {
     WritePngAtomically(render->GetOutput(), png);
   }
@@ -201,7 +260,7 @@ int RunRender(const Options& options)
   std::cout << "image: " << width << "x" << height << " from camera '" << camera.Name << "', "
             << options.SamplesPerPixel << " samples per pixel\n"
             << "seconds: render " << renderSeconds << "\n";
-  for (const std::string& path : outputs)
+  for (const std::string& path : outputs.Written)
   {
     std::cout << "written: " << path << "\n";
   }
