@@ -133,6 +133,124 @@ bool PlaneWeights(const glm::dvec2* q, int count, const glm::dvec2& x, double* w
   }
   return true;
 }
+
+/// Step 2 of the file comment: the parameter just beyond the side of the quadrant of x
+/// (x >= centre: the high side), or the other side at the surface's edge (extrapolation,
+/// paper §3.4 Fig. 6); false when neither lies in [0, 1].
+bool ProbeBeyondEdge(double low, double high, double centre, double x, double& at)
+{
+  const double side = x >= centre ? 1.0 : -1.0;
+  for (const double s : { side, -side })
+  {
+    const double candidate = s > 0 ? high + ProbeOffset : low - ProbeOffset;
+    if (candidate >= 0.0 && candidate <= 1.0)
+    {
+      at = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The distinct points among `corners` (-1: none), in quadrilateral order, into the stencil's
+/// points and their domain centres into q; returns how many.
+int DistinctPoints(const std::vector<UVRect>& domains,
+  const std::array<std::ptrdiff_t, 4>& corners,
+  InterpolationStencil& stencil,
+  std::array<glm::dvec2, 4>& q)
+{
+  int count = 0;
+  for (const std::ptrdiff_t corner : corners)
+  {
+    if (corner < 0)
+    {
+      continue;
+    }
+    bool seen = false;
+    for (int k = 0; k < count; ++k)
+    {
+      seen = seen || stencil.Points[static_cast<size_t>(k)] == static_cast<size_t>(corner);
+    }
+    if (!seen)
+    {
+      const UVRect& d = domains[static_cast<size_t>(corner)];
+      stencil.Points[static_cast<size_t>(count)] = static_cast<size_t>(corner);
+      q[static_cast<size_t>(count)] = glm::dvec2(d.CenterU(), d.CenterV());
+      ++count;
+    }
+  }
+  return count;
+}
+
+/// A patch spanning the surface in one direction has no neighbour across it: the points
+/// found are collinear and say nothing about the other direction. Keeps the first two of the
+/// `count` points and completes them with the surface's centres nearest to P's (cu, cv) until
+/// three are not collinear; returns the new count.
+int CompleteWithNearestPoints(const std::vector<UVRect>& domains,
+  const std::vector<std::size_t>& surfacePoints,
+  double cu,
+  double cv,
+  int count,
+  InterpolationStencil& stencil,
+  std::array<glm::dvec2, 4>& q)
+{
+  std::vector<std::pair<double, size_t>> byDistance;
+  for (size_t k : surfacePoints)
+  {
+    const UVRect& d = domains[k];
+    const double du = d.CenterU() - cu;
+    const double dv = d.CenterV() - cv;
+    byDistance.emplace_back(du * du + dv * dv, k);
+  }
+  std::sort(byDistance.begin(), byDistance.end());
+  count = std::min(count, 2);
+  for (const auto& [distance, k] : byDistance)
+  {
+    if (count == 3)
+    {
+      break;
+    }
+    bool seen = false;
+    for (int m = 0; m < count; ++m)
+    {
+      seen = seen || stencil.Points[static_cast<size_t>(m)] == k;
+    }
+    const UVRect& d = domains[k];
+    const glm::dvec2 c(d.CenterU(), d.CenterV());
+    const bool collinear = count == 2 &&
+      std::fabs(Cross(q[1] - q[0], c - q[0])) <=
+        1e-9 * glm::length(q[1] - q[0]) * glm::length(c - q[0]);
+    if (!seen && !collinear)
+    {
+      stencil.Points[static_cast<size_t>(count)] = k;
+      q[static_cast<size_t>(count)] = c;
+      ++count;
+    }
+  }
+  return count;
+}
+
+/// Collinear points (count >= 2): linear along the line from c to the farthest of the others.
+void LinearWeights(const std::array<glm::dvec2, 4>& q,
+  int count,
+  const glm::dvec2& x,
+  InterpolationStencil& stencil)
+{
+  int far = 1;
+  for (int k = 2; k < count; ++k)
+  {
+    if (glm::dot(q[static_cast<size_t>(k)] - q[0], q[static_cast<size_t>(k)] - q[0]) >
+      glm::dot(q[static_cast<size_t>(far)] - q[0], q[static_cast<size_t>(far)] - q[0]))
+    {
+      far = k;
+    }
+  }
+  const glm::dvec2 axis = q[static_cast<size_t>(far)] - q[0];
+  const double t = glm::dot(x - q[0], axis) / glm::dot(axis, axis);
+  stencil.Points[1] = stencil.Points[static_cast<size_t>(far)];
+  stencil.Weights = { { 1.0 - t, t, 0.0, 0.0 } };
+  stencil.Count = 2;
+}
 }
 
 CharacteristicPointInterpolator CharacteristicPointInterpolator::OfPatches(
@@ -287,45 +405,20 @@ std::ptrdiff_t CharacteristicPointInterpolator::ContainingPoint(int surface,
     this->Surfaces[static_cast<size_t>(surface)], std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0));
 }
 
-bool CharacteristicPointInterpolator::Stencil(int surface,
+std::array<std::ptrdiff_t, 4> CharacteristicPointInterpolator::QuadrantCorners(
+  const SurfaceLayout& layout,
+  std::ptrdiff_t found,
   double u,
-  double v,
-  InterpolationStencil& stencil) const
+  double v) const
 {
-  stencil = InterpolationStencil();
-  const std::ptrdiff_t found = this->ContainingPoint(surface, u, v);
-  if (found < 0)
-  {
-    return false;
-  }
-  const SurfaceLayout& layout = this->Surfaces[static_cast<size_t>(surface)];
-  const size_t p = static_cast<size_t>(found);
-  const UVRect& r = this->Domains[p];
+  const UVRect& r = this->Domains[static_cast<size_t>(found)];
   const double cu = r.CenterU();
   const double cv = r.CenterV();
-
-  // Step 2 of the file comment: the side of the quadrant, or the other side at the surface's
-  // edge (extrapolation, paper §3.4 Fig. 6).
-  auto probe = [](double low, double high, double centre, double x, double& at)
-  {
-    const double side = x >= centre ? 1.0 : -1.0;
-    for (const double s : { side, -side })
-    {
-      const double candidate = s > 0 ? high + ProbeOffset : low - ProbeOffset;
-      if (candidate >= 0.0 && candidate <= 1.0)
-      {
-        at = candidate;
-        return true;
-      }
-    }
-    return false;
-  };
   double probeU = 0.0;
   double probeV = 0.0;
-  const bool hasU = probe(r.U0, r.U1, cu, u, probeU);
-  const bool hasV = probe(r.V0, r.V1, cv, v, probeV);
-  // In quadrilateral order c, X, D, Y; -1 where there is no neighbour.
-  std::ptrdiff_t corners[4] = { found, -1, -1, -1 };
+  const bool hasU = ProbeBeyondEdge(r.U0, r.U1, cu, u, probeU);
+  const bool hasV = ProbeBeyondEdge(r.V0, r.V1, cv, v, probeV);
+  std::array<std::ptrdiff_t, 4> corners = { { found, -1, -1, -1 } };
   if (hasU)
   {
     corners[1] = this->Locate(layout, probeU, cv);
@@ -338,29 +431,27 @@ bool CharacteristicPointInterpolator::Stencil(int surface,
   {
     corners[3] = this->Locate(layout, cu, probeV);
   }
+  return corners;
+}
 
-  // The distinct points, in quadrilateral order.
-  std::array<glm::dvec2, 4> q;
-  int count = 0;
-  for (const std::ptrdiff_t corner : corners)
+bool CharacteristicPointInterpolator::Stencil(int surface,
+  double u,
+  double v,
+  InterpolationStencil& stencil) const
+{
+  stencil = InterpolationStencil();
+  const std::ptrdiff_t found = this->ContainingPoint(surface, u, v);
+  if (found < 0)
   {
-    if (corner < 0)
-    {
-      continue;
-    }
-    bool seen = false;
-    for (int k = 0; k < count; ++k)
-    {
-      seen = seen || stencil.Points[static_cast<size_t>(k)] == static_cast<size_t>(corner);
-    }
-    if (!seen)
-    {
-      const UVRect& d = this->Domains[static_cast<size_t>(corner)];
-      stencil.Points[static_cast<size_t>(count)] = static_cast<size_t>(corner);
-      q[static_cast<size_t>(count)] = glm::dvec2(d.CenterU(), d.CenterV());
-      ++count;
-    }
+    return false;
   }
+  const SurfaceLayout& layout = this->Surfaces[static_cast<size_t>(surface)];
+  const UVRect& r = this->Domains[static_cast<size_t>(found)];
+
+  // Step 2 of the file comment: c, X, D, Y, then the distinct points in that order.
+  const std::array<std::ptrdiff_t, 4> corners = this->QuadrantCorners(layout, found, u, v);
+  std::array<glm::dvec2, 4> q;
+  int count = DistinctPoints(this->Domains, corners, stencil, q);
   stencil.Count = count;
   const glm::dvec2 x(u, v);
   double* weights = stencil.Weights.data();
@@ -374,42 +465,8 @@ bool CharacteristicPointInterpolator::Stencil(int surface,
   }
   if (count < 3 || !PlaneWeights(q.data(), std::min(count, 3), x, weights))
   {
-    // A patch spanning the surface in one direction has no neighbour across it: the points
-    // found are collinear and say nothing about the other direction. Complete them with the
-    // surface's centres nearest to P's until three are not collinear.
-    std::vector<std::pair<double, size_t>> byDistance;
-    for (size_t k : layout.Points)
-    {
-      const UVRect& d = this->Domains[k];
-      const double du = d.CenterU() - cu;
-      const double dv = d.CenterV() - cv;
-      byDistance.emplace_back(du * du + dv * dv, k);
-    }
-    std::sort(byDistance.begin(), byDistance.end());
-    count = std::min(count, 2);
-    for (const auto& [distance, k] : byDistance)
-    {
-      if (count == 3)
-      {
-        break;
-      }
-      bool seen = false;
-      for (int m = 0; m < count; ++m)
-      {
-        seen = seen || stencil.Points[static_cast<size_t>(m)] == k;
-      }
-      const UVRect& d = this->Domains[k];
-      const glm::dvec2 c(d.CenterU(), d.CenterV());
-      const bool collinear = count == 2 &&
-        std::fabs(Cross(q[1] - q[0], c - q[0])) <=
-          1e-9 * glm::length(q[1] - q[0]) * glm::length(c - q[0]);
-      if (!seen && !collinear)
-      {
-        stencil.Points[static_cast<size_t>(count)] = k;
-        q[static_cast<size_t>(count)] = c;
-        ++count;
-      }
-    }
+    count = CompleteWithNearestPoints(
+      this->Domains, layout.Points, r.CenterU(), r.CenterV(), count, stencil, q);
     stencil.Count = count;
   }
   if (count == 3 && PlaneWeights(q.data(), count, x, weights))
@@ -418,21 +475,7 @@ bool CharacteristicPointInterpolator::Stencil(int surface,
   }
   if (count >= 2)
   {
-    // Collinear: linear along the line from c to the farthest of the others.
-    int far = 1;
-    for (int k = 2; k < count; ++k)
-    {
-      if (glm::dot(q[static_cast<size_t>(k)] - q[0], q[static_cast<size_t>(k)] - q[0]) >
-        glm::dot(q[static_cast<size_t>(far)] - q[0], q[static_cast<size_t>(far)] - q[0]))
-      {
-        far = k;
-      }
-    }
-    const glm::dvec2 axis = q[static_cast<size_t>(far)] - q[0];
-    const double t = glm::dot(x - q[0], axis) / glm::dot(axis, axis);
-    stencil.Points[1] = stencil.Points[static_cast<size_t>(far)];
-    stencil.Weights = { { 1.0 - t, t, 0.0, 0.0 } };
-    stencil.Count = 2;
+    LinearWeights(q, count, x, stencil);
     return true;
   }
   stencil.Weights = { { 1.0, 0.0, 0.0, 0.0 } };

@@ -105,6 +105,12 @@ private:
 
   /// The point containing (u, v), or -1 when (u, v) is outside [0,1]^2 (no clamping).
   std::ptrdiff_t Locate(const SurfaceLayout& layout, double u, double v) const;
+  /// The points c, X, D, Y of the stencil of (u, v) in the patch of point `found` (step 2 of
+  /// the file comment); -1 where there is no neighbour.
+  std::array<std::ptrdiff_t, 4> QuadrantCorners(const SurfaceLayout& layout,
+    std::ptrdiff_t found,
+    double u,
+    double v) const;
 
   std::vector<UVRect> Domains;
   std::vector<SurfaceLayout> Surfaces;

@@ -114,6 +114,29 @@ void MostHitSurface(std::vector<SampleHit>& hits, int& surface, double& depth)
   surface = best;
   depth = bestDistance;
 }
+
+/// The pixel's mean radiance over its samples and, where a sample hit a surface, the surface
+/// most of them hit and their mean distance.
+void StorePixel(size_t pixel,
+  const glm::dvec3& sum,
+  int samples,
+  std::vector<SampleHit>& hits,
+  RenderedImage& image)
+{
+  const glm::dvec3 mean = sum / static_cast<double>(samples);
+  image.Radiance[3 * pixel + 0] = static_cast<float>(mean.x);
+  image.Radiance[3 * pixel + 1] = static_cast<float>(mean.y);
+  image.Radiance[3 * pixel + 2] = static_cast<float>(mean.z);
+  if (hits.empty())
+  {
+    return;
+  }
+  int surface;
+  double depth;
+  MostHitSurface(hits, surface, depth);
+  image.SurfaceId[pixel] = surface;
+  image.Depth[pixel] = static_cast<float>(depth);
+}
 }
 
 std::string CheckCamera(const Camera& camera, const RenderSettings& settings)
@@ -321,6 +344,36 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   return glm::max(radiance, glm::dvec3(0.0));
 }
 
+bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
+  const glm::dvec3& direction,
+  DirectionalCache* cache,
+  SampleResult& sample) const
+{
+  RayCaster::RayHit hit;
+  if (!this->Caster->CastRay(eye, direction, hit))
+  {
+    return false;
+  }
+  const Patch& patch = this->Patches[hit.Patch];
+  const int surface = patch.SurfaceIndex;
+  sample.Surface = surface;
+  sample.T = hit.T;
+  const bool twoSided = static_cast<size_t>(surface) < this->TwoSided.size() &&
+    this->TwoSided[static_cast<size_t>(surface)];
+  sample.Lit = hit.FrontSide || twoSided; // a back side sends no light
+  if (!sample.Lit)
+  {
+    return true;
+  }
+  const double u = patch.Domain.U0 + hit.U * (patch.Domain.U1 - patch.Domain.U0);
+  const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
+  // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
+  // its Lambertian part (one hemisphere per point, on the front).
+  sample.Radiance = hit.FrontSide ? this->RadianceToward(surface, u, v, -direction, cache)
+                                  : this->SurfaceRadiance(surface, u, v);
+  return true;
+}
+
 bool RadianceRenderer::Render(const Camera& camera,
   const RenderSettings& settings,
   RenderedImage& image,
@@ -361,41 +414,19 @@ bool RadianceRenderer::Render(const Camera& camera,
         const double x = 2.0 * (i + offsetX[static_cast<size_t>(k)]) / width - 1.0;
         const double y = 2.0 * (j + offsetY[static_cast<size_t>(k)]) / height - 1.0;
         const glm::dvec3 direction = glm::normalize(frame.Forward + x * frame.Right + y * frame.Up);
-        RayCaster::RayHit hit;
-        if (!this->Caster->CastRay(frame.Eye, direction, hit))
+        SampleResult sample;
+        if (!this->TraceSample(frame.Eye, direction, cache.get(), sample))
         {
           continue;
         }
-        const Patch& patch = this->Patches[hit.Patch];
-        const int surface = patch.SurfaceIndex;
-        hits.push_back({ surface, hit.T });
-        const bool twoSided = static_cast<size_t>(surface) < this->TwoSided.size() &&
-          this->TwoSided[static_cast<size_t>(surface)];
-        if (!hit.FrontSide && !twoSided)
+        hits.push_back({ sample.Surface, sample.T });
+        if (sample.Lit)
         {
-          continue; // a back side sends no light
+          sum += sample.Radiance;
         }
-        const double u = patch.Domain.U0 + hit.U * (patch.Domain.U1 - patch.Domain.U0);
-        const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
-        // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
-        // its Lambertian part (one hemisphere per point, on the front).
-        sum += hit.FrontSide ? this->RadianceToward(surface, u, v, -direction, cache.get())
-                             : this->SurfaceRadiance(surface, u, v);
       }
-      const size_t pixel = static_cast<size_t>(j) * static_cast<size_t>(width) + i;
-      const glm::dvec3 mean = sum / static_cast<double>(samples);
-      image.Radiance[3 * pixel + 0] = static_cast<float>(mean.x);
-      image.Radiance[3 * pixel + 1] = static_cast<float>(mean.y);
-      image.Radiance[3 * pixel + 2] = static_cast<float>(mean.z);
-      if (hits.empty())
-      {
-        continue;
-      }
-      int surface;
-      double depth;
-      MostHitSurface(hits, surface, depth);
-      image.SurfaceId[pixel] = surface;
-      image.Depth[pixel] = static_cast<float>(depth);
+      StorePixel(
+        static_cast<size_t>(j) * static_cast<size_t>(width) + i, sum, samples, hits, image);
     }
   };
 

@@ -182,6 +182,20 @@ public:
   std::size_t TriangleCount() const;
 
 private:
+  /// What one sample ray of a pixel meets first: the surface, its distance, and whether and
+  /// what radiance it sends back along the ray (a one-sided surface's back sends none).
+  struct SampleResult
+  {
+    int Surface = -1;
+    double T = 0.0;
+    bool Lit = false;
+    glm::dvec3 Radiance = glm::dvec3(0.0);
+  };
+  /// Casts one sample ray from the eye; false where it meets nothing.
+  bool TraceSample(const glm::dvec3& eye,
+    const glm::dvec3& direction,
+    DirectionalCache* cache,
+    SampleResult& sample) const;
   glm::dvec3 RadianceToward(int surface,
     double u,
     double v,

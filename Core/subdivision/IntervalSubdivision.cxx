@@ -33,6 +33,148 @@ std::size_t BytesOfPatch(const BezierPatch& geometry)
     geometry.DerivativeNetV().size();
   return sizeof(Patch) + nets * sizeof(glm::dvec3);
 }
+
+/// The interval boxes of the leaves, in leaf order.
+std::vector<Box> BoxesOf(const std::vector<Patch>& nodes, const std::vector<int>& leaves)
+{
+  std::vector<Box> boxes;
+  boxes.reserve(leaves.size());
+  for (int node : leaves)
+  {
+    boxes.push_back(BoxOf(nodes[static_cast<size_t>(node)]));
+  }
+  return boxes;
+}
+
+/// Pairs (receiver, source) with at least one new patch: a sweep's candidates.
+double CandidatePairs(const std::vector<bool>& leafIsNew)
+{
+  const size_t count = leafIsNew.size();
+  const size_t fresh = static_cast<size_t>(std::count(leafIsNew.begin(), leafIsNew.end(), true));
+  return static_cast<double>(fresh) *
+    (2.0 * static_cast<double>(count) - static_cast<double>(fresh));
+}
+
+/// One sweep's pair tests over the leaves (paper §4.3 Step 2): each receiver against the
+/// sources the bounding-volume hierarchy does not cull, merging split requests by priority.
+class SweepExamination
+{
+public:
+  SweepExamination(std::vector<PatchView> views,
+    const std::vector<Patch>& nodes,
+    const std::vector<int>& leaves,
+    const std::vector<bool>& leafIsNew,
+    const SubdivisionSettings& settings,
+    std::vector<std::atomic<int>>& requested)
+    : Views(std::move(views))
+    , Nodes(nodes)
+    , Leaves(leaves)
+    , LeafIsNew(leafIsNew)
+    , Settings(settings)
+    , CellAngle(settings.CellAngle())
+    , Requested(requested)
+    , Boxes(BoxesOf(nodes, leaves))
+    , Tree(this->Boxes)
+  {
+    this->Tree.MarkItems(leafIsNew);
+    // No request yet: the lowest (highest-priority) reason wins, so INT_MAX means none.
+    for (auto& r : requested)
+    {
+      r.store(INT_MAX, std::memory_order_relaxed);
+    }
+  }
+
+  /// Tests receiver i against every candidate source; safe to call from several threads.
+  void ExamineReceiver(size_t i);
+
+  std::size_t PairTests() const { return this->Pairs.load(); }
+  std::size_t LimitedPairs() const { return this->Limited.load(); }
+
+private:
+  /// A split of patch k is allowed when it is not at MaxLevel and projects, from the point
+  /// that asks, to more than about one cell (§4.3 note 2).
+  bool CanSplit(size_t k, const glm::dvec3& from) const
+  {
+    if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= this->Settings.MaxLevel)
+    {
+      return false;
+    }
+    const double distance = this->Boxes[k].DistanceTo(from);
+    return distance <= 0.0 || this->Boxes[k].Diagonal() > this->CellAngle * distance;
+  }
+
+  /// Split requests: the highest-priority (lowest) reason per leaf, so that the merge does not
+  /// depend on the order in which threads report.
+  void Request(size_t k, SplitReason reason)
+  {
+    int current = this->Requested[k].load(std::memory_order_relaxed);
+    const int value = static_cast<int>(reason);
+    while (value < current &&
+      !this->Requested[k].compare_exchange_weak(current, value, std::memory_order_relaxed))
+    {
+    }
+  }
+
+  const std::vector<PatchView> Views;
+  const std::vector<Patch>& Nodes;
+  const std::vector<int>& Leaves;
+  const std::vector<bool>& LeafIsNew;
+  const SubdivisionSettings& Settings;
+  const double CellAngle;
+  std::vector<std::atomic<int>>& Requested;
+  std::vector<Box> Boxes;
+  BoundingBoxTree Tree;
+  std::atomic<size_t> Pairs{ 0 };
+  std::atomic<size_t> Limited{ 0 };
+};
+
+void SweepExamination::ExamineReceiver(size_t i)
+{
+  const PatchView& receiver = this->Views[i];
+  const bool receiverIsNew = this->LeafIsNew[i];
+  size_t localPairs = 0;
+  size_t localLimited = 0;
+  this->Tree.Traverse(
+    [&](const BoundingBoxTree::Node& node)
+    {
+      // Pairs of two old patches were settled in an earlier sweep.
+      if (!receiverIsNew && !node.Flag)
+      {
+        return false;
+      }
+      // A group wholly below the tangent plane sends no light to P_i: classified at once.
+      return receiver.TwoSided || node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
+    },
+    [&](int32_t item)
+    {
+      const size_t j = static_cast<size_t>(item);
+      if (j == i || (!receiverIsNew && !this->LeafIsNew[j]))
+      {
+        return;
+      }
+      // The limits first: a pair whose patches may not be split either way cannot change Q.
+      const bool sourceMaySplit = this->CanSplit(j, receiver.Point);
+      const bool receiverMaySplit = this->CanSplit(i, this->Views[j].Point);
+      if (!sourceMaySplit && !receiverMaySplit)
+      {
+        ++localLimited;
+        return;
+      }
+      ++localPairs;
+      const PairAssessment assessment =
+        AssessPair(receiver, this->Views[j], this->Settings, sourceMaySplit, receiverMaySplit);
+      if (assessment.SplitSource != SplitReason::None)
+      {
+        this->Request(j, assessment.SplitSource);
+      }
+      if (assessment.SplitReceiver != SplitReason::None)
+      {
+        this->Request(i, assessment.SplitReceiver);
+      }
+    });
+  this->Pairs.fetch_add(localPairs, std::memory_order_relaxed);
+  this->Limited.fetch_add(localLimited, std::memory_order_relaxed);
+}
 }
 
 IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSettings& settings)
@@ -76,11 +218,6 @@ void IntervalSubdivision::Split(int node, SplitReason reason)
 
 bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFor& parallelFor)
 {
-  const double cellAngle = this->Settings.CellAngle();
-  const int maxLevel = this->Settings.MaxLevel;
-  // Sweeps needed is unknown in advance; every sweep deepens by at most one level.
-  const double expectedSweeps = maxLevel + 1.0;
-
   // The pair tests of the last sweep per pair it could have tested (those with a new patch):
   // what the bounding-volume culling and the limits leave, to predict the next sweep's cost.
   // 1 before the first sweep (an upper bound: every pair).
@@ -88,156 +225,23 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
   while (true)
   {
     const size_t count = this->Leaves.size();
-    const size_t fresh =
-      static_cast<size_t>(std::count(this->LeafIsNew.begin(), this->LeafIsNew.end(), true));
-    // Pairs (receiver, source) with at least one new patch: the sweep's candidates.
-    const double candidates =
-      static_cast<double>(fresh) * (2.0 * static_cast<double>(count) - static_cast<double>(fresh));
+    const double candidates = CandidatePairs(this->LeafIsNew);
     this->CheckCost(testedShare * candidates, "would make about");
-    std::vector<PatchView> views;
-    std::vector<Box> boxes;
-    views.reserve(count);
-    boxes.reserve(count);
-    for (int node : this->Leaves)
-    {
-      views.push_back(this->ViewOfPatch(this->Nodes[static_cast<size_t>(node)]));
-      boxes.push_back(BoxOf(this->Nodes[static_cast<size_t>(node)]));
-    }
-    BoundingBoxTree tree(boxes);
-    tree.MarkItems(this->LeafIsNew);
 
-    // A split of patch k is allowed when it is not at MaxLevel and projects, from the point
-    // that asks, to more than about one cell (§4.3 note 2).
-    auto canSplit = [&](size_t k, const glm::dvec3& from)
-    {
-      if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= maxLevel)
-      {
-        return false;
-      }
-      const double distance = boxes[k].DistanceTo(from);
-      return distance <= 0.0 || boxes[k].Diagonal() > cellAngle * distance;
-    };
-
-    // Split requests: the highest-priority (lowest) reason per leaf, so that the merge does not
-    // depend on the order in which threads report.
     std::vector<std::atomic<int>> requested(count);
-    for (auto& r : requested)
+    std::size_t pairTests = 0;
+    std::size_t limited = 0;
+    if (!this->ExaminePairs(requested, pairTests, limited, progress, parallelFor))
     {
-      r.store(INT_MAX, std::memory_order_relaxed);
+      return false;
     }
-    auto request = [&](size_t k, SplitReason reason)
-    {
-      int current = requested[k].load(std::memory_order_relaxed);
-      const int value = static_cast<int>(reason);
-      while (value < current &&
-        !requested[k].compare_exchange_weak(current, value, std::memory_order_relaxed))
-      {
-      }
-    };
-    std::atomic<size_t> pairTests{ 0 };
-    std::atomic<size_t> limited{ 0 };
-
-    auto examineReceiver = [&](size_t i)
-    {
-      const PatchView& receiver = views[i];
-      const bool receiverIsNew = this->LeafIsNew[i];
-      size_t localPairs = 0;
-      size_t localLimited = 0;
-      tree.Traverse(
-        [&](const BoundingBoxTree::Node& node)
-        {
-          // Pairs of two old patches were settled in an earlier sweep.
-          if (!receiverIsNew && !node.Flag)
-          {
-            return false;
-          }
-          // A group wholly below the tangent plane sends no light to P_i: classified at once.
-          return receiver.TwoSided ||
-            node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
-        },
-        [&](int32_t item)
-        {
-          const size_t j = static_cast<size_t>(item);
-          if (j == i || (!receiverIsNew && !this->LeafIsNew[j]))
-          {
-            return;
-          }
-          // The limits first: a pair whose patches may not be split either way cannot change Q.
-          const bool sourceMaySplit = canSplit(j, receiver.Point);
-          const bool receiverMaySplit = canSplit(i, views[j].Point);
-          if (!sourceMaySplit && !receiverMaySplit)
-          {
-            ++localLimited;
-            return;
-          }
-          ++localPairs;
-          const PairAssessment assessment =
-            AssessPair(receiver, views[j], this->Settings, sourceMaySplit, receiverMaySplit);
-          if (assessment.SplitSource != SplitReason::None)
-          {
-            request(j, assessment.SplitSource);
-          }
-          if (assessment.SplitReceiver != SplitReason::None)
-          {
-            request(i, assessment.SplitReceiver);
-          }
-        });
-      pairTests.fetch_add(localPairs, std::memory_order_relaxed);
-      limited.fetch_add(localLimited, std::memory_order_relaxed);
-    };
-
-    // Receivers in batches, so progress is reported (and abort honoured) from this thread.
-    for (size_t first = 0; first < count; first += BatchSize)
-    {
-      const size_t batch = std::min(BatchSize, count - first);
-      parallelFor(batch,
-        [&](size_t begin, size_t end)
-        {
-          for (size_t k = begin; k < end; ++k)
-          {
-            examineReceiver(first + k);
-          }
-        });
-      // The prediction can be low: the budget also holds while the sweep runs.
-      this->CheckCost(static_cast<double>(pairTests.load()), "has made");
-      if (progress &&
-        !progress(
-          std::min(1.0, (this->Stats.Sweeps + double(first + batch) / count) / expectedSweeps)))
-      {
-        return false;
-      }
-    }
-    this->Stats.PairTests += pairTests.load();
-    testedShare = candidates > 0.0 ? static_cast<double>(pairTests.load()) / candidates : 1.0;
-    this->Stats.LimitedPairs += limited.load();
+    this->Stats.PairTests += pairTests;
+    testedShare = candidates > 0.0 ? static_cast<double>(pairTests) / candidates : 1.0;
+    this->Stats.LimitedPairs += limited;
     ++this->Stats.Sweeps;
 
     this->CheckBudget(requested);
-    std::vector<int> nextLeaves;
-    std::vector<bool> nextIsNew;
-    for (size_t k = 0; k < count; ++k)
-    {
-      const int reason = requested[k].load();
-      if (reason == INT_MAX)
-      {
-        nextLeaves.push_back(this->Leaves[k]);
-        nextIsNew.push_back(false);
-        continue;
-      }
-      const int firstChild = static_cast<int>(this->Nodes.size());
-      this->Split(this->Leaves[k], static_cast<SplitReason>(reason));
-      this->NodeBytes += 3 * BytesOfPatch(this->Nodes.back().Geometry);
-      ++this->Stats.Splits[static_cast<size_t>(reason)];
-      for (int c = 0; c < 3; ++c)
-      {
-        nextLeaves.push_back(firstChild + c);
-        nextIsNew.push_back(true);
-      }
-    }
-    const bool splitAny = nextLeaves.size() != count;
-    this->Leaves = std::move(nextLeaves);
-    this->LeafIsNew = std::move(nextIsNew);
-    if (!splitAny)
+    if (!this->ApplySplits(requested))
     {
       break;
     }
@@ -247,6 +251,80 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
     progress(1.0);
   }
   return true;
+}
+
+bool IntervalSubdivision::ExaminePairs(std::vector<std::atomic<int>>& requested,
+  std::size_t& pairTests,
+  std::size_t& limited,
+  const ProgressCallback& progress,
+  const ParallelFor& parallelFor) const
+{
+  const size_t count = this->Leaves.size();
+  // Sweeps needed is unknown in advance; every sweep deepens by at most one level.
+  const double expectedSweeps = this->Settings.MaxLevel + 1.0;
+  std::vector<PatchView> views;
+  views.reserve(count);
+  for (int node : this->Leaves)
+  {
+    views.push_back(this->ViewOfPatch(this->Nodes[static_cast<size_t>(node)]));
+  }
+  SweepExamination sweep(
+    std::move(views), this->Nodes, this->Leaves, this->LeafIsNew, this->Settings, requested);
+
+  // Receivers in batches, so progress is reported (and abort honoured) from this thread.
+  for (size_t first = 0; first < count; first += BatchSize)
+  {
+    const size_t batch = std::min(BatchSize, count - first);
+    parallelFor(batch,
+      [&](size_t begin, size_t end)
+      {
+        for (size_t k = begin; k < end; ++k)
+        {
+          sweep.ExamineReceiver(first + k);
+        }
+      });
+    // The prediction can be low: the budget also holds while the sweep runs.
+    this->CheckCost(static_cast<double>(sweep.PairTests()), "has made");
+    if (progress &&
+      !progress(
+        std::min(1.0, (this->Stats.Sweeps + double(first + batch) / count) / expectedSweeps)))
+    {
+      return false;
+    }
+  }
+  pairTests = sweep.PairTests();
+  limited = sweep.LimitedPairs();
+  return true;
+}
+
+bool IntervalSubdivision::ApplySplits(const std::vector<std::atomic<int>>& requested)
+{
+  const size_t count = this->Leaves.size();
+  std::vector<int> nextLeaves;
+  std::vector<bool> nextIsNew;
+  for (size_t k = 0; k < count; ++k)
+  {
+    const int reason = requested[k].load();
+    if (reason == INT_MAX)
+    {
+      nextLeaves.push_back(this->Leaves[k]);
+      nextIsNew.push_back(false);
+      continue;
+    }
+    const int firstChild = static_cast<int>(this->Nodes.size());
+    this->Split(this->Leaves[k], static_cast<SplitReason>(reason));
+    this->NodeBytes += 3 * BytesOfPatch(this->Nodes.back().Geometry);
+    ++this->Stats.Splits[static_cast<size_t>(reason)];
+    for (int c = 0; c < 3; ++c)
+    {
+      nextLeaves.push_back(firstChild + c);
+      nextIsNew.push_back(true);
+    }
+  }
+  const bool splitAny = nextLeaves.size() != count;
+  this->Leaves = std::move(nextLeaves);
+  this->LeafIsNew = std::move(nextIsNew);
+  return splitAny;
 }
 
 void IntervalSubdivision::CheckCost(double sweepPairTests, const char* verb) const

@@ -88,6 +88,15 @@ public:
 private:
   /// Splits a patch in three along u or v (whichever direction is longer in 3-D).
   void Split(int node, SplitReason reason);
+  /// One sweep's pair tests (paper §4.3 Step 2): fills `requested` (INT_MAX: no split) and the
+  /// pairs tested and left by the limits; false if `progress` asked to abort.
+  bool ExaminePairs(std::vector<std::atomic<int>>& requested,
+    std::size_t& pairTests,
+    std::size_t& limited,
+    const ProgressCallback& progress,
+    const ParallelFor& parallelFor) const;
+  /// Splits the requested leaves and makes the next patch list; false if nothing was split.
+  bool ApplySplits(const std::vector<std::atomic<int>>& requested);
   /// Throws std::length_error when the requested splits would exceed the budget.
   void CheckBudget(const std::vector<std::atomic<int>>& requested) const;
   /// Throws std::length_error when the pair tests so far plus `sweepPairTests` (predicted or
