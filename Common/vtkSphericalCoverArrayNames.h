@@ -94,7 +94,7 @@ constexpr const char* Shooter = "Shooter";
 constexpr const char* MaxChange = "MaxChange";
 constexpr const char* UnshotEnergy = "UnshotEnergy";
 constexpr const char* Seconds = "Seconds";
-/// Field data, named components: Shots, Seconds (of the propagation).
+/// Field data, named component: Shots (of the propagation).
 constexpr const char* PropagationStatistics = "PropagationStatistics";
 /// Field data, the figures of the solution (Core's SolutionFigures), one tuple per entry of
 /// SurfaceNames: area (m^2), area-weighted mean irradiance (3) and exitant radiance (3), and

@@ -26,7 +26,6 @@
 
 #include <glm/geometric.hpp>
 
-#include <chrono>
 #include <exception>
 #include <sstream>
 #include <string>
@@ -252,7 +251,6 @@ bool Propagate(vtkLightPropagationFilter* self,
 /// regions' IncidentRadiance, the EnergyBalance and the PropagationStatistics.
 void WriteIllumination(const sphcover::LightPropagation& propagation,
   int shots,
-  double elapsed,
   vtkPolyData* output)
 {
   const vtkIdType count = output->GetNumberOfPoints();
@@ -285,11 +283,11 @@ void WriteIllumination(const sphcover::LightPropagation& propagation,
   balance->SetTuple(0, &energy.Emitted[0]);
   balance->SetTuple(1, &energy.Absorbed[0]);
   output->GetFieldData()->AddArray(balance);
-  auto statistics = vtkNamedArrays::Double(names::PropagationStatistics, 2, 1);
+  // No time here: a saved solution is the same file for the same input (the seconds per shot
+  // are in the History, output 1, which is not part of a solution).
+  auto statistics = vtkNamedArrays::Double(names::PropagationStatistics, 1, 1);
   statistics->SetComponentName(0, "Shots");
-  statistics->SetComponentName(1, "Seconds");
   statistics->SetComponent(0, 0, static_cast<double>(shots));
-  statistics->SetComponent(0, 1, elapsed);
   output->GetFieldData()->AddArray(statistics);
 }
 
@@ -399,18 +397,15 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
 
   try
   {
-    const auto start = std::chrono::steady_clock::now();
     sphcover::LightPropagation propagation(cover, materials);
     if (!Propagate(this, cover, input, propagation))
     {
       return 0;
     }
     this->Shots = static_cast<int>(propagation.History().size());
-    const double elapsed =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     output->ShallowCopy(input);
-    WriteIllumination(propagation, this->Shots, elapsed, output);
+    WriteIllumination(propagation, this->Shots, output);
     if (named)
     {
       const std::string figuresProblem = StoreFigures(cover, output);

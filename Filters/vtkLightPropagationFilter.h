@@ -25,7 +25,7 @@
  * angle, i.e. (k_d + k_s) int E cos dw for phong) and, in field data,
  * `IncidentRadiance` (3 per entry of the cover: the incident radiance of every region h_ij,
  * in the cover's entry order), `EnergyBalance` (emitted, absorbed W per band),
- * `PropagationStatistics` (Shots, Seconds) and the solution's figures (Core's
+ * `PropagationStatistics` (Shots) and the solution's figures (Core's
  * SolutionFigures, what `sphcover solve --report` prints): `SolutionStatistics`
  * (CharacteristicPoints, Strips, RelativeImbalance) and, per entry of `SurfaceNames`,
  * `SurfaceArea`, `SurfaceMeanIrradiance` (3), `SurfaceMeanExitantRadiance` (3, of Radiosity)

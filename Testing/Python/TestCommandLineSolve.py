@@ -212,6 +212,24 @@ if mixed:
                                    for v in s["mean_exitant_radiance"] + s["mean_irradiance"]):
         failures.append(f"mixed box: surfaces {sorted(names)} or their radiance wrong")
 
+# Deterministic results: the same scene solved on one thread and on two writes the same solution
+# files, byte for byte (no time, no thread count, no address in them).
+runs = []
+for threads in ("1", "2"):
+    target = os.path.join(folder, f"threads{threads}", "solution.vtm")
+    os.makedirs(os.path.dirname(target))
+    if solve(perpendicular_file, "--threads", threads, "-o", target):
+        runs.append(os.path.dirname(target))
+if len(runs) == 2:
+    listing = [sorted(os.path.relpath(os.path.join(d, f), run) for d, _, files in os.walk(run)
+                      for f in files if not f.endswith(".json")) for run in runs]
+    if listing[0] != listing[1] or not listing[0]:
+        failures.append(f"the solutions on 1 and 2 threads hold different files: {listing}")
+    for name in listing[0]:
+        with open(os.path.join(runs[0], name), "rb") as one, open(os.path.join(runs[1], name), "rb") as two:
+            if one.read() != two.read():
+                failures.append(f"the solutions on 1 and 2 threads differ in {name}")
+
 bad = subprocess.run([sphcover, "solve", f"{data}/../Testing/Data/bad/unknown_material.scene", "--report",
                       os.path.join(folder, "bad.json")], capture_output=True, text=True, timeout=60)
 if bad.returncode == 0 or len(bad.stderr.strip().splitlines()) != 1 or os.path.exists(os.path.join(folder, "bad.json")):
