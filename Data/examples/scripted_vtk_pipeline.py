@@ -100,8 +100,8 @@ class Stage:
 reader = vtkPatchSceneReader()
 reader.SetFileName(os.path.join(arguments.data, "scenes", arguments.scene + ".scene"))
 
-# The subdivision stops splitting a patch that would project to about one cell of the
-# hemisphere grid (Documentation/Pipeline.md#interval-subdivision), so it is given the cover's grid too.
+# The subdivision stops splitting a patch that would project to about one cell of the hemisphere
+# grid (Documentation/Pipeline.md#interval-subdivision), so it is given the cover's grid too.
 subdivision = vtkIntervalSubdivisionFilter()
 subdivision.SetInputConnection(reader.GetOutputPort())
 subdivision.SetMaxLevel(arguments.max_level)

@@ -92,8 +92,8 @@ mesh.LookupTable = GetColorTransferFunction("SurfaceNameId")
 mesh.LookupTable.ApplyPreset("Jet", True)
 mesh.SetScalarBarVisibility(view, False)
 
-# The scene's own camera (field data CameraParameters, Documentation/Pipeline.md#reader), set after the first render
-# (which resets the camera to show everything).
+# The scene's own camera (field data CameraParameters, Documentation/Pipeline.md#reader), set after
+# the first render (which resets the camera to show everything).
 Render(view)
 camera = servermanager.Fetch(scene).GetFieldData().GetArray("CameraParameters").GetTuple(0)
 view.CameraPosition = camera[0:3]

@@ -146,10 +146,11 @@ if perpendicular:
         failures.append(f"ParaView does not open the solution ({expected} expected): "
                         f"{opened.stdout.strip()} {opened.stderr.strip()[-300:]}")
 
-# Howell C-41, coaxial parallel disks (Documentation/Verification.md#correctness-references): curved-boundary patches with a collapsed edge
-# (Data/models/unit_disk.bpt, four cubic quarter-disks). The shipped scene (radii 1 and 0.5 at
-# 0.8) and equal disks at a distance of their radius, written beside it; radii and separation
-# read from the scene's transforms (the model is the unit disk).
+# Howell C-41, coaxial parallel disks (Documentation/Verification.md#correctness-references):
+# curved-boundary patches with a collapsed edge (Data/models/unit_disk.bpt, four cubic
+# quarter-disks). The shipped scene (radii 1 and 0.5 at 0.8) and equal disks at a distance of their
+# radius, written beside it; radii and separation read from the scene's transforms (the model is the
+# unit disk).
 disks_file = f"{data}/scenes/howell_disks.scene"
 disks_scene = json.load(open(disks_file))
 equal = json.loads(json.dumps(disks_scene))
@@ -169,8 +170,9 @@ for label, scene_file, scene in [("disks", disks_file, disks_scene), ("equal dis
     check_pair(report, f"{label} r_A={r_a} r_B={r_b} at {separation}", "C-41",
                f_disks(r_a, r_b, separation), f_disks(r_b, r_a, separation))
 
-# White furnace (Documentation/Verification.md#correctness-references): every surface's mean exitant radiance is Le / (1 - rho), and the
-# closed box absorbs what it emits; material values read from the scene.
+# White furnace (Documentation/Verification.md#correctness-references): every surface's mean exitant
+# radiance is Le / (1 - rho), and the closed box absorbs what it emits; material values read from
+# the scene.
 furnace_file = f"{data}/scenes/furnace_box.scene"
 furnace = solve(furnace_file)
 if furnace:
@@ -199,10 +201,10 @@ if closed:
     check_energy("closed Cornell box", closed, 1e-3)
 
 # A closed scene of all four reflectance kinds (mirror, phong, tabulated, diffuse) around an
-# occluding cube. It solves (its tabulated material is first used after others that sort after
-# it: the filters must keep the reader's material ids), every surface's radiance is finite and
-# >= 0, and emitted = absorbed within 1%: directional shots conserve energy only up to the
-# cover's discretisation error (0.41% here, Core/propagation/LightPropagation.h), far below what a lost or
+# occluding cube. It solves (its tabulated material is first used after others that sort after it:
+# the filters must keep the reader's material ids), every surface's radiance is finite and >= 0, and
+# emitted = absorbed within 1%: directional shots conserve energy only up to the cover's
+# discretisation error (0.41% here, Documentation/notes/propagation.md), far below what a lost or
 # doubled bounce would show.
 mixed = solve(f"{data}/scenes/mixed_box.scene", "--set", "theta_bins=16", "--set", "phi_bins=64")
 if mixed:

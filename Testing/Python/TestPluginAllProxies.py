@@ -285,8 +285,9 @@ def check_propagation():
 
 def check_hemisphere():
     check_port_names(hemisphere, ["Hemisphere Image", "Hemisphere Mesh"])
-    # Documentation/Pipeline.md#inspection-filters also names Radiance, which comes with the incident radiance per cell (see
-    # vtkHemisphereExtractor.h); the geometric arrays are checked here.
+    # Documentation/Pipeline.md#inspection-filters also names Radiance, which comes with the
+    # incident radiance per cell (see vtkHemisphereExtractor.h); the geometric arrays are checked
+    # here.
     cells = {"Source": 1, "SurfaceId": 1, "R": 1, "ProjectedSolidAngle": 1}
     image = check_output("HemisphereExtractor Hemisphere Image", output(hemisphere, 0),
                          "vtkImageData", cell=cells)
