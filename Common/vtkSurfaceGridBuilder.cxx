@@ -2,6 +2,7 @@
 #include "vtkSurfaceGridBuilder.h"
 
 #include "vtkNamedArrays.h"
+#include "vtkSceneSettingsArray.h"
 #include "vtkSphericalCoverArrayNames.h"
 
 #include "geometry/BezierPatch.h"
@@ -253,17 +254,7 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   fd->AddArray(cameraNames);
   fd->AddArray(cameraParameters);
 
-  auto settings = vtkNamedArrays::Double(names::SceneSettings, 4, 1);
-  settings->SetComponentName(0, "theta_bins");
-  settings->SetComponentName(1, "phi_bins");
-  settings->SetComponentName(2, "max_level");
-  settings->SetComponentName(3, "tolerance");
-  const double settingValues[4] = { double(scene.Settings.ThetaBins),
-    double(scene.Settings.PhiBins),
-    double(scene.Settings.MaxLevel),
-    scene.Settings.Tolerance };
-  settings->SetTuple(0, settingValues);
-  fd->AddArray(settings);
+  fd->AddArray(vtkSceneSettingsArray::New(scene.Settings));
 
   auto sourceFile = vtkNamedArrays::String(names::SourceFile, 1);
   sourceFile->SetValue(0, scene.SourceFile);

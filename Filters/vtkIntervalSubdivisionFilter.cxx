@@ -4,6 +4,7 @@
 #include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkScenePieces.h"
+#include "vtkSceneSettingsArray.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
@@ -33,22 +34,6 @@ namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
-/// The settings block of the scene the input was read from (its field data `SceneSettings`),
-/// or the scene file's defaults.
-sphcover::SceneSettings SceneSettingsOf(vtkDataObject* input)
-{
-  sphcover::SceneSettings settings;
-  vtkDataArray* values = input->GetFieldData()->GetArray(names::SceneSettings);
-  if (values && values->GetNumberOfComponents() == 4 && values->GetNumberOfTuples() == 1)
-  {
-    settings.ThetaBins = static_cast<int>(values->GetComponent(0, 0));
-    settings.PhiBins = static_cast<int>(values->GetComponent(0, 1));
-    settings.MaxLevel = static_cast<int>(values->GetComponent(0, 2));
-    settings.Tolerance = values->GetComponent(0, 3);
-  }
-  return settings;
-}
-
 /// A property's value, or the scene's where it is left at SCENE_SETTING.
 int OrScene(int property, int scene)
 {
@@ -65,7 +50,7 @@ double OrScene(double property, double scene)
 sphcover::SubdivisionSettings SubdivisionSettingsOf(vtkIntervalSubdivisionFilter* self,
   vtkDataObject* input)
 {
-  const sphcover::SceneSettings fromScene = SceneSettingsOf(input);
+  const sphcover::SceneSettings fromScene = vtkSceneSettingsArray::Read(input->GetFieldData());
   sphcover::SubdivisionSettings settings;
   settings.Method = self->GetRangeMethod() == vtkIntervalSubdivisionFilter::NATURAL_INTERVAL
     ? sphcover::RangeMethod::NaturalInterval

@@ -4,6 +4,7 @@
 #include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkScenePieces.h"
+#include "vtkSceneSettingsArray.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -42,22 +43,16 @@ namespace
 /// phi_bins, ...), else the scene file's defaults.
 void GridOf(vtkDataObject* input, int& thetaBins, int& phiBins)
 {
-  const sphcover::SceneSettings defaults;
-  thetaBins = defaults.ThetaBins;
-  phiBins = defaults.PhiBins;
   vtkFieldData* fd = input->GetFieldData();
+  const sphcover::SceneSettings scene = vtkSceneSettingsArray::Read(fd);
+  thetaBins = scene.ThetaBins;
+  phiBins = scene.PhiBins;
   vtkDataArray* subdivision = fd->GetArray(names::SubdivisionSettings);
-  vtkDataArray* scene = fd->GetArray(names::SceneSettings);
   if (subdivision && subdivision->GetNumberOfComponents() == 7 &&
     subdivision->GetNumberOfTuples() == 1)
   {
     thetaBins = static_cast<int>(subdivision->GetComponent(0, 1));
     phiBins = static_cast<int>(subdivision->GetComponent(0, 2));
-  }
-  else if (scene && scene->GetNumberOfComponents() == 4 && scene->GetNumberOfTuples() == 1)
-  {
-    thetaBins = static_cast<int>(scene->GetComponent(0, 0));
-    phiBins = static_cast<int>(scene->GetComponent(0, 1));
   }
 }
 

@@ -5,11 +5,10 @@
 #include "Options.h"
 #include "ProgressBar.h"
 
-#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSceneSettingsArray.h"
 
 #include "scene/SettingsOverride.h"
 
-#include <vtkDataArray.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkUnstructuredGrid.h>
@@ -29,16 +28,7 @@ void Run(vtkAlgorithm* algorithm, ErrorCollector& errors)
 
 sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<std::string>& sets)
 {
-  sphcover::SceneSettings settings;
-  vtkDataArray* values =
-    surfaces->GetFieldData()->GetArray(vtkSphericalCoverArrayNames::SceneSettings);
-  if (values && values->GetNumberOfComponents() == 4)
-  {
-    settings.ThetaBins = static_cast<int>(values->GetComponent(0, 0));
-    settings.PhiBins = static_cast<int>(values->GetComponent(0, 1));
-    settings.MaxLevel = static_cast<int>(values->GetComponent(0, 2));
-    settings.Tolerance = values->GetComponent(0, 3);
-  }
+  sphcover::SceneSettings settings = vtkSceneSettingsArray::Read(surfaces->GetFieldData());
   for (const std::string& assignment : sets)
   {
     settings = sphcover::OverrideSetting(settings, assignment);
@@ -61,28 +51,17 @@ void Solution::Subdivide(const Options& options)
   this->Subdivision->SetMaximumPairTests(options.MaxPairTests);
   this->Subdivision->SetMemoryLimit(options.MemoryLimit);
   // The filters take the scene's settings from the reader's field data themselves, as in
-  // ParaView and Python (one pipeline); the command line sets only what --set overrides, and
-  // the cover takes the subdivision's grid from its SubdivisionSettings.
-  const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
-  for (const std::string& assignment : options.Settings)
+  // ParaView and Python (one pipeline); with --set the command line sets the settings it makes
+  // of the scene's and the overrides, and the cover takes the subdivision's grid from its
+  // SubdivisionSettings.
+  if (!options.Settings.empty())
   {
-    const std::string key = assignment.substr(0, assignment.find('='));
-    if (key == "theta_bins")
-    {
-      this->Subdivision->SetThetaBins(settings.ThetaBins);
-    }
-    else if (key == "phi_bins")
-    {
-      this->Subdivision->SetPhiBins(settings.PhiBins);
-    }
-    else if (key == "max_level")
-    {
-      this->Subdivision->SetMaxLevel(settings.MaxLevel);
-    }
-    else if (key == "tolerance")
-    {
-      this->Subdivision->SetTolerance(settings.Tolerance);
-    }
+    const sphcover::SceneSettings settings =
+      SettingsOf(this->Reader->GetOutput(), options.Settings);
+    this->Subdivision->SetThetaBins(settings.ThetaBins);
+    this->Subdivision->SetPhiBins(settings.PhiBins);
+    this->Subdivision->SetMaxLevel(settings.MaxLevel);
+    this->Subdivision->SetTolerance(settings.Tolerance);
   }
   if (options.RangeMethod == "natural")
   {
