@@ -7,7 +7,7 @@
 // - the result does not depend on the number of threads;
 // - the refinement splits patches across enclosure boundaries, keeping the total area, and
 //   honours abort;
-// - bad inputs and a memory limit below the estimate give one clear error.
+// - bad inputs, an empty grid and a memory limit below the estimate give one clear error.
 #include "FailureExpectation.h"
 #include "TestFailures.h"
 #include "vtkIntervalSubdivisionFilter.h"
@@ -217,6 +217,12 @@ int TestSphericalCoverFilter(int, char*[])
     oversized, { "4096 x 16384", "R-buffers", "MemoryLimit" }, "an oversized grid"));
   Check(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < 5.0,
     "the oversized grid is refused at once");
+  // An empty grid (0 is no longer clamped to 1: -1, SCENE_SETTING, takes the input's grid).
+  vtkNew<vtkSphericalCoverFilter> empty;
+  empty->SetInputConnection(boxPatches->GetOutputPort(0));
+  empty->SetThetaBins(0);
+  TestFailures::Add(FailureExpectation::Check(
+    empty, { "ThetaBins and PhiBins must be >= 1", "got 0 and" }, "an empty grid"));
   vtkNew<vtkUnstructuredGrid> bare;
   bare->ShallowCopy(boxPatches->GetOutput());
   bare->GetCellData()->RemoveArray("Emission");
