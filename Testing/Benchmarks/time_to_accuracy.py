@@ -251,10 +251,19 @@ def accuracy_mode(args, folder):
             run["equal_error"] = {}
             for grid in GRIDS:
                 curve = sorted((p["cpu_s"], p["errors"][grid]) for p in results["cycles"])
-                seconds, how = equal_error_time(curve, run["at"]["256"]["errors"][grid])
-                run["equal_error"][grid] = {
-                    "cycles_cpu_s": seconds, "how": how,
-                    "ratio": run["at"]["256"]["cpu_s"] / seconds if seconds else None}
+                error = run["at"]["256"]["errors"][grid]
+                seconds, how = equal_error_time(curve, error)
+                entry = {"cycles_cpu_s": seconds, "how": how,
+                         "ratio": run["at"]["256"]["cpu_s"] / seconds if seconds else None}
+                startup = results["cycles_startup"]
+                if how == "extrapolated below" and startup:
+                    # Below the fewest samples the fixed cost stays: time = t1 + (t - t1)
+                    # (e / error)^2 with t1 the 1-spp time, more than the bare time^-1/2 law.
+                    t, e = curve[0]
+                    fixed = startup["cpu_s"] + max(t - startup["cpu_s"], 0.0) * (e / error) ** 2
+                    entry["cycles_cpu_s_fixed_cost"] = fixed
+                    entry["ratio_fixed_cost"] = run["at"]["256"]["cpu_s"] / fixed
+                run["equal_error"][grid] = entry
     return results
 
 
@@ -300,6 +309,13 @@ def accuracy_table(results):
         notes.append("time ratio = sphcover cpu s / Cycles cpu s at the same error (@256), "
                      "log-log interpolated between the Cycles points; x: extrapolated with "
                      "error ~ time^-1/2.")
+        fixed = [f"{run['label']} {grid}-block grid {e['ratio_fixed_cost']:.2f}"
+                 for run in results["runs"] for grid, e in run.get("equal_error", {}).items()
+                 if "ratio_fixed_cost" in e]
+        if fixed:
+            notes.append("below the fewest Cycles samples, keeping Blender's 1-spp time as a "
+                         "fixed cost (time = t1 + (t - t1) (e / error)^2): " + ", ".join(fixed)
+                         + "; add fewer --cycles-spp (e.g. 4) to bracket instead.")
     return "\n".join(lines) + "\n\n" + "\n".join(notes)
 
 
