@@ -131,7 +131,8 @@ nlohmann::json SolutionReport(Solution& solution)
                                    names::CoverStrips,
                                    names::CoverStripDepths }) },
     { "incident_radiance",
-      ArrayBytes(solution.Propagation->GetOutput()->GetFieldData(), { names::IncidentRadiance }) } };
+      ArrayBytes(
+        solution.Propagation->GetOutput()->GetFieldData(), { names::IncidentRadiance }) } };
   return report;
 }
 }
