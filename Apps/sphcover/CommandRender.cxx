@@ -107,6 +107,8 @@ RenderOutputs ChooseOutputs(const Options& options)
 struct RenderSource
 {
   nlohmann::json Timings;
+  /// The same stages' processor seconds (the report's `timings_cpu_s`).
+  nlohmann::json CpuTimings;
   vtkPolyData* Illumination = nullptr;
   vtkAlgorithmOutput* IlluminationPort = nullptr;
   vtkAlgorithmOutput* PatchesPort = nullptr;
@@ -130,10 +132,13 @@ void ConnectSolution(const Options& options,
     source.PatchesPort = solution.Subdivision->GetOutputPort(0);
     source.Illumination = solution.Propagation->GetOutput();
     source.Timings = solution.Timings();
+    source.CpuTimings = solution.CpuTimings();
   }
   else
   {
+    const double cpuStart = ProcessorSeconds();
     saved.Read(options, errors);
+    source.CpuTimings["read"] = ProcessorSeconds() - cpuStart;
     source.Timings["read"] = saved.ReadSeconds;
     saved.CheckFingerprint(options, solution.Reader->GetOutput());
     source.Illumination = saved.Illumination;
@@ -195,6 +200,7 @@ nlohmann::json RenderReport(const Options& options,
     report = Report(source.Illumination, counts);
   }
   report["timings_s"] = source.Timings;
+  report["timings_cpu_s"] = source.CpuTimings;
   report["image"] = { { "camera", camera.Name },
     { "width", width },
     { "height", height },
@@ -233,7 +239,9 @@ int RunRender(const Options& options)
   double renderSeconds = 0.0;
   {
     ProgressBar bar(render, "render", options.Quiet);
+    const double cpuStart = ProcessorSeconds();
     Run(render, errors);
+    source.CpuTimings["render"] = ProcessorSeconds() - cpuStart;
     renderSeconds = bar.Seconds();
   }
   source.Timings["render"] = renderSeconds;

@@ -13,6 +13,7 @@
 #include <vtkFieldData.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <ctime>
 #include <stdexcept>
 
 namespace sphcover_cli
@@ -24,6 +25,11 @@ void Run(vtkAlgorithm* algorithm, ErrorCollector& errors)
   {
     throw std::runtime_error(errors.First());
   }
+}
+
+double ProcessorSeconds()
+{
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
 sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<std::string>& sets)
@@ -40,7 +46,9 @@ void Solution::Read(const Options& options, bool progress)
 {
   this->Reader->SetFileName(options.Scene.c_str());
   ProgressBar bar(this->Reader, "read", options.Quiet || !progress);
+  const double cpuStart = ProcessorSeconds();
   Run(this->Reader, this->Errors);
+  this->ReadCpuSeconds = ProcessorSeconds() - cpuStart;
   this->ReadSeconds = bar.Seconds();
 }
 
@@ -69,7 +77,9 @@ void Solution::Subdivide(const Options& options)
   }
   {
     ProgressBar bar(this->Subdivision, "subdivide", options.Quiet);
+    const double cpuStart = ProcessorSeconds();
     Run(this->Subdivision, this->Errors);
+    this->SubdivideCpuSeconds = ProcessorSeconds() - cpuStart;
     this->SubdivideSeconds = bar.Seconds();
   }
 }
@@ -88,13 +98,17 @@ void Solution::Solve(const Options& options)
   }
   {
     ProgressBar bar(this->Cover, "cover", options.Quiet);
+    const double cpuStart = ProcessorSeconds();
     Run(this->Cover, this->Errors);
+    this->CoverCpuSeconds = ProcessorSeconds() - cpuStart;
     this->CoverSeconds = bar.Seconds();
   }
   this->Propagation->SetInputConnection(this->Cover->GetOutputPort(0));
   {
     ProgressBar bar(this->Propagation, "propagate", options.Quiet);
+    const double cpuStart = ProcessorSeconds();
     Run(this->Propagation, this->Errors);
+    this->PropagateCpuSeconds = ProcessorSeconds() - cpuStart;
     this->PropagateSeconds = bar.Seconds();
   }
 }
@@ -105,5 +119,13 @@ nlohmann::json Solution::Timings() const
     { "subdivide", this->SubdivideSeconds },
     { "cover", this->CoverSeconds },
     { "propagate", this->PropagateSeconds } };
+}
+
+nlohmann::json Solution::CpuTimings() const
+{
+  return { { "read", this->ReadCpuSeconds },
+    { "subdivide", this->SubdivideCpuSeconds },
+    { "cover", this->CoverCpuSeconds },
+    { "propagate", this->PropagateCpuSeconds } };
 }
 }

@@ -3,7 +3,8 @@
  * @file Pipeline.h
  * @brief The VTK pipeline the commands run: the reader, then the subdivision, the spherical
  * cover and the light propagation (paper §4, §3.3, §5.1), each stage with a progress bar and its
- * time; a failing stage throws its first error as one line.
+ * times (wall seconds from its first to its last progress report, and the process's processor
+ * seconds over its update, all threads); a failing stage throws its first error as one line.
  */
 #ifndef SPHCOVER_PIPELINE_H
 #define SPHCOVER_PIPELINE_H
@@ -33,6 +34,11 @@ struct Options;
 /// Updates an algorithm; on failure throws its first error as one line.
 void Run(vtkAlgorithm* algorithm, ErrorCollector& errors);
 
+/// Processor seconds the whole process has used so far, all its threads (std::clock): the
+/// difference over a stage is what the stage cost in processor time, whatever the number of
+/// threads and however loaded the machine (the report's `timings_cpu_s`).
+double ProcessorSeconds();
+
 /// The scene's settings block as the reader passed it on, with the --set overrides applied.
 sphcover::SceneSettings SettingsOf(vtkDataObject* surfaces, const std::vector<std::string>& sets);
 
@@ -48,6 +54,11 @@ struct Solution
   double SubdivideSeconds = 0.0;
   double CoverSeconds = 0.0;
   double PropagateSeconds = 0.0;
+  /// Processor seconds of each stage (ProcessorSeconds over its update).
+  double ReadCpuSeconds = 0.0;
+  double SubdivideCpuSeconds = 0.0;
+  double CoverCpuSeconds = 0.0;
+  double PropagateCpuSeconds = 0.0;
 
   /// Reads the scene (its surfaces, cameras, settings and fingerprint in field data).
   void Read(const Options& options, bool progress = true);
@@ -62,6 +73,9 @@ struct Solution
 
   /// The stages' seconds, as the report's `timings_s`.
   nlohmann::json Timings() const;
+
+  /// The stages' processor seconds, as the report's `timings_cpu_s` (same keys as Timings).
+  nlohmann::json CpuTimings() const;
 };
 }
 

@@ -11,11 +11,30 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <initializer_list>
 #include <stdexcept>
 
 namespace sphcover_cli
 {
 namespace names = vtkSphericalCoverArrayNames;
+
+namespace
+{
+/// Bytes of the values of the named arrays of `fd` that exist (0 for the others).
+unsigned long long ArrayBytes(vtkFieldData* fd, std::initializer_list<const char*> arrayNames)
+{
+  unsigned long long bytes = 0;
+  for (const char* name : arrayNames)
+  {
+    if (vtkDataArray* array = fd->GetArray(name))
+    {
+      bytes += static_cast<unsigned long long>(array->GetNumberOfValues()) *
+        static_cast<unsigned long long>(array->GetDataTypeSize());
+    }
+  }
+  return bytes;
+}
+}
 
 nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
 {
@@ -99,6 +118,21 @@ nlohmann::json SolutionReport(Solution& solution)
   counts.Shots = solution.Propagation->GetShots();
   nlohmann::json report = Report(solution.Propagation->GetOutput(), counts);
   report["timings_s"] = solution.Timings();
+  report["timings_cpu_s"] = solution.CpuTimings();
+  // What the solution holds: the cover (its strips, entries and rows, paper §3.3, stored as the
+  // cover output's field arrays) and the propagation's state of one incident radiance per
+  // region h_ij (§5.1). The stages' working memory (R-buffers, weight tables) comes and goes.
+  report["memory_bytes"] = { { "cover",
+                               ArrayBytes(solution.Cover->GetOutput()->GetFieldData(),
+                                 { names::CoverGrid,
+                                   names::CoverRowOffsets,
+                                   names::CoverEntries,
+                                   names::CoverUnoccluded,
+                                   names::CoverStrips,
+                                   names::CoverStripDepths }) },
+    { "incident_radiance",
+      ArrayBytes(
+        solution.Propagation->GetOutput()->GetFieldData(), { names::IncidentRadiance }) } };
   return report;
 }
 }

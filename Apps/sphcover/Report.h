@@ -5,7 +5,9 @@
  * area and area-weighted mean irradiance and exitant radiance, the form factors between named
  * surfaces (area-weighted over the source surface), the energy balance and the counts. The figures
  * are vtkLightPropagationFilter's (its output's field data, Core's SolutionFigures); this only
- * formats them, with the timings the commands measure (`timings_s`; render adds `image`).
+ * formats them, with the timings the commands measure (wall `timings_s` and processor
+ * `timings_cpu_s` per stage; render adds its stage and `image`) and, for a solution computed in
+ * the run, the bytes its cover and incident radiances hold (`memory_bytes`).
  */
 #ifndef SPHCOVER_REPORT_H
 #define SPHCOVER_REPORT_H

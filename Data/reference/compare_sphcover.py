@@ -28,7 +28,8 @@ error map (the RMS over the three channels of each block's relative error, in pe
 image's top row first) and `--map-exr map.exr` writes the signed per-channel block errors
 as an EXR (one pixel per block, VTK's row order, readable in ParaView).
 
-The functions are used by Testing/Python/TestCyclesReference.py.
+The functions are used by Testing/Python/TestCyclesReference.py and (read_exr, block_means,
+DARK_FRACTION) by Testing/Benchmarks/time_to_accuracy.py.
 """
 import argparse
 import math

@@ -1,6 +1,8 @@
 """`sphcover render` (README.md#command-line, paper §5.3): the Cornell box rendered to PNG through the scene's
 camera at a small size (read back by VTK: the size asked for, the lamp the brightest pixel, the
-red wall red and the green wall green); the report's timings include the render; a solution
+red wall red and the green wall green); the report's timings include the render, its stages'
+processor seconds add up to no more than the process's, and its cover holds at least the 10
+bytes per strip of its storage (Core/cover/SphericalCover.h); a solution
 saved by `sphcover solve -o` and rendered with --solution gives the identical image (the
 walk-through case: only the render runs, and its report has the same figures); the image does
 not depend on the thread count; the report's figures are those the light propagation filter
@@ -9,6 +11,7 @@ solution; bad input (a corrupted saved solution too) gives one line, a non-zero 
 output file."""
 import json
 import os
+import resource
 import subprocess
 import sys
 import tempfile
@@ -40,8 +43,11 @@ def pixels(path):
 
 first = os.path.join(folder, "first.png")
 report_file = os.path.join(folder, "report.json")
+before = resource.getrusage(resource.RUSAGE_CHILDREN)
 result = run("render", scene, "-o", first, "--size", "64x48", "--report", report_file, "--quiet",
              *coarse)
+after = resource.getrusage(resource.RUSAGE_CHILDREN)
+process_cpu = (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime)
 if result.returncode != 0:
     failures.append(f"render failed: {result.stderr.strip()}")
 else:
@@ -64,6 +70,22 @@ else:
     for key in ["read", "subdivide", "cover", "propagate", "render"]:
         if not timings.get(key, -1) >= 0:
             failures.append(f"report timings_s lacks {key}")
+    cpu = report.get("timings_cpu_s", {})
+    for key in ["read", "subdivide", "cover", "propagate", "render"]:
+        if not cpu.get(key, -1) >= 0:
+            failures.append(f"report timings_cpu_s lacks {key}")
+    # Each stage's processor seconds are a part of the process's (the kernel's accounting of
+    # the child, sampled to within a clock tick per thread).
+    stages_cpu = sum(cpu.get(key, 0) for key in ["read", "subdivide", "cover", "propagate",
+                                                  "render"])
+    if stages_cpu > 1.02 * process_cpu + 0.05:
+        failures.append(f"the stages' processor seconds {stages_cpu:.3f} exceed the process's "
+                        f"{process_cpu:.3f}")
+    strips = report.get("counts", {}).get("strips", 0)
+    cover_bytes = report.get("memory_bytes", {}).get("cover", 0)
+    if not strips > 0 or cover_bytes < 10 * strips:
+        failures.append(f"memory_bytes.cover {cover_bytes} is less than 10 bytes for each of the "
+                        f"{strips} strips")
     if len(report.get("surfaces", [])) != 16:
         failures.append("the report lacks the 16 surfaces")
 

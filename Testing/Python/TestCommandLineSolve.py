@@ -78,7 +78,8 @@ expected = f_parallel(a, b, c)
 
 report = solve(scene_file)
 if report:
-    for key in ["surfaces", "form_factors", "counts", "timings_s"]:
+    for key in ["surfaces", "form_factors", "counts", "timings_s", "timings_cpu_s",
+                "memory_bytes"]:
         if key not in report:
             failures.append(f"report lacks {key}")
     # Equal rectangles: F_BA = F_AB.
