@@ -6,6 +6,7 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 
+#include "render/BuriedPoints.h"
 #include "render/RadianceRenderer.h"
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
@@ -224,6 +225,17 @@ int vtkIlluminationField::RequestData(vtkInformation*,
                        "two inputs do not come from one solution.");
       return 0;
     }
+  }
+
+  try
+  {
+    // As the render does (vtkRadianceImageFilter): no point takes after a buried one.
+    lit.Interpolator.SetExcludedPoints(sphcover::BuriedPoints(lit.Interpolator, patches));
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro(<< "Cannot build the illumination field: " << e.what());
+    return 0;
   }
 
   const int n = this->Resolution;

@@ -187,6 +187,7 @@ int DistinctPoints(const std::vector<UVRect>& domains,
 /// `count` points and completes them with the surface's centres nearest to P's (cu, cv) until
 /// three are not collinear; returns the new count.
 int CompleteWithNearestPoints(const std::vector<UVRect>& domains,
+  const std::vector<bool>& excluded,
   const std::vector<std::size_t>& surfacePoints,
   double cu,
   double cv,
@@ -197,6 +198,10 @@ int CompleteWithNearestPoints(const std::vector<UVRect>& domains,
   std::vector<std::pair<double, size_t>> byDistance;
   for (size_t k : surfacePoints)
   {
+    if (!excluded.empty() && excluded[k])
+    {
+      continue;
+    }
     const UVRect& d = domains[k];
     const double du = d.CenterU() - cu;
     const double dv = d.CenterV() - cv;
@@ -272,6 +277,7 @@ CharacteristicPointInterpolator::CharacteristicPointInterpolator(
   const std::vector<int>& surfaceOfPoint,
   const std::vector<UVRect>& domainOfPoint)
   : Domains(domainOfPoint)
+  , PointSurfaces(surfaceOfPoint)
 {
   if (surfaceOfPoint.size() != domainOfPoint.size())
   {
@@ -341,6 +347,35 @@ CharacteristicPointInterpolator::CharacteristicPointInterpolator(
       layout.BucketOffsets.push_back(layout.BucketPoints.size());
     }
   }
+}
+
+void CharacteristicPointInterpolator::SetExcludedPoints(std::vector<bool> excluded)
+{
+  if (!excluded.empty() && excluded.size() != this->Domains.size())
+  {
+    throw std::invalid_argument("CharacteristicPointInterpolator: " +
+      std::to_string(excluded.size()) + " exclusion flags for " +
+      std::to_string(this->Domains.size()) + " points");
+  }
+  this->Excluded = std::move(excluded);
+}
+
+std::ptrdiff_t CharacteristicPointInterpolator::NearestKept(const SurfaceLayout& layout,
+  double u,
+  double v) const
+{
+  std::ptrdiff_t nearest = -1;
+  double nearestDistance = std::numeric_limits<double>::infinity();
+  for (size_t p : layout.Points)
+  {
+    const double d = DistanceSquared(this->Domains[p], u, v);
+    if (!this->IsExcluded(p) && d < nearestDistance)
+    {
+      nearestDistance = d;
+      nearest = static_cast<std::ptrdiff_t>(p);
+    }
+  }
+  return nearest;
 }
 
 bool CharacteristicPointInterpolator::HasPoints(int surface) const
@@ -440,16 +475,30 @@ bool CharacteristicPointInterpolator::Stencil(int surface,
   InterpolationStencil& stencil) const
 {
   stencil = InterpolationStencil();
-  const std::ptrdiff_t found = this->ContainingPoint(surface, u, v);
+  std::ptrdiff_t found = this->ContainingPoint(surface, u, v);
   if (found < 0)
   {
     return false;
   }
   const SurfaceLayout& layout = this->Surfaces[static_cast<size_t>(surface)];
+  if (this->IsExcluded(static_cast<size_t>(found)))
+  {
+    const std::ptrdiff_t kept =
+      this->NearestKept(layout, std::clamp(u, 0.0, 1.0), std::clamp(v, 0.0, 1.0));
+    found = kept >= 0 ? kept : found;
+  }
   const UVRect& r = this->Domains[static_cast<size_t>(found)];
 
-  // Step 2 of the file comment: c, X, D, Y, then the distinct points in that order.
-  const std::array<std::ptrdiff_t, 4> corners = this->QuadrantCorners(layout, found, u, v);
+  // Step 2 of the file comment: c, X, D, Y, then the distinct points in that order; excluded
+  // neighbours count as none.
+  std::array<std::ptrdiff_t, 4> corners = this->QuadrantCorners(layout, found, u, v);
+  for (size_t k = 1; k < corners.size(); ++k)
+  {
+    if (corners[k] >= 0 && this->IsExcluded(static_cast<size_t>(corners[k])))
+    {
+      corners[k] = -1;
+    }
+  }
   std::array<glm::dvec2, 4> q;
   int count = DistinctPoints(this->Domains, corners, stencil, q);
   stencil.Count = count;
@@ -466,7 +515,7 @@ bool CharacteristicPointInterpolator::Stencil(int surface,
   if (count < 3 || !PlaneWeights(q.data(), std::min(count, 3), x, weights))
   {
     count = CompleteWithNearestPoints(
-      this->Domains, layout.Points, r.CenterU(), r.CenterV(), count, stencil, q);
+      this->Domains, this->Excluded, layout.Points, r.CenterU(), r.CenterV(), count, stencil, q);
     stencil.Count = count;
   }
   if (count == 3 && PlaneWeights(q.data(), count, x, weights))

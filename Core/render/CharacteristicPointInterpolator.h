@@ -35,6 +35,12 @@
  * sets: the jump is bounded by the field's second differences over the larger patch (zero for
  * linear fields).
  *
+ * Excluded points (SetExcludedPoints: the buried points of BuriedPoints.h, whose value is not
+ * characteristic of the visible surface around them) take part in no stencil: a neighbour that
+ * is excluded counts as no neighbour (so the value is extrapolated from the other side, or
+ * fitted by the plane or line through the points left), and a (u, v) in an excluded point's
+ * patch is interpolated around the nearest point that is kept instead.
+ *
  * Extrapolated weights can be negative; the renderer clamps interpolated radiance at zero.
  * Complexity: building O(points) (per surface a bucket grid of about one patch per bucket); a
  * query visits the patches of a few buckets, O(1) on a uniform layout.
@@ -81,6 +87,17 @@ public:
   std::size_t SurfaceCount() const { return this->Surfaces.size(); }
   /// Whether the surface has characteristic points.
   bool HasPoints(int surface) const;
+  /// The surface of a point and its patch's parametric rectangle (its centre is the point).
+  int SurfaceOf(std::size_t point) const { return this->PointSurfaces[point]; }
+  const UVRect& Domain(std::size_t point) const { return this->Domains[point]; }
+
+  /// Points left out of every stencil (see the file comment), one flag per point; an empty
+  /// vector excludes none. Throws std::invalid_argument for another size.
+  void SetExcludedPoints(std::vector<bool> excluded);
+  bool IsExcluded(std::size_t point) const
+  {
+    return !this->Excluded.empty() && this->Excluded[point];
+  }
 
   /// The point whose patch contains (u, v) on `surface` (the nearest patch if rounding leaves a
   /// gap); -1 when the surface has no points. (u, v) is clamped to [0,1]^2.
@@ -112,8 +129,13 @@ private:
     double u,
     double v) const;
 
+  /// The kept point of the layout whose rectangle is nearest (u, v); -1 when none is kept.
+  std::ptrdiff_t NearestKept(const SurfaceLayout& layout, double u, double v) const;
+
   std::vector<UVRect> Domains;
+  std::vector<int> PointSurfaces;
   std::vector<SurfaceLayout> Surfaces;
+  std::vector<bool> Excluded;
 };
 
 } // namespace sphcover

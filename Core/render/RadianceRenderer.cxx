@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "render/RadianceRenderer.h"
 
+#include "render/BuriedPoints.h"
+
 #include "math/Constants.h"
 
 #include "cover/HemisphereGrid.h"
@@ -219,6 +221,9 @@ RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
       " characteristic points");
   }
   this->Caster = std::make_unique<RayCaster>(RayCastPatches(this->Patches), RayCasterOptions());
+  // Buried points stand for no visible surface (BuriedPoints.h): no pixel takes after them.
+  this->Interpolator.SetExcludedPoints(
+    BuriedPoints(this->Interpolator, this->Patches, *this->Caster));
 }
 
 RadianceRenderer::~RadianceRenderer() = default;

@@ -241,3 +241,38 @@ TEST(CharacteristicPointInterpolator, LocatesContainingPatchAndRefusesBadInput)
   EXPECT_THROW(CharacteristicPointInterpolator({ 0 }, { UVRect{ 0.5, 0.5, 0.0, 1.0 } }),
     std::invalid_argument);
 }
+
+TEST(CharacteristicPointInterpolator, ExcludedPointsTakePartInNoStencil)
+{
+  // A 9 x 9 partition whose middle 3 x 3 points are excluded (the floor under a block): every
+  // stencil leaves them out, and the kept points' linear field is still reproduced everywhere,
+  // next to the excluded block and inside it.
+  Layout layout;
+  AddUniform(layout, 0, 9, 9);
+  CharacteristicPointInterpolator interpolator(layout.Surface, layout.Domain);
+  std::vector<bool> excluded(layout.Domain.size(), false);
+  for (size_t p = 0; p < layout.Domain.size(); ++p)
+  {
+    const UVRect& r = layout.Domain[p];
+    excluded[p] = r.CenterU() > 1.0 / 3.0 && r.CenterU() < 2.0 / 3.0 && r.CenterV() > 1.0 / 3.0 &&
+      r.CenterV() < 2.0 / 3.0;
+  }
+  interpolator.SetExcludedPoints(excluded);
+  const auto field = [](double u, double v) { return 1.5 + 2.0 * u - 3.0 * v; };
+  for (const auto& [u, v] : QueryPoints(11))
+  {
+    InterpolationStencil stencil;
+    ASSERT_TRUE(interpolator.Stencil(0, u, v, stencil));
+    for (int k = 0; k < stencil.Count; ++k)
+    {
+      EXPECT_FALSE(excluded[stencil.Points[static_cast<size_t>(k)]])
+        << "(" << u << ", " << v << ") uses an excluded point";
+    }
+    EXPECT_NEAR(Interpolate(interpolator, layout, 0, u, v, field), field(u, v), 1e-11)
+      << "(" << u << ", " << v << ")";
+  }
+  // One flag per point, or none.
+  EXPECT_THROW(interpolator.SetExcludedPoints(std::vector<bool>(3, true)), std::invalid_argument);
+  interpolator.SetExcludedPoints({});
+  EXPECT_FALSE(interpolator.IsExcluded(40));
+}
