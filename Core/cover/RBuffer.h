@@ -10,7 +10,11 @@
  *  - samples: the fine grid of HemisphereGrid sample directions (SamplesTheta x SamplesPhi per
  *    cell). A fill (RBufferFiller: projection or ray casting) writes, per sample, the nearest
  *    front-facing source along the sample ray and, where it knows it, the exact distance R and
- *    whether the ray meets that surface at a grazing angle;
+ *    whether the ray meets that surface at a grazing angle. With the ray fill's
+ *    AdaptiveSampling the samples of a uniform cell (its centre and its 8 neighbours' centres
+ *    show one surface, or nothing) are copies of its centre sample, not rays of their own
+ *    (RayCastFill.h): the samples then estimate coverage at sample resolution only in the
+ *    cells next to a change of surface, and at cell-centre resolution elsewhere;
  *  - cells: Classify() gives every cell by coverage, in two rounds of plurality votes over its
  *    samples: first the group (the surface of the source patch; uncovered samples are a group
  *    of their own), then one patch of the winning group. With DiffuseRounding the vote carries
@@ -94,6 +98,12 @@ struct RBufferFillOptions
   /// Off: the plain plurality vote, cell by cell (exactly reciprocal in symmetric
   /// configurations, the cells of CountSelfVisibility on and off complementary).
   bool DiffuseRounding = false;
+  /// Ray fill: cast every cell's centre sample, then the other samples only of the cells whose
+  /// centre and 8 neighbouring centres do not all show one surface (or all nothing); the
+  /// others are copies of the centre (see the file comment and RayCastFill.h): 22 % of the
+  /// rays on the Cornell box at its settings (Documentation/notes/ray-casting.md). Off: every
+  /// sample is a ray, as before. The projection fill ignores it.
+  bool AdaptiveSampling = true;
 };
 
 class RBuffer

@@ -12,9 +12,26 @@
  * receiver's own patch nearer than SelfExclusionFraction * Size() (all of them when
  * CountSelfVisibility is off) are P_i itself. A back side that occludes leaves its sample empty.
  * A sample is grazing when the exact normal at the hit's (u, v) meets the ray with
- * |cos| < GrazingCosine. With RefineHits, R is refined on the exact patch (RayCaster::Refine)
- * for the cells' representative samples only, when Classify asks for it; without, R is the
- * tessellation's. Fill() is O(samples x log triangles) and may run from several threads.
+ * |cos| < GrazingCosine (a planar patch's normal is its plane's: evaluated only near the
+ * threshold). With RefineHits, R is refined on the exact patch (RayCaster::Refine) for the
+ * cells' representative samples only, when Classify asks for it; without, R is the
+ * tessellation's.
+ *
+ * AdaptiveSampling (the default): first the centre sample of every cell
+ * (HemisphereGrid::SamplesFromCentre()[0]), cells in row-major order. A cell is uniform when its
+ * centre and the centres of its 8 neighbours (phi wraps around; rows 0 and ThetaBins-1 have
+ * no row beyond them) show front sides of one surface (Patch::SurfaceIndex, the vote's first
+ * round), or are all empty. A uniform cell's other samples are not cast: each is written as
+ * its centre (same source and grazing flag, R NaN); every other cell's are cast, cells in
+ * row-major order. A uniform cell's representative sample is its centre, so its R is the
+ * centre's, exact. What the full sampling would see and this does not: a source (or a gap)
+ * that meets no centre sample within a 3 x 3 block of cells, i.e. smaller than about a cell,
+ * and within one surface a patch boundary inside a uniform cell (the cell goes to the patch
+ * at its centre, not to the plurality of its samples). Without AdaptiveSampling every sample is
+ * cast, in row-major sample order, as before. Either way the result depends on the receiver
+ * only, never on the thread that fills it. Fill() is O(samples x log triangles) (adaptive:
+ * O((cells + samples of the cells at boundaries) x log triangles)) and may run from several
+ * threads.
  */
 #ifndef SPHCOVER_RAYCASTFILL_H
 #define SPHCOVER_RAYCASTFILL_H
@@ -22,6 +39,8 @@
 #include "cover/RBuffer.h"
 #include "geometry/RayCaster.h"
 
+#include <atomic>
+#include <cstdint>
 #include <vector>
 
 namespace sphcover
@@ -50,16 +69,46 @@ public:
   /// The tessellation the samples are cast against.
   const RayCaster& Caster() const { return this->Rays; }
 
+  /// Sample rays cast by all Fill() calls so far (a statistic: with AdaptiveSampling fewer
+  /// than Fill() calls x SampleCount(); the same for any number of threads).
+  std::uint64_t RaysCast() const;
+
 private:
+  /// One hemisphere's casting: frame, filter, the buffer and the hits' parameters per sample.
+  struct SampleCast
+  {
+    const HemisphereFrame& Frame;
+    RayFilter Filter;
+    RBuffer& Buffer;
+    double* U;
+    double* V;
+    float* T;
+  };
+
   /// Casts the samples of `receiver`'s hemisphere into `buffer` (sources, grazing flags, the
-  /// tessellation's depths) and keeps the hits' (u, v, t) for the refinement in Classify.
-  void CastSamples(std::size_t receiver, const HemisphereFrame& frame, RBuffer& buffer) const;
+  /// tessellation's depths), all of them or adaptively, and keeps the hits' (u, v, t) for the
+  /// refinement in Classify. Returns the number of rays cast.
+  std::size_t CastSamples(std::size_t receiver,
+    const HemisphereFrame& frame,
+    RBuffer& buffer) const;
+  /// Casts one sample and writes it; returns the source it shows (NoSource when empty).
+  int32_t CastSample(const SampleCast& cast, int row, int column) const;
+  /// Writes a front-side hit into sample `sample`.
+  void StoreHit(const SampleCast& cast,
+    std::size_t sample,
+    const TriangleHit& hit,
+    const glm::dvec3& direction) const;
+  /// Whether the unit `direction` meets the exact patch at the hit with |cos| < GrazingCosine.
+  bool IsGrazing(const TriangleHit& hit, const glm::dvec3& direction) const;
 
   const std::vector<Patch>& Patches;
   const HemisphereGrid& Grid;
   RBufferFillOptions Options;
   std::vector<int32_t> SurfaceOfPatch;
+  /// Per patch: the unit normal of its plane when it is planar, else zero (IsGrazing).
+  std::vector<glm::dvec3> PlaneNormals;
   RayCaster Rays;
+  mutable std::atomic<std::uint64_t> RayCount{ 0 };
 };
 
 } // namespace sphcover

@@ -7,7 +7,8 @@
  * program, never by timed tests).
  *
  *   BenchmarkSphericalCover [--threads N] [--splits 1,2,3,4,6] [--scene path.scene]
- *   BenchmarkSphericalCover --pipeline [--scene path.scene]...
+ *   BenchmarkSphericalCover --pipeline [--scene path.scene]... [--variants
+ * projection,rays,adaptive]
  *
  * Prints, per resolution and fill: patches N, rows, entries (non-null h_ij), strips, bytes
  * (and the estimate made before building), seconds, cells per second, the candidate culling
@@ -16,10 +17,13 @@
  * --pipeline (the figures of the closing note of issue 4): per scene (default the Cornell box
  * and the teapot room) the patches of the real pipeline at the scene's settings (interval
  * subdivision, then the receiver-side refinement that vtkSphericalCoverFilter applies by
- * default, 3 levels deeper), then for 1 and 2 threads and each fill: N, strips, bytes (and
- * bytes per strip), seconds; and Embree's raw ray throughput on this machine for the same
- * number of rays (N x samples per hemisphere, from the characteristic points along the sample
- * directions, no classification), so the cover's cost reads as a ratio to that limit.
+ * default, 3 levels deeper); Embree's raw ray throughput on this machine with 1 and 2 threads
+ * (rtcIntersect1 along every sample direction of every hemisphere, no filter predicate, no
+ * classification); then for each variant (projection fill; ray fill casting every sample; ray
+ * fill with AdaptiveSampling) and 1 and 2 threads: N, strips, bytes (and bytes per strip),
+ * seconds, and for the ray fills the rays actually cast per hemisphere (mean), the seconds raw
+ * Embree takes for that many rays at its measured rate, and the cover's seconds over those, so
+ * the cover's cost reads as a ratio to that limit in the same run.
  */
 #include "cover/CoverRefinement.h"
 #include "cover/HemisphereGrid.h"
@@ -130,7 +134,37 @@ std::vector<Patch> PipelinePatches(const Scene& scene)
   return refine.Patches();
 }
 
-void RunPipeline(const std::string& scenePath)
+/// The rays a ray fill casts over all of `patches`' hemispheres (thread-independent) and the
+/// seconds of the fill alone (no strips extracted), on `threads` threads.
+std::uint64_t CountFillRays(const std::vector<Patch>& patches,
+  const HemisphereGrid& grid,
+  const RBufferFillOptions& fillOptions,
+  int threads,
+  double& seconds)
+{
+  const RayCastFiller filler(patches, grid, fillOptions);
+  const auto start = std::chrono::steady_clock::now();
+  ThreadPoolFor(threads)(patches.size(),
+    [&](std::size_t begin, std::size_t end)
+    {
+      RBuffer buffer(grid);
+      for (std::size_t i = begin; i < end; ++i)
+      {
+        filler.Fill(i, buffer, nullptr);
+      }
+    });
+  seconds = SecondsSince(start);
+  return filler.RaysCast();
+}
+
+/// One variant of the cover for RunPipeline.
+struct PipelineVariant
+{
+  RBufferFill Fill;
+  bool Adaptive;
+};
+
+void RunPipeline(const std::string& scenePath, const std::vector<PipelineVariant>& variants)
 {
   const Scene scene = LoadSceneFile(scenePath);
   const std::vector<Patch> patches = PipelinePatches(scene);
@@ -140,7 +174,7 @@ void RunPipeline(const std::string& scenePath)
   const HemisphereGrid grid(
     options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
   std::printf("scene %s: N = %zu characteristic points, grid %d x %d, %d x %d samples per "
-              "cell, %zu rays per hemisphere\n",
+              "cell, %zu sample directions per hemisphere\n",
     scenePath.c_str(),
     patches.size(),
     options.ThetaBins,
@@ -148,36 +182,11 @@ void RunPipeline(const std::string& scenePath)
     options.SamplesTheta,
     options.SamplesPhi,
     grid.SampleCount());
-  std::printf("  %-10s %7s %6s %10s %12s %8s %9s\n",
-    "fill",
-    "threads",
-    "N",
-    "strips",
-    "bytes",
-    "B/strip",
-    "seconds");
-  for (const RBufferFill fill : { RBufferFill::Projection, RBufferFill::RayCasting })
-  {
-    for (const int threads : { 1, 2 })
-    {
-      options.Fill = fill;
-      SphericalCover cover;
-      const auto start = std::chrono::steady_clock::now();
-      cover.Build(patches, options, ThreadPoolFor(threads));
-      const double seconds = SecondsSince(start);
-      std::printf("  %-10s %7d %6zu %10zu %12zu %8zu %9.2f\n",
-        RBufferFillName(fill),
-        threads,
-        patches.size(),
-        cover.StripCount(),
-        cover.MemoryBytes(),
-        SphericalCover::BytesPerStrip,
-        seconds);
-      std::fflush(stdout);
-    }
-  }
-  // Embree's limit: the same rays (every sample direction of every hemisphere), first hit only.
+
+  // Embree's limit: every sample direction of every hemisphere, first hit only, rtcIntersect1;
+  // its rate converts the rays a fill casts into the seconds raw Embree takes for as many.
   const RayCaster rays(RayCastPatches(patches), RayCastOptions(options.FillOptions));
+  double rawRate[3] = { 0.0, 0.0, 0.0 };
   for (const int threads : { 1, 2 })
   {
     std::atomic<unsigned long long> hits{ 0 };
@@ -210,14 +219,62 @@ void RunPipeline(const std::string& scenePath)
       });
     const double seconds = SecondsSince(start);
     const double count = static_cast<double>(patches.size()) * grid.SampleCount();
-    std::printf("  raw Embree %7d %6zu rays %.3e in %.2f s: %.3e rays/s (%llu hits)\n",
+    rawRate[threads] = count / seconds;
+    std::printf("  raw Embree, %d thread(s): %.3e rays in %.2f s: %.3e rays/s (%llu hits)\n",
       threads,
-      patches.size(),
       count,
       seconds,
       count / seconds,
       static_cast<unsigned long long>(hits));
     std::fflush(stdout);
+  }
+
+  std::printf("  %-10s %8s %7s %6s %10s %12s %8s %9s %11s %9s %9s\n",
+    "fill",
+    "adaptive",
+    "threads",
+    "N",
+    "strips",
+    "bytes",
+    "B/strip",
+    "seconds",
+    "rays/hemi",
+    "raw s",
+    "s/raw s");
+  for (const PipelineVariant& variant : variants)
+  {
+    options.Fill = variant.Fill;
+    options.FillOptions.AdaptiveSampling = variant.Adaptive;
+    const bool rayFill = variant.Fill == RBufferFill::RayCasting;
+    // The rays this fill casts (the same for any number of threads).
+    double fillSeconds = 0.0;
+    const double raysCast = rayFill
+      ? static_cast<double>(CountFillRays(patches, grid, options.FillOptions, 2, fillSeconds))
+      : 0.0;
+    for (const int threads : { 1, 2 })
+    {
+      SphericalCover cover;
+      const auto start = std::chrono::steady_clock::now();
+      cover.Build(patches, options, ThreadPoolFor(threads));
+      const double seconds = SecondsSince(start);
+      std::printf("  %-10s %8s %7d %6zu %10zu %12zu %8zu %9.2f",
+        RBufferFillName(variant.Fill),
+        rayFill ? (variant.Adaptive ? "on" : "off") : "-",
+        threads,
+        patches.size(),
+        cover.StripCount(),
+        cover.MemoryBytes(),
+        SphericalCover::BytesPerStrip,
+        seconds);
+      if (rayFill)
+      {
+        // Raw Embree's seconds for as many rays as the fill cast, at this thread count.
+        const double raw = raysCast / rawRate[threads];
+        std::printf(" %11.0f %9.2f %9.2f", raysCast / patches.size(), raw, seconds / raw);
+      }
+      std::printf("\n");
+      std::fflush(stdout);
+    }
   }
 }
 
@@ -227,6 +284,9 @@ int Run(int argc, char** argv)
 {
   bool pipeline = false;
   std::vector<std::string> pipelineScenes;
+  std::vector<PipelineVariant> variants{ { RBufferFill::Projection, false },
+    { RBufferFill::RayCasting, false },
+    { RBufferFill::RayCasting, true } };
   int threads = 1;
   std::vector<int> splits{ 1, 2, 3, 4, 6 };
   std::string scenePath = std::string(SPHCOVER_DATA_DIR) + "/scenes/cornell_box.scene";
@@ -261,11 +321,34 @@ int Run(int argc, char** argv)
     {
       pipeline = true;
     }
+    else if (arg == "--variants" && k + 1 < argc)
+    {
+      // projection, rays (every sample cast), adaptive (RBufferFillOptions::AdaptiveSampling)
+      variants.clear();
+      std::stringstream list(argv[++k]);
+      std::string item;
+      while (std::getline(list, item, ','))
+      {
+        if (item == "projection")
+        {
+          variants.push_back({ RBufferFill::Projection, false });
+        }
+        else if (item == "rays" || item == "adaptive")
+        {
+          variants.push_back({ RBufferFill::RayCasting, item == "adaptive" });
+        }
+        else
+        {
+          std::fprintf(stderr, "unknown variant %s\n", item.c_str());
+          return 2;
+        }
+      }
+    }
     else
     {
       std::fprintf(stderr,
         "usage: %s [--threads N] [--splits 1,2,3] [--scene file.scene]\n"
-        "       %s --pipeline [--scene file.scene]...\n",
+        "       %s --pipeline [--scene file.scene]... [--variants projection,rays,adaptive]\n",
         argv[0],
         argv[0]);
       return 2;
@@ -280,7 +363,7 @@ int Run(int argc, char** argv)
     }
     for (const std::string& path : pipelineScenes)
     {
-      RunPipeline(path);
+      RunPipeline(path, variants);
     }
     return 0;
   }
