@@ -104,6 +104,9 @@ struct RBufferFillOptions
   /// rays on the Cornell box at its settings (Documentation/notes/ray-casting.md). Off: every
   /// sample is a ray, as before. The projection fill ignores it.
   bool AdaptiveSampling = true;
+  /// Ray fill with AdaptiveSampling: cast the rays 16 at a time as Embree packets
+  /// (RayCaster::IntersectPacket, in the same order) instead of one by one.
+  bool RayPackets = true;
 };
 
 class RBuffer

@@ -239,12 +239,21 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   const int centreB = centre % samplesPhi;
   std::vector<int32_t>& key = scratch.CellKey;
   key.resize(static_cast<size_t>(grid.CellCount()));
+  PendingRays pending;
   for (int row = 0; row < rows; ++row)
   {
     for (int column = 0; column < columns; ++column)
     {
-      const int32_t source =
-        this->CastSample(cast, row * samplesTheta + centreA, column * samplesPhi + centreB);
+      this->Queue(cast, pending, row * samplesTheta + centreA, column * samplesPhi + centreB);
+    }
+  }
+  this->Flush(cast, pending);
+  for (int row = 0; row < rows; ++row)
+  {
+    for (int column = 0; column < columns; ++column)
+    {
+      const int32_t source = buffer.SampleSource(
+        grid.SampleIndex(row * samplesTheta + centreA, column * samplesPhi + centreB));
       key[static_cast<size_t>(grid.CellIndex(row, column))] =
         source == RBuffer::NoSource ? -1 : this->SurfaceOfPatch[static_cast<size_t>(source)];
     }
@@ -286,7 +295,7 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
           const int sampleColumn = column * samplesPhi + b;
           if (!uniform)
           {
-            this->CastSample(cast, sampleRow, sampleColumn);
+            this->Queue(cast, pending, sampleRow, sampleColumn);
             ++castCount;
             continue;
           }
@@ -309,7 +318,48 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
       }
     }
   }
+  this->Flush(cast, pending);
   return castCount;
+}
+
+void RayCastFiller::Queue(const SampleCast& cast, PendingRays& pending, int row, int column) const
+{
+  if (!this->Options.RayPackets)
+  {
+    this->CastSample(cast, row, column);
+    return;
+  }
+  pending.Row[pending.Count] = row;
+  pending.Column[pending.Count] = column;
+  pending.Direction[pending.Count] = cast.Frame.ToWorld(this->Grid.SampleDirection(row, column));
+  if (++pending.Count == RayCaster::PacketSize)
+  {
+    this->Flush(cast, pending);
+  }
+}
+
+void RayCastFiller::Flush(const SampleCast& cast, PendingRays& pending) const
+{
+  if (pending.Count == 0)
+  {
+    return;
+  }
+  TriangleHit hits[RayCaster::PacketSize];
+  bool found[RayCaster::PacketSize];
+  this->Rays.IntersectPacket(
+    cast.Frame.Origin, pending.Direction, pending.Count, 0.0f, cast.Filter, hits, found);
+  for (int k = 0; k < pending.Count; ++k)
+  {
+    // A back side hides what is behind it: the sample stays empty.
+    if (found[k] && hits[k].FrontSide)
+    {
+      this->StoreHit(cast,
+        this->Grid.SampleIndex(pending.Row[k], pending.Column[k]),
+        hits[k],
+        pending.Direction[k]);
+    }
+  }
+  pending.Count = 0;
 }
 
 void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistics*) const

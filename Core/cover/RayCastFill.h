@@ -6,8 +6,8 @@
  * patches, and the first front side hit is mapped back to its patch.
  *
  * Rays: origin P_i (a vertex of its own patch's tessellation, so a ray never starts inside one
- * of its triangles), the sample directions of HemisphereGrid in world coordinates, cast in
- * row-major sample order. A hit filter implements the visibility semantics of RBuffer.h: back
+ * of its triangles), the sample directions of HemisphereGrid in world coordinates, in the
+ * order given below. A hit filter implements the visibility semantics of RBuffer.h: back
  * sides are skipped (traversal goes on behind them) unless BackFacesOcclude, and hits on the
  * receiver's own patch nearer than SelfExclusionFraction * Size() (all of them when
  * CountSelfVisibility is off) are P_i itself. A back side that occludes leaves its sample empty.
@@ -23,7 +23,10 @@
  * no row beyond them) show front sides of one surface (Patch::SurfaceIndex, the vote's first
  * round), or are all empty. A uniform cell's other samples are not cast: each is written as
  * its centre (same source and grazing flag, R NaN); every other cell's are cast, cells in
- * row-major order. A uniform cell's representative sample is its centre, so its R is the
+ * row-major order; with RayPackets the rays of both passes go in that order 16 at a time
+ * through RayCaster::IntersectPacket (the same hits as one by one on every sample compared,
+ * Testing/Core/TestAdaptiveSampling.cxx). A uniform cell's representative sample is its centre,
+ * so its R is the
  * centre's, exact. What the full sampling would see and this does not: a source (or a gap)
  * that meets no centre sample within a 3 x 3 block of cells, i.e. smaller than about a cell,
  * and within one surface a patch boundary inside a uniform cell (the cell goes to the patch
@@ -91,6 +94,18 @@ private:
   std::size_t CastSamples(std::size_t receiver,
     const HemisphereFrame& frame,
     RBuffer& buffer) const;
+  /// Samples waiting to be cast as one packet (RayPackets).
+  struct PendingRays
+  {
+    int Count = 0;
+    int Row[RayCaster::PacketSize];
+    int Column[RayCaster::PacketSize];
+    glm::dvec3 Direction[RayCaster::PacketSize];
+  };
+  /// Casts a sample now (without RayPackets) or queues it, casting the queue when it is full.
+  void Queue(const SampleCast& cast, PendingRays& pending, int row, int column) const;
+  /// Casts the queued samples as one packet and writes them.
+  void Flush(const SampleCast& cast, PendingRays& pending) const;
   /// Casts one sample and writes it; returns the source it shows (NoSource when empty).
   int32_t CastSample(const SampleCast& cast, int row, int column) const;
   /// Writes a front-side hit into sample `sample`.

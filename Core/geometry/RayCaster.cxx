@@ -396,6 +396,66 @@ bool RayCaster::Intersect(const glm::dvec3& origin,
   return true;
 }
 
+void RayCaster::IntersectPacket(const glm::dvec3& origin,
+  const glm::dvec3* directions,
+  int count,
+  float tNear,
+  const RayFilter& filter,
+  TriangleHit* hits,
+  bool* found) const
+{
+  const Implementation& impl = *this->Impl;
+  FilterContext context;
+  rtcInitIntersectContext(&context.Context);
+  context.Context.filter = FilterHit;
+  context.Context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  context.Filter = filter;
+  alignas(64) int valid[PacketSize];
+  alignas(64) RTCRayHit16 packet;
+  const float ox = static_cast<float>(origin.x);
+  const float oy = static_cast<float>(origin.y);
+  const float oz = static_cast<float>(origin.z);
+  for (int k = 0; k < PacketSize; ++k)
+  {
+    const bool active = k < count;
+    valid[k] = active ? -1 : 0;
+    // Inactive lanes get a copy of the first ray: finite data, never traced.
+    const glm::dvec3& direction = directions[active ? k : 0];
+    packet.ray.org_x[k] = ox;
+    packet.ray.org_y[k] = oy;
+    packet.ray.org_z[k] = oz;
+    packet.ray.dir_x[k] = static_cast<float>(direction.x);
+    packet.ray.dir_y[k] = static_cast<float>(direction.y);
+    packet.ray.dir_z[k] = static_cast<float>(direction.z);
+    packet.ray.tnear[k] = tNear;
+    packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
+    packet.ray.time[k] = 0.0f;
+    packet.ray.mask[k] = 0xFFFFFFFFu;
+    packet.ray.id[k] = static_cast<unsigned int>(k);
+    packet.ray.flags[k] = 0;
+    packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, impl.Scene, &context.Context, &packet);
+  for (int k = 0; k < count; ++k)
+  {
+    found[k] = packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+    if (!found[k])
+    {
+      continue;
+    }
+    TriangleHit& hit = hits[k];
+    hit.Patch = packet.hit.geomID[k];
+    impl.HitParameters(
+      hit.Patch, packet.hit.primID[k], packet.hit.u[k], packet.hit.v[k], hit.U, hit.V);
+    hit.Distance = packet.ray.tfar[k];
+    hit.FrontSide = packet.hit.Ng_x[k] * packet.ray.dir_x[k] +
+        packet.hit.Ng_y[k] * packet.ray.dir_y[k] + packet.hit.Ng_z[k] * packet.ray.dir_z[k] <
+      0.0f;
+    hit.TriangleNormal = glm::dvec3(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
+  }
+}
+
 bool RayCaster::Refine(std::size_t patch,
   const glm::dvec3& origin,
   const glm::dvec3& direction,

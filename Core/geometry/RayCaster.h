@@ -11,7 +11,8 @@
  * from the second-derivative bound of the control net so that the triangles deviate from the
  * patch by at most TessellationTolerance * Size(). One Embree scene, geometry id = patch index,
  * robust mode (no ray slips through a shared edge), BVH built in one thread; queries call
- * rtcIntersect1 and may run from many threads at once. Rays are single precision.
+ * rtcIntersect1 (IntersectPacket: rtcIntersect16) and may run from many threads at once. Rays
+ * are single precision.
  *
  * Intersect() reports the nearest hit a RayFilter accepts (a plain function pointer and
  * context, called per candidate hit during traversal: no allocation per ray); CastRay() and
@@ -112,6 +113,23 @@ public:
     const RayFilter& filter,
     bool coherent,
     TriangleHit& hit) const;
+
+  /// Largest number of rays of one IntersectPacket call.
+  static constexpr int PacketSize = 16;
+
+  /**
+   * Intersect() for `count` <= PacketSize rays from one origin at once (one Embree packet,
+   * rtcIntersect16, the same filter): found[k] tells whether ray k hit, hits[k] its hit. The
+   * hits are those of Intersect() up to the packet kernel's rounding (the same triangle but for
+   * rays through an edge or a vertex); the same rays give the same hits.
+   */
+  void IntersectPacket(const glm::dvec3& origin,
+    const glm::dvec3* directions,
+    int count,
+    float tNear,
+    const RayFilter& filter,
+    TriangleHit* hits,
+    bool* found) const;
 
   /**
    * Newton's method on the exact patch from the guess (u, v, t); the result replaces it only

@@ -20,10 +20,10 @@
  * default, 3 levels deeper); Embree's raw ray throughput on this machine with 1 and 2 threads
  * (rtcIntersect1 along every sample direction of every hemisphere, no filter predicate, no
  * classification); then for each variant (projection fill; ray fill casting every sample; ray
- * fill with AdaptiveSampling) and 1 and 2 threads: N, strips, bytes (and bytes per strip),
- * seconds, and for the ray fills the rays actually cast per hemisphere (mean), the seconds raw
- * Embree takes for that many rays at its measured rate, and the cover's seconds over those, so
- * the cover's cost reads as a ratio to that limit in the same run.
+ * fill with AdaptiveSampling, rays one by one and as packets) and 1 and 2 threads: N, strips, bytes
+ * (and bytes per strip), seconds, and for the ray fills the rays actually cast per hemisphere
+ * (mean), the seconds raw Embree takes for that many rays at its measured rate, and the cover's
+ * seconds over those, so the cover's cost reads as a ratio to that limit in the same run.
  */
 #include "cover/CoverRefinement.h"
 #include "cover/HemisphereGrid.h"
@@ -162,6 +162,7 @@ struct PipelineVariant
 {
   RBufferFill Fill;
   bool Adaptive;
+  bool Packets = true;
 };
 
 void RunPipeline(const std::string& scenePath, const std::vector<PipelineVariant>& variants)
@@ -245,6 +246,7 @@ void RunPipeline(const std::string& scenePath, const std::vector<PipelineVariant
   {
     options.Fill = variant.Fill;
     options.FillOptions.AdaptiveSampling = variant.Adaptive;
+    options.FillOptions.RayPackets = variant.Packets;
     const bool rayFill = variant.Fill == RBufferFill::RayCasting;
     // The rays this fill casts (the same for any number of threads).
     double fillSeconds = 0.0;
@@ -259,7 +261,7 @@ void RunPipeline(const std::string& scenePath, const std::vector<PipelineVariant
       const double seconds = SecondsSince(start);
       std::printf("  %-10s %8s %7d %6zu %10zu %12zu %8zu %9.2f",
         RBufferFillName(variant.Fill),
-        rayFill ? (variant.Adaptive ? "on" : "off") : "-",
+        rayFill ? (variant.Adaptive ? (variant.Packets ? "packets" : "single") : "off") : "-",
         threads,
         patches.size(),
         cover.StripCount(),
@@ -286,6 +288,7 @@ int Run(int argc, char** argv)
   std::vector<std::string> pipelineScenes;
   std::vector<PipelineVariant> variants{ { RBufferFill::Projection, false },
     { RBufferFill::RayCasting, false },
+    { RBufferFill::RayCasting, true, false },
     { RBufferFill::RayCasting, true } };
   int threads = 1;
   std::vector<int> splits{ 1, 2, 3, 4, 6 };
@@ -323,7 +326,8 @@ int Run(int argc, char** argv)
     }
     else if (arg == "--variants" && k + 1 < argc)
     {
-      // projection, rays (every sample cast), adaptive (RBufferFillOptions::AdaptiveSampling)
+      // projection, rays (every sample cast), adaptive (RBufferFillOptions::AdaptiveSampling),
+      // adaptive-single (the same without RayPackets: rtcIntersect1 per ray)
       variants.clear();
       std::stringstream list(argv[++k]);
       std::string item;
@@ -337,6 +341,10 @@ int Run(int argc, char** argv)
         {
           variants.push_back({ RBufferFill::RayCasting, item == "adaptive" });
         }
+        else if (item == "adaptive-single")
+        {
+          variants.push_back({ RBufferFill::RayCasting, true, false });
+        }
         else
         {
           std::fprintf(stderr, "unknown variant %s\n", item.c_str());
@@ -348,7 +356,8 @@ int Run(int argc, char** argv)
     {
       std::fprintf(stderr,
         "usage: %s [--threads N] [--splits 1,2,3] [--scene file.scene]\n"
-        "       %s --pipeline [--scene file.scene]... [--variants projection,rays,adaptive]\n",
+        "       %s --pipeline [--scene file.scene]... [--variants "
+        "projection,rays,adaptive-single,adaptive]\n",
         argv[0],
         argv[0]);
       return 2;
