@@ -95,8 +95,9 @@ public:
   ///@}
 
   ///@{
-  /** How the R-buffer is filled: PROJECTION (the paper's) or RAY_CASTING (Embree). Default
-   * is PROJECTION. */
+  /** How the R-buffer is filled: PROJECTION (the paper's) or RAY_CASTING (Embree, with
+   * adaptive sampling: the same error on the Cornell box at about a third of the cover's
+   * time, Documentation/notes/time-to-accuracy.md). Default is RAY_CASTING. */
   vtkSetClampMacro(FillMethod, int, PROJECTION, RAY_CASTING);
   vtkGetMacro(FillMethod, int);
   void SetFillMethodToProjection() { this->SetFillMethod(PROJECTION); }
@@ -167,7 +168,7 @@ protected:
   int ThetaBins = SCENE_SETTING;
   int PhiBins = SCENE_SETTING;
   int SamplesPerCell = 3;
-  int FillMethod = PROJECTION;
+  int FillMethod = RAY_CASTING;
   bool BackFacesOcclude = true;
   double MemoryLimit = 8192.0;
   int Refinement = REFINEMENT_ENCLOSURES;

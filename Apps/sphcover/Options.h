@@ -18,7 +18,7 @@ struct Options
   std::string Output;
   std::string RangeMethod = "bernstein";
   std::string Report;
-  std::string Fill = "projection";
+  std::string Fill = "raycasting";
   std::vector<std::string> Settings;
   std::string Png;
   std::string Camera;

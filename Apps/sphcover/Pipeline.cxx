@@ -92,9 +92,9 @@ void Solution::Solve(const Options& options)
   this->Cover->SetMemoryLimit(options.MemoryLimit);
   this->Propagation->SetMemoryLimit(options.MemoryLimit);
   this->Cover->SetInputConnection(this->Subdivision->GetOutputPort(0));
-  if (options.Fill == "raycasting")
+  if (options.Fill == "projection")
   {
-    this->Cover->SetFillMethodToRayCasting();
+    this->Cover->SetFillMethodToProjection();
   }
   {
     ProgressBar bar(this->Cover, "cover", options.Quiet);

@@ -85,7 +85,7 @@ int main(int argc, char** argv)
   solve->add_option("SCENE", options.Scene, "A .scene or .bpt file")->required();
   solve->add_option("-o,--output", options.Output, "Solution file (.vtm): patches and cover");
   solve->add_option("--report", options.Report, "Report file (.json)");
-  solve->add_option("--fill", options.Fill, "R-buffer fill: projection (default) or raycasting")
+  solve->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
     ->check(CLI::IsMember({ "projection", "raycasting" }));
   solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
@@ -118,7 +118,7 @@ int main(int argc, char** argv)
     options.SolutionFile,
     "A solution written by `sphcover solve -o` (.vtm): only render, no solving");
   render->add_option("--report", options.Report, "Report file (.json), with timings_s.render");
-  render->add_option("--fill", options.Fill, "R-buffer fill: projection (default) or raycasting")
+  render->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
     ->check(CLI::IsMember({ "projection", "raycasting" }));
   render->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
