@@ -4,6 +4,7 @@
 #include "cover/RayCastFill.h"
 #include "geometry/RayCaster.h"
 #include "math/Constants.h"
+#include "math/RadicalInverse.h"
 #include "subdivision/Patch.h"
 
 #include <glm/geometric.hpp>
@@ -16,21 +17,6 @@ namespace sphcover
 
 namespace
 {
-/// The base-2 radical inverse of k: the second coordinate of Hammersley's set.
-double RadicalInverse(unsigned k)
-{
-  double result = 0.0;
-  double digit = 0.5;
-  for (; k != 0; k >>= 1, digit *= 0.5)
-  {
-    if (k & 1u)
-    {
-      result += digit;
-    }
-  }
-  return result;
-}
-
 /// Whether most rays from (surface, u, v) of patch `patch` first meet back sides.
 bool IsBuried(const Patch& patch, double u, double v, const RayCaster& caster)
 {

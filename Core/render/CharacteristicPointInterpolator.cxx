@@ -353,9 +353,9 @@ void CharacteristicPointInterpolator::SetExcludedPoints(std::vector<bool> exclud
 {
   if (!excluded.empty() && excluded.size() != this->Domains.size())
   {
-    throw std::invalid_argument("CharacteristicPointInterpolator: " +
-      std::to_string(excluded.size()) + " exclusion flags for " +
-      std::to_string(this->Domains.size()) + " points");
+    throw std::invalid_argument(
+      "CharacteristicPointInterpolator: " + std::to_string(excluded.size()) +
+      " exclusion flags for " + std::to_string(this->Domains.size()) + " points");
   }
   this->Excluded = std::move(excluded);
 }

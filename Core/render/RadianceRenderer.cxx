@@ -4,6 +4,7 @@
 #include "render/BuriedPoints.h"
 
 #include "math/Constants.h"
+#include "math/RadicalInverse.h"
 
 #include "cover/HemisphereGrid.h"
 #include "cover/RayCastFill.h"
@@ -26,21 +27,6 @@ namespace
 bool Finite(const glm::dvec3& v)
 {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-/// The base-2 radical inverse of k (van der Corput): the second coordinate of Hammersley's set.
-double RadicalInverse(unsigned k)
-{
-  double result = 0.0;
-  double digit = 0.5;
-  for (; k != 0; k >>= 1, digit *= 0.5)
-  {
-    if (k & 1u)
-    {
-      result += digit;
-    }
-  }
-  return result;
 }
 
 /// The camera's frame: the unit view direction and the right and up vectors scaled to the half

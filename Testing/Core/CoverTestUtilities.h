@@ -222,6 +222,25 @@ inline double HowellPerpendicular(double l, double w, double h)
     (W * std::atan(1 / W) + H * std::atan(1 / H) - s * std::atan(1 / s) + 0.25 * logTerm);
 }
 
+/// The index of the scene's surface called `name` (-1: none).
+inline int SurfaceNamed(const sphcover::Scene& scene, const std::string& name)
+{
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    if (scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[s].NameIndex)] == name)
+    {
+      return static_cast<int>(s);
+    }
+  }
+  return -1;
+}
+
+/// The corners of a planar bilinear patch as a polygon, in the order of its boundary.
+inline std::vector<glm::dvec3> CornerPolygon(const sphcover::BezierPatch& patch)
+{
+  return { patch.Evaluate(0, 0), patch.Evaluate(1, 0), patch.Evaluate(1, 1), patch.Evaluate(0, 1) };
+}
+
 /**
  * Lambert's formula: the projected solid angle of a planar polygon (vertices in order, wholly
  * on or above the tangent plane) seen from point p with unit normal n is

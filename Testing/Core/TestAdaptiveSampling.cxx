@@ -215,20 +215,10 @@ TEST(AdaptiveSampling, CornellLampFromTheFloorCorners)
   // block hides part of it against Lambert's contour integral, from the floor patches at the
   // four corners (the tall block hides the lamp from one of them).
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
-  int lamp = -1;
-  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
-  {
-    if (scene.SurfaceNames[static_cast<size_t>(scene.Surfaces[s].NameIndex)] == "light")
-    {
-      lamp = static_cast<int>(s);
-    }
-  }
+  const int lamp = SurfaceNamed(scene, "light");
   ASSERT_GE(lamp, 0);
   const BezierPatch& lampPatch = scene.Surfaces[static_cast<size_t>(lamp)].Patch;
-  const std::vector<glm::dvec3> polygon = { lampPatch.Evaluate(0, 0),
-    lampPatch.Evaluate(1, 0),
-    lampPatch.Evaluate(1, 1),
-    lampPatch.Evaluate(0, 1) };
+  const std::vector<glm::dvec3> polygon = CornerPolygon(lampPatch);
   const int split = 15;
   std::vector<Patch> patches;
   for (size_t s = 0; s < scene.Surfaces.size(); ++s)
