@@ -58,7 +58,9 @@ void CheckWindowSize(long long width, long long height, vtkIdType maximumPixels)
   {
     throw std::runtime_error("the data window is empty");
   }
-  if (width * height > maximumPixels)
+  // width > M / height is width * height > M for positive integers, without the product,
+  // which overflows for two 2^32-wide extents of a crafted header.
+  if (width > maximumPixels / height)
   {
     std::ostringstream problem;
     problem << "the data window (" << width << " x " << height << " pixels) exceeds the limit of "

@@ -245,6 +245,19 @@ int TestOpenEXRBadInput(int, char*[])
       "channel list shorter than declared");
   }
 
+  // Testing/Data/bad/fuzz/exr_window_product_overflow.exr (FuzzOpenEXRReader, UBSan): a data
+  // window of about 2.8e9 x 4.1e9 pixels, whose pixel count overflows a 64-bit product; refused
+  // by the pixel limit without forming it.
+  {
+    const std::string file =
+      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_window_product_overflow.exr";
+    vtkNew<vtkOpenEXRReader> reader;
+    CheckReaderFails(reader,
+      file,
+      { "Cannot read OpenEXR file", file, "exceeds the limit", "MaximumPixels" },
+      "data window whose pixel count overflows");
+  }
+
   // Testing/Data/bad/fuzz/exr_window_exceeds_memory.exr: the writer's 8 x 6 file with its data
   // window changed to 2^22 x 32 pixels (within MaximumPixels; 1.5 GiB for Radiance alone),
   // read under an address-space limit 768 MiB above the current size. The failed allocation
