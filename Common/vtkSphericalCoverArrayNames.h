@@ -69,6 +69,7 @@ constexpr const char* CoverEntries = "CoverEntries";
 constexpr const char* CoverUnoccluded = "CoverUnoccluded";
 constexpr const char* CoverStrips = "CoverStrips";
 constexpr const char* CoverStripDepths = "CoverStripDepths";
+constexpr const char* CoverMeasures = "CoverMeasures";
 constexpr const char* Receiver = "Receiver";
 constexpr const char* Source = "Source";
 constexpr const char* Theta = "Theta";

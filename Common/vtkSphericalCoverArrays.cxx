@@ -86,6 +86,11 @@ void vtkSphericalCoverArrays::Store(const sphcover::SphericalCover& cover, vtkDa
     names::CoverStrips, 3, arrays.Strips.data(), arrays.Strips.size()));
   fd->AddArray(RawArray<vtkFloatArray>(
     names::CoverStripDepths, 1, arrays.StripDepths.data(), arrays.StripDepths.size()));
+  if (!arrays.Measures.empty())
+  {
+    fd->AddArray(RawArray<vtkFloatArray>(
+      names::CoverMeasures, 1, arrays.Measures.data(), arrays.Measures.size()));
+  }
 }
 
 std::string vtkSphericalCoverArrays::Load(vtkDataSet* input, sphcover::SphericalCover& cover)
@@ -111,6 +116,13 @@ std::string vtkSphericalCoverArrays::Load(vtkDataSet* input, sphcover::Spherical
     !ReadRaw<vtkFloatArray>(fd, names::CoverStripDepths, 1, arrays.StripDepths))
   {
     return "the cover's field arrays are missing or of the wrong type";
+  }
+  // Measured regions (SphericalCover.h) are optional: without them, the cells' measures.
+  if (fd->GetAbstractArray(names::CoverMeasures) &&
+    !ReadRaw<vtkFloatArray>(fd, names::CoverMeasures, 1, arrays.Measures))
+  {
+    return "the cover's field array " + std::string(names::CoverMeasures) +
+      " is not a float array of one component";
   }
   arrays.Areas.resize(static_cast<size_t>(area->GetNumberOfTuples()));
   for (vtkIdType k = 0; k < area->GetNumberOfTuples(); ++k)

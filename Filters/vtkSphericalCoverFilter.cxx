@@ -10,6 +10,7 @@
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
 
+#include "cover/BrightEmitters.h"
 #include "cover/CoverRefinement.h"
 #include "cover/HemisphereGrid.h"
 #include "cover/SphericalCover.h"
@@ -211,6 +212,25 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
     return false;
   }
   return true;
+}
+
+/// The bright emitters among the patches' surfaces (BrightEmitters.h), each patch's emission
+/// that of the input cell it was cut from.
+std::vector<bool> LampsOf(const sphcover::Scene& scene,
+  const std::vector<sphcover::Patch>& patches,
+  const std::vector<vtkIdType>& cellOfPatch)
+{
+  std::vector<glm::dvec3> emission(patches.size(), glm::dvec3(0.0));
+  for (size_t k = 0; k < patches.size(); ++k)
+  {
+    const size_t cell = static_cast<size_t>(cellOfPatch[k]);
+    const size_t material = static_cast<size_t>(scene.Surfaces[cell].MaterialIndex);
+    if (material < scene.Materials.size())
+    {
+      emission[k] = scene.Materials[material].Emission;
+    }
+  }
+  return sphcover::BrightEmitters(patches, emission);
 }
 
 /// The spherical cover of the patches (paper §3.3), reporting progress from coverStart to
@@ -474,6 +494,10 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     return 0;
   }
   const double coverStart = this->Refinement == REFINEMENT_OFF ? 0.0 : refinementShare;
+  if (this->MeasureLamps)
+  {
+    options.MeasuredSurfaces = LampsOf(scene, patches, cellOfPatch);
+  }
 
   sphcover::SphericalCover cover;
   if (!BuildCover(this, patches, options, budget, coverStart, cover))
@@ -496,6 +520,7 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FillMethod: " << (this->FillMethod == PROJECTION ? "Projection" : "RayCasting")
      << "\n";
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
+  os << indent << "MeasureLamps: " << this->MeasureLamps << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Refinement: "
      << (this->Refinement == REFINEMENT_OFF

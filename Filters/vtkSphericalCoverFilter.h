@@ -106,6 +106,19 @@ public:
 
   ///@{
   /**
+   * Measure the regions of the scene's lamps (bright emitters, Core's BrightEmitters.h) on the
+   * lamp instead of in cells (SphericalCover.h, "Measured regions"; ray casting only): each
+   * point's direct light is then integrated over the lamp with one shadow ray per node, not
+   * counted to about 10 % in cells. Off: every region is its cells' measure (the paper's).
+   * Default is on.
+   */
+  vtkSetMacro(MeasureLamps, bool);
+  vtkGetMacro(MeasureLamps, bool);
+  vtkBooleanMacro(MeasureLamps, bool);
+  ///@}
+
+  ///@{
+  /**
    * Back sides of surfaces hide what lies behind them (opaque surfaces). Off: the paper's
    * culling of back-facing patches, which makes them transparent. Default is on.
    */
@@ -170,6 +183,7 @@ protected:
   int SamplesPerCell = 3;
   int FillMethod = RAY_CASTING;
   bool BackFacesOcclude = true;
+  bool MeasureLamps = true;
   double MemoryLimit = 8192.0;
   int Refinement = REFINEMENT_ENCLOSURES;
   int RefinementLevels = 3;

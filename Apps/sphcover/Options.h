@@ -19,6 +19,8 @@ struct Options
   std::string RangeMethod = "bernstein";
   std::string Report;
   std::string Fill = "raycasting";
+  /// The cover's measure of the lamps' regions: "measured" (on the lamp) or "cells".
+  std::string Lamps = "measured";
   std::vector<std::string> Settings;
   std::string Png;
   std::string Camera;

@@ -96,6 +96,7 @@ void Solution::Solve(const Options& options)
   {
     this->Cover->SetFillMethodToProjection();
   }
+  this->Cover->SetMeasureLamps(options.Lamps == "measured");
   {
     ProgressBar bar(this->Cover, "cover", options.Quiet);
     const double cpuStart = ProcessorSeconds();

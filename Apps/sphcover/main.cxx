@@ -7,6 +7,7 @@
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
+ *                  [--lamps measured|cells]
  *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH]
  *                   [--spp N] [--exposure E] [--solution solution.vtm] [--report report.json]
  *                   [--set k=v]
@@ -87,6 +88,11 @@ int main(int argc, char** argv)
   solve->add_option("--report", options.Report, "Report file (.json)");
   solve->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
     ->check(CLI::IsMember({ "projection", "raycasting" }));
+  solve->add_option("--lamps",
+         options.Lamps,
+         "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
+         "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
+    ->check(CLI::IsMember({ "cells", "measured" }));
   solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
   solve->add_option(
@@ -120,6 +126,11 @@ int main(int argc, char** argv)
   render->add_option("--report", options.Report, "Report file (.json), with timings_s.render");
   render->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
     ->check(CLI::IsMember({ "projection", "raycasting" }));
+  render->add_option("--lamps",
+         options.Lamps,
+         "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
+         "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
+    ->check(CLI::IsMember({ "cells", "measured" }));
   render->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
 

@@ -387,4 +387,59 @@ void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistic
     this->Options.DiffuseRounding);
 }
 
+double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
+  std::size_t source,
+  int minimumSide) const
+{
+  const Patch& self = this->Patches[receiver];
+  const Patch& target = this->Patches[source];
+  const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
+  const ReceiverFilter receiverFilter{ receiver,
+    static_cast<float>(this->Options.SelfExclusionFraction * self.Geometry.Size()),
+    this->Options.CountSelfVisibility,
+    this->Options.BackFacesOcclude };
+  const RayFilter filter{ AcceptForReceiver, &receiverFilter };
+  const double distance = glm::length(target.Point - frame.Origin);
+  const double size = target.Geometry.Size();
+  const int n = distance > 0.0
+    ? static_cast<int>(std::clamp(
+        std::ceil(4.0 * size / distance), static_cast<double>(std::max(1, minimumSide)), 32.0))
+    : 32;
+  const double step = 1.0 / n;
+  double sum = 0.0;
+  for (int a = 0; a < n; ++a)
+  {
+    for (int b = 0; b < n; ++b)
+    {
+      const double u = (a + 0.5) * step;
+      const double v = (b + 0.5) * step;
+      const glm::dvec3 q = target.Geometry.Evaluate(u, v);
+      // |dQ/du x dQ/dv| du dv, oriented along the front normal.
+      const glm::dvec3 area = target.Geometry.UnnormalizedNormal(u, v) * (step * step);
+      const glm::dvec3 toward = q - frame.Origin;
+      const double r2 = glm::dot(toward, toward);
+      if (!(r2 > 0.0))
+      {
+        continue;
+      }
+      const double r = std::sqrt(r2);
+      const glm::dvec3 direction = toward / r;
+      const double cosReceiver = glm::dot(direction, frame.Normal);
+      const double projectedArea = -glm::dot(direction, area); // cos(theta_j) dA
+      if (!(cosReceiver > 0.0) || !(projectedArea > 0.0))
+      {
+        continue;
+      }
+      TriangleHit hit;
+      if (!this->Rays.Intersect(frame.Origin, direction, 0.0f, filter, false, hit) ||
+        hit.Patch != source || !hit.FrontSide)
+      {
+        continue;
+      }
+      sum += cosReceiver * projectedArea / r2;
+    }
+  }
+  return sum;
+}
+
 } // namespace sphcover

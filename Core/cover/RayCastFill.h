@@ -72,6 +72,22 @@ public:
   /// The tessellation the samples are cast against.
   const RayCaster& Caster() const { return this->Rays; }
 
+  /**
+   * The projected solid angle through which `receiver`'s point P_i sees the patch `source`
+   * (Q_j), integrated over Q_j instead of counted in cells: the integral over Q_j of
+   * V cos(theta_i) cos(theta_j) / r^2 dA by the midpoint rule on an n x n grid of Q_j's (u, v),
+   * n = clamp(4 Size(Q_j) / |P_i - Q_j's centre|, minimumSide, 32) per side (finer when Q_j is
+   * near), the
+   * visibility V of each node by one ray from P_i through the same filter as the samples (back
+   * sides pass unless BackFacesOcclude, P_i's own patch is P_i); a node counts when the ray's
+   * first accepted hit is Q_j's front side. Only Q_j's front side is seen (cos(theta_j) > 0).
+   * Used by SphericalCover for the regions of SphericalCoverOptions::MeasuredSurfaces. Safe to
+   * call from several threads.
+   */
+  double VisibleProjectedSolidAngle(std::size_t receiver,
+    std::size_t source,
+    int minimumSide = 8) const;
+
   /// Sample rays cast by all Fill() calls so far (a statistic: with AdaptiveSampling fewer
   /// than Fill() calls x SampleCount(); the same for any number of threads).
   std::uint64_t RaysCast() const;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "cover/SphericalCover.h"
 
+#include "cover/RayCastFill.h"
 #include "math/Constants.h"
 
 #include "subdivision/Patch.h"
@@ -33,6 +34,8 @@ struct SphericalCover::Row
   std::vector<float> Unoccluded;
   std::vector<Strip> Strips;
   std::vector<float> Depths;
+  /// Per entry its region's measure, when the row has a measured region (else empty).
+  std::vector<float> Measures;
   CullingStatistics Culling;
 };
 
@@ -52,6 +55,7 @@ void SphericalCover::Clear()
   this->ColumnOffsets.clear();
   this->Columns.clear();
   this->Areas.clear();
+  this->Measures.clear();
   this->UnoccludedKnown = false;
   this->CullingCounts = CullingStatistics();
 }
@@ -116,6 +120,116 @@ void SphericalCover::ExtractRow(const RBuffer& buffer, Row& row)
   }
 }
 
+void SphericalCover::MeasureRow(std::size_t receiver,
+  const RayCastFiller& filler,
+  const std::vector<Patch>& patches,
+  Row& row) const
+{
+  const std::vector<bool>& measured = this->BuildOptions.MeasuredSurfaces;
+  const HemisphereGrid& grid = *this->GridPointer;
+  const size_t entries = row.Sources.size();
+  std::vector<double> cells(entries, 0.0);
+  std::vector<char> isMeasured(entries, 0);
+  size_t strip = 0;
+  bool any = false;
+  for (size_t e = 0; e < entries; ++e)
+  {
+    for (uint32_t k = 0; k < row.StripCounts[e]; ++k, ++strip)
+    {
+      const Strip& s = row.Strips[strip];
+      cells[e] += (s.PhiEnd - s.PhiBegin) * grid.CellMeasure(s.Row);
+    }
+    const size_t surface = static_cast<size_t>(patches[row.Sources[e]].SurfaceIndex);
+    isMeasured[e] = surface < measured.size() && measured[surface];
+    any = any || isMeasured[e];
+  }
+  if (!any)
+  {
+    return;
+  }
+  // Measured regions on their sources. A source of a measured surface that won no cell of
+  // the row (a lamp in pieces each about a cell wide) is measured too, and its measure goes to
+  // the surface's regions that are in the row, in proportion to their own measures: the row
+  // sees the whole lamp, not only the pieces the vote kept. The other regions share what is
+  // left of the row's covered measure, so that the row keeps it.
+  double covered = 0.0;
+  double measuredCells = 0.0;
+  double measuredExact = 0.0;
+  std::vector<double> measure(entries, 0.0);
+  std::vector<int> surfaces;
+  for (size_t e = 0; e < entries; ++e)
+  {
+    covered += cells[e];
+    if (isMeasured[e])
+    {
+      measuredCells += cells[e];
+      surfaces.push_back(patches[row.Sources[e]].SurfaceIndex);
+    }
+  }
+  std::sort(surfaces.begin(), surfaces.end());
+  surfaces.erase(std::unique(surfaces.begin(), surfaces.end()), surfaces.end());
+  std::vector<double> pieceMeasures;
+  for (const int surface : surfaces)
+  {
+    // The surface's pieces together get at least 8 x 8 nodes, each at least 2 x 2.
+    const std::vector<uint32_t>& pieces = this->MeasuredPatches[static_cast<size_t>(surface)];
+    const int side =
+      std::max(2, static_cast<int>(std::ceil(8.0 / std::sqrt(static_cast<double>(pieces.size())))));
+    pieceMeasures.assign(pieces.size(), 0.0);
+    double whole = 0.0;
+    for (size_t k = 0; k < pieces.size(); ++k)
+    {
+      pieceMeasures[k] = filler.VisibleProjectedSolidAngle(receiver, pieces[k], side);
+      whole += pieceMeasures[k];
+    }
+    double inRow = 0.0;
+    double cellsInRow = 0.0;
+    for (size_t e = 0; e < entries; ++e)
+    {
+      if (isMeasured[e] && patches[row.Sources[e]].SurfaceIndex == surface)
+      {
+        const size_t k = static_cast<size_t>(
+          std::lower_bound(pieces.begin(), pieces.end(), row.Sources[e]) - pieces.begin());
+        measure[e] = pieceMeasures[k];
+        inRow += measure[e];
+        cellsInRow += cells[e];
+      }
+    }
+    for (size_t e = 0; e < entries; ++e)
+    {
+      if (isMeasured[e] && patches[row.Sources[e]].SurfaceIndex == surface)
+      {
+        measure[e] = inRow > 0.0 ? whole * measure[e] / inRow : whole * cells[e] / cellsInRow;
+      }
+    }
+    measuredExact += whole;
+  }
+  const double others = covered - measuredCells;
+  double measuredScale = 1.0;
+  double othersScale = 1.0;
+  if (others > 0.0 && covered - measuredExact >= 0.0)
+  {
+    othersScale = (covered - measuredExact) / others;
+  }
+  else
+  {
+    // Nothing else to take the difference (every region measured) or the measured regions
+    // exceed the row's covered measure: they are scaled to it.
+    othersScale = 0.0;
+    measuredScale = measuredExact > 0.0 ? covered / measuredExact : 0.0;
+    if (others > 0.0 && measuredExact <= 0.0)
+    {
+      othersScale = covered / others;
+    }
+  }
+  row.Measures.resize(entries);
+  for (size_t e = 0; e < entries; ++e)
+  {
+    row.Measures[e] =
+      static_cast<float>(isMeasured[e] ? measure[e] * measuredScale : cells[e] * othersScale);
+  }
+}
+
 void SphericalCover::AppendRow(Row& row)
 {
   if (this->Strips.size() + row.Strips.size() > std::numeric_limits<uint32_t>::max())
@@ -132,6 +246,25 @@ void SphericalCover::AppendRow(Row& row)
   }
   this->Strips.insert(this->Strips.end(), row.Strips.begin(), row.Strips.end());
   this->StripDepths.insert(this->StripDepths.end(), row.Depths.begin(), row.Depths.end());
+  const size_t firstEntry = this->Entries.size() - row.Sources.size();
+  if (!row.Measures.empty() && this->Measures.empty())
+  {
+    // The first measured row: the entries before it keep their cells' measures.
+    this->Measures.reserve(this->Entries.capacity());
+    for (size_t e = 0; e < firstEntry; ++e)
+    {
+      this->Measures.push_back(static_cast<float>(this->CellsMeasure(e)));
+    }
+  }
+  if (!this->Measures.empty())
+  {
+    for (size_t e = 0; e < row.Sources.size(); ++e)
+    {
+      this->Measures.push_back(row.Measures.empty()
+          ? static_cast<float>(this->CellsMeasure(firstEntry + e))
+          : row.Measures[e]);
+    }
+  }
   this->RowOffsets.push_back(this->Entries.size());
   this->CullingCounts += row.Culling;
 }
@@ -153,6 +286,22 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
   const std::unique_ptr<RBufferFiller> filler =
     RBufferFiller::Create(options.Fill, patches, grid, options.FillOptions);
   const ParallelFor& run = parallelFor ? parallelFor : ParallelFor(SequentialFor);
+  // Regions measured on their sources (see the file comment): the ray fill's rays only.
+  const RayCastFiller* rayFiller = nullptr;
+  if (std::find(options.MeasuredSurfaces.begin(), options.MeasuredSurfaces.end(), true) !=
+    options.MeasuredSurfaces.end())
+  {
+    rayFiller = dynamic_cast<const RayCastFiller*>(filler.get());
+  }
+  this->MeasuredPatches.assign(options.MeasuredSurfaces.size(), {});
+  for (size_t j = 0; rayFiller && j < patches.size(); ++j)
+  {
+    const size_t surface = static_cast<size_t>(patches[j].SurfaceIndex);
+    if (surface < options.MeasuredSurfaces.size() && options.MeasuredSurfaces[surface])
+    {
+      this->MeasuredPatches[surface].push_back(static_cast<uint32_t>(j));
+    }
+  }
 
   const size_t count = patches.size();
   this->RowOffsets.reserve(count + 1);
@@ -176,6 +325,10 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
         {
           filler->Fill(batchBegin + k, buffer, &rows[k].Culling);
           ExtractRow(buffer, rows[k]);
+          if (rayFiller)
+          {
+            this->MeasureRow(batchBegin + k, *rayFiller, patches, rows[k]);
+          }
         }
       });
     for (Row& row : rows)
@@ -236,6 +389,7 @@ SphericalCover::Arrays SphericalCover::ExportArrays() const
   arrays.Strips = this->Strips;
   arrays.StripDepths = this->StripDepths;
   arrays.Areas = this->Areas;
+  arrays.Measures = this->Measures;
   return arrays;
 }
 
@@ -261,7 +415,8 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
     }
   }
   if (arrays.Unoccluded.size() != arrays.Entries.size() ||
-    arrays.StripDepths.size() != arrays.Strips.size())
+    arrays.StripDepths.size() != arrays.Strips.size() ||
+    (!arrays.Measures.empty() && arrays.Measures.size() != arrays.Entries.size()))
   {
     return "the entry or strip arrays have different lengths";
   }
@@ -273,6 +428,13 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
     if (entry.Source >= count || entry.FirstStrip > next || next > arrays.Strips.size())
     {
       return "entry " + std::to_string(e) + " refers to a missing source or strip";
+    }
+  }
+  for (const float measure : arrays.Measures)
+  {
+    if (!(measure >= 0.0f) || !std::isfinite(measure))
+    {
+      return "a region's measure is negative or not finite";
     }
   }
   for (const Strip& strip : arrays.Strips)
@@ -298,6 +460,7 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
   this->Strips = std::move(arrays.Strips);
   this->StripDepths = std::move(arrays.StripDepths);
   this->Areas = std::move(arrays.Areas);
+  this->Measures = std::move(arrays.Measures);
   this->BuildColumns();
   return std::string();
 }
@@ -352,6 +515,11 @@ std::vector<int32_t> SphericalCover::ExpandRow(std::size_t receiver) const
 }
 
 double SphericalCover::ProjectedSolidAngle(std::size_t entry) const
+{
+  return this->Measures.empty() ? this->CellsMeasure(entry) : this->Measures[entry];
+}
+
+double SphericalCover::CellsMeasure(std::size_t entry) const
 {
   const HemisphereGrid& grid = this->Grid();
   double sum = 0.0;
@@ -437,7 +605,8 @@ std::size_t SphericalCover::MemoryBytes() const
   return this->RowOffsets.size() * sizeof(uint64_t) + this->Entries.size() * sizeof(Entry) +
     this->Unoccluded.size() * sizeof(float) + this->Strips.size() * sizeof(Strip) +
     this->StripDepths.size() * sizeof(float) + this->ColumnOffsets.size() * sizeof(uint64_t) +
-    this->Columns.size() * sizeof(ColumnEntry) + this->Areas.size() * sizeof(double);
+    this->Columns.size() * sizeof(ColumnEntry) + this->Areas.size() * sizeof(double) +
+    this->Measures.size() * sizeof(float);
 }
 
 std::size_t SphericalCover::UpperBoundBytes(std::size_t patches,

@@ -31,6 +31,18 @@
  * boundary cells), the strips whether h_ij is connected. The strips' row-major order is the
  * one the row-by-row interpolation of §3.4 walks.
  *
+ * Measured regions. A region's measure (ProjectedSolidAngle) is the sum of its cells' measures,
+ * except in the rows that see a source of SphericalCoverOptions::MeasuredSurfaces with the ray
+ * fill: there each such region h_ij gets the projected solid angle of the visible part of Q_j
+ * integrated over Q_j (RayCastFiller::VisibleProjectedSolidAngle), and the row's other regions
+ * are scaled by one factor so that the row keeps its covered measure (a closed scene's rows
+ * still sum to pi, the white furnace stays exact). The cells keep their sources: only the
+ * weight with which each region counts changes. Why: a lamp a few dozen cells wide is counted
+ * to +-10 % per point by its boundary cells (Documentation/notes/time-to-accuracy.md), and that
+ * error, multiplied by the lamp's contrast with what surrounds it, is most of the Cornell box's
+ * error against a path tracer. A source that wins no cell of a row stays unseen there.
+ * Measures are stored per entry (a float) only when some row has a measured region.
+ *
  * Building runs the receivers through a ParallelFor in batches; progress is reported, and
  * abort honoured, from the calling thread between batches. Rows are computed independently
  * and appended in receiver order, so the cover does not depend on the thread count.
@@ -55,6 +67,7 @@ namespace sphcover
 {
 
 struct Patch;
+class RayCastFiller;
 
 struct SphericalCoverOptions
 {
@@ -67,6 +80,13 @@ struct SphericalCoverOptions
   RBufferFillOptions FillOptions;
   /// Receivers per ParallelFor call; progress and abort are checked between calls. 0: 64.
   std::size_t BatchSize = 0;
+  /**
+   * Surfaces (by Patch::SurfaceIndex; empty: none) whose regions are measured on the source
+   * rather than in cells (ray fill only; see "Measured regions" in the file comment): the
+   * scene's lamps (BrightEmitters.h), whose direct light the cells' vote measures to about 10 %
+   * per point.
+   */
+  std::vector<bool> MeasuredSurfaces;
 };
 
 class SphericalCover
@@ -184,6 +204,8 @@ public:
     std::vector<Strip> Strips;
     std::vector<float> StripDepths;
     std::vector<double> Areas;
+    /// Per entry the measure of its region, or empty: the cells' (see the file comment).
+    std::vector<float> Measures;
   };
   Arrays ExportArrays() const;
   /// Replaces the cover with saved arrays after checking that they are consistent (offsets,
@@ -232,7 +254,14 @@ public:
 private:
   struct Row;
   static void ExtractRow(const RBuffer& buffer, Row& row);
+  /// Measures the row's regions of measured surfaces on their sources (see the file comment).
+  void MeasureRow(std::size_t receiver,
+    const RayCastFiller& filler,
+    const std::vector<Patch>& patches,
+    Row& row) const;
   void AppendRow(Row& row);
+  /// The sum of the measures of entry e's cells.
+  double CellsMeasure(std::size_t entry) const;
   /// Derives the columns (which rows contain each source) from the rows.
   void BuildColumns();
   void Clear();
@@ -247,6 +276,9 @@ private:
   std::vector<uint64_t> ColumnOffsets;
   std::vector<ColumnEntry> Columns;
   std::vector<double> Areas;
+  std::vector<float> Measures;
+  /// While building: per measured surface its patches.
+  std::vector<std::vector<uint32_t>> MeasuredPatches;
   bool UnoccludedKnown = false;
   CullingStatistics CullingCounts;
 };

@@ -57,7 +57,7 @@ bool SameCover(const sphcover::SphericalCover& a, const sphcover::SphericalCover
     x.UnoccludedKnown == y.UnoccludedKnown && SameBytes(x.RowOffsets, y.RowOffsets) &&
     SameBytes(x.Entries, y.Entries) && SameBytes(x.Unoccluded, y.Unoccluded) &&
     SameBytes(x.Strips, y.Strips) && SameBytes(x.StripDepths, y.StripDepths) &&
-    SameBytes(x.Areas, y.Areas);
+    SameBytes(x.Areas, y.Areas) && SameBytes(x.Measures, y.Measures);
   for (size_t i = 0; same && i < a.PatchCount(); ++i)
   {
     same = a.ExpandRow(i) == b.ExpandRow(i) && a.ColumnBegin(i) == b.ColumnBegin(i);
@@ -103,6 +103,11 @@ int TestSphericalCoverFilter(int, char*[])
               << " points, max |covered - pi| = " << worst << "\n";
     Check(covered->GetNumberOfTuples() > 8 && worst < 1e-9,
       "closed enclosure: every hemisphere covers pi");
+    // A white furnace emits alike everywhere: no lamp, no measured region.
+    sphcover::SphericalCover furnace;
+    Check(vtkSphericalCoverArrays::Load(cover->GetOutput(), furnace).empty() &&
+        furnace.ExportArrays().Measures.empty(),
+      "a furnace has no measured regions");
   }
 
   // The Cornell box, coarsely subdivided: round trip through the XML writer and reader.
@@ -139,6 +144,41 @@ int TestSphericalCoverFilter(int, char*[])
   Check(vtkSphericalCoverArrays::Load(reader->GetOutput(), reloaded).empty(),
     "the written cover loads");
   Check(SameCover(built, reloaded), "the cover read back is identical");
+  // The lamp's regions are measured on the lamp (MeasureLamps, on by default): the rows keep
+  // their covered measure, and the lamp's regions change; off, the cells' measures.
+  {
+    const std::vector<float>& measures = built.ExportArrays().Measures;
+    Check(measures.size() == built.EntryCount(), "the Cornell box's lamp regions are measured");
+    vtkNew<vtkSphericalCoverFilter> cells;
+    cells->SetInputConnection(boxPatches->GetOutputPort(0));
+    cells->MeasureLampsOff();
+    cells->Update();
+    sphcover::SphericalCover counted;
+    vtkSphericalCoverArrays::Load(cells->GetOutput(), counted);
+    Check(counted.ExportArrays().Measures.empty() && counted.EntryCount() == built.EntryCount(),
+      "MeasureLamps off: the same regions, measured in cells");
+    double worstRow = 0.0;
+    size_t changed = 0;
+    for (size_t i = 0; i < built.PatchCount(); ++i)
+    {
+      double a = 0.0;
+      double b = 0.0;
+      for (size_t e = built.EntryBegin(i); e < built.EntryEnd(i); ++e)
+      {
+        a += built.ProjectedSolidAngle(e);
+        b += counted.ProjectedSolidAngle(e);
+        changed += std::fabs(built.ProjectedSolidAngle(e) - counted.ProjectedSolidAngle(e)) >
+            1e-6 * counted.ProjectedSolidAngle(e)
+          ? 1
+          : 0;
+      }
+      worstRow = std::max(worstRow, std::fabs(a - b));
+    }
+    std::cout << "measured lamp regions: " << changed << " regions changed, worst row change "
+              << worstRow << "\n";
+    Check(worstRow < 1e-5 && changed > built.PatchCount() / 2,
+      "measured lamp regions keep every row's covered measure");
+  }
 
   // Two threads build the same cover.
   vtkSMPTools::Initialize(2);
