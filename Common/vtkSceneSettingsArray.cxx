@@ -11,15 +11,17 @@ namespace names = vtkSphericalCoverArrayNames;
 
 vtkSmartPointer<vtkDoubleArray> vtkSceneSettingsArray::New(const sphcover::SceneSettings& settings)
 {
-  auto array = vtkNamedArrays::Double(names::SceneSettings, 4, 1);
+  auto array = vtkNamedArrays::Double(names::SceneSettings, 5, 1);
   array->SetComponentName(0, "theta_bins");
   array->SetComponentName(1, "phi_bins");
   array->SetComponentName(2, "max_level");
   array->SetComponentName(3, "tolerance");
-  const double values[4] = { double(settings.ThetaBins),
+  array->SetComponentName(4, "min_patch_size");
+  const double values[5] = { double(settings.ThetaBins),
     double(settings.PhiBins),
     double(settings.MaxLevel),
-    settings.Tolerance };
+    settings.Tolerance,
+    settings.MinPatchSize };
   array->SetTuple(0, values);
   return array;
 }
@@ -28,12 +30,15 @@ sphcover::SceneSettings vtkSceneSettingsArray::Read(vtkFieldData* fd)
 {
   sphcover::SceneSettings settings;
   vtkDataArray* values = fd ? fd->GetArray(names::SceneSettings) : nullptr;
-  if (values && values->GetNumberOfComponents() == 4 && values->GetNumberOfTuples() == 1)
+  // Four components in files written before min_patch_size (it is then 0).
+  const int components = values ? values->GetNumberOfComponents() : 0;
+  if (values && (components == 4 || components == 5) && values->GetNumberOfTuples() == 1)
   {
     settings.ThetaBins = static_cast<int>(values->GetComponent(0, 0));
     settings.PhiBins = static_cast<int>(values->GetComponent(0, 1));
     settings.MaxLevel = static_cast<int>(values->GetComponent(0, 2));
     settings.Tolerance = values->GetComponent(0, 3);
+    settings.MinPatchSize = components == 5 ? values->GetComponent(0, 4) : 0.0;
   }
   return settings;
 }

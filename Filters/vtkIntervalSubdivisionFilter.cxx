@@ -56,6 +56,7 @@ sphcover::SubdivisionSettings SubdivisionSettingsOf(vtkIntervalSubdivisionFilter
     ? sphcover::RangeMethod::NaturalInterval
     : sphcover::RangeMethod::Bernstein;
   settings.MaxLevel = OrScene(self->GetMaxLevel(), fromScene.MaxLevel);
+  settings.MinPatchSize = OrScene(self->GetMinPatchSize(), fromScene.MinPatchSize);
   settings.MaximumPatches = static_cast<size_t>(self->GetMaximumPatches());
   settings.MemoryLimitBytes = static_cast<size_t>(self->GetMemoryLimit() * 1024.0 * 1024.0);
   settings.MaximumPairTests = static_cast<size_t>(self->GetMaximumPairTests());
@@ -105,22 +106,24 @@ void WritePatchCells(vtkDataSet* input,
   statistics->SetComponent(0, 0, static_cast<double>(pairTests));
   statistics->SetComponent(0, 1, sweeps);
   patchesOut->GetFieldData()->AddArray(statistics);
-  auto used = vtkNamedArrays::Double(names::SubdivisionSettings, 7, 1);
-  const char* usedNames[7] = { "max_level",
+  auto used = vtkNamedArrays::Double(names::SubdivisionSettings, 8, 1);
+  const char* usedNames[8] = { "max_level",
     "theta_bins",
     "phi_bins",
     "self_shadowing_tolerance",
     "hemispherical_containment_tolerance",
     "spherical_shape_tolerance",
-    "characterisability_tolerance" };
-  const double usedValues[7] = { double(settings.MaxLevel),
+    "characterisability_tolerance",
+    "min_patch_size" };
+  const double usedValues[8] = { double(settings.MaxLevel),
     double(settings.ThetaBins),
     double(settings.PhiBins),
     settings.Tolerance[0],
     settings.Tolerance[1],
     settings.Tolerance[2],
-    settings.Tolerance[3] };
-  for (int k = 0; k < 7; ++k)
+    settings.Tolerance[3],
+    settings.MinPatchSize };
+  for (int k = 0; k < 8; ++k)
   {
     used->SetComponentName(k, usedNames[k]);
   }
@@ -296,6 +299,7 @@ void vtkIntervalSubdivisionFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "RangeMethod: " << (this->RangeMethod == BERNSTEIN ? "Bernstein" : "NaturalInterval")
      << "\n";
   os << indent << "MaxLevel: " << this->MaxLevel << "\n";
+  os << indent << "MinPatchSize: " << this->MinPatchSize << "\n";
   os << indent << "MaximumPatches: " << this->MaximumPatches << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "MaximumPairTests: " << this->MaximumPairTests << "\n";

@@ -91,6 +91,17 @@ public:
 
   ///@{
   /**
+   * No patch is split once its bounding box's diagonal is at most this fraction of the scene's
+   * (0: no such limit; in [0, 1), another value fails the request): with a deep MaxLevel the
+   * points go where the surfaces are large, instead of the same number to every surface.
+   * Default is SCENE_SETTING: the scene's min_patch_size (0 without one).
+   */
+  vtkSetMacro(MinPatchSize, double);
+  vtkGetMacro(MinPatchSize, double);
+  ///@}
+
+  ///@{
+  /**
    * The budget of the subdivision: it fails with an error, before splitting, when a sweep would
    * make more than MaximumPatches patches or hold more than MemoryLimit MiB of patches (every
    * later stage grows with the patch count), and before or during a sweep when the pair tests,
@@ -186,6 +197,7 @@ protected:
 
   int RangeMethod = BERNSTEIN;
   int MaxLevel = SCENE_SETTING;
+  double MinPatchSize = SCENE_SETTING;
   int MaximumPatches = 1000000;
   double MemoryLimit = 8192.0;
   double MaximumPairTests = 1.0e9;

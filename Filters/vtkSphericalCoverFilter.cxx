@@ -49,7 +49,8 @@ void GridOf(vtkDataObject* input, int& thetaBins, int& phiBins)
   thetaBins = scene.ThetaBins;
   phiBins = scene.PhiBins;
   vtkDataArray* subdivision = fd->GetArray(names::SubdivisionSettings);
-  if (subdivision && subdivision->GetNumberOfComponents() == 7 &&
+  // 7 components in files written before min_patch_size, 8 since.
+  if (subdivision && subdivision->GetNumberOfComponents() >= 7 &&
     subdivision->GetNumberOfTuples() == 1)
   {
     thetaBins = static_cast<int>(subdivision->GetComponent(0, 1));

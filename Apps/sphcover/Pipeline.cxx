@@ -69,6 +69,7 @@ void Solution::Subdivide(const Options& options)
     this->Subdivision->SetThetaBins(settings.ThetaBins);
     this->Subdivision->SetPhiBins(settings.PhiBins);
     this->Subdivision->SetMaxLevel(settings.MaxLevel);
+    this->Subdivision->SetMinPatchSize(settings.MinPatchSize);
     this->Subdivision->SetTolerance(settings.Tolerance);
   }
   if (options.RangeMethod == "natural")

@@ -125,7 +125,8 @@ void PrintSceneSummary(const Scene& scene, std::ostream& os)
   os << "Bounds: " << Triple(lower) << " to " << Triple(upper) << "\n";
   os << "Settings: theta_bins=" << scene.Settings.ThetaBins
      << " phi_bins=" << scene.Settings.PhiBins << " max_level=" << scene.Settings.MaxLevel
-     << " tolerance=" << scene.Settings.Tolerance << "\n";
+     << " tolerance=" << scene.Settings.Tolerance
+     << " min_patch_size=" << scene.Settings.MinPatchSize << "\n";
 }
 
 } // namespace sphcover

@@ -77,7 +77,7 @@ int main(int argc, char** argv)
   subdivide->add_option("--set",
     options.Settings,
     "Override a setting of the scene file, e.g. --set max_level=3 (theta_bins, phi_bins, "
-    "max_level, tolerance)");
+    "max_level, tolerance, min_patch_size)");
 
   CLI::App* solve = app.add_subcommand("solve",
     "Run the method up to equilibrium (subdivision, spherical cover, light propagation) and "

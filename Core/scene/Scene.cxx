@@ -94,6 +94,7 @@ std::string Fingerprint(const Scene& scene)
   hash.Value(scene.Settings.PhiBins);
   hash.Value(scene.Settings.MaxLevel);
   hash.Value(scene.Settings.Tolerance);
+  hash.Value(scene.Settings.MinPatchSize);
   char text[17];
   std::snprintf(text, sizeof(text), "%016llx", static_cast<unsigned long long>(hash.Hash));
   return text;

@@ -42,6 +42,9 @@ struct SceneSettings
   int PhiBins = 128;
   int MaxLevel = 5;
   double Tolerance = 0.02;
+  /// No patch is split once its bounding box's diagonal is at most this fraction of the
+  /// scene's (the "min_patch_size" setting; 0: no such limit). Data/scenes/FORMAT.md.
+  double MinPatchSize = 0.0;
 };
 
 /// One parametric surface S_i (paper §4.3): a single Bezier patch over [0,1]^2. A scene entry

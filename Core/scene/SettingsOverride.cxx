@@ -13,7 +13,8 @@ SceneSettings ParseSettings(const JsonInput& input,
   SceneSettings settings)
 {
   input.ExpectObject(j, pointer);
-  input.CheckKeys(j, pointer, { "theta_bins", "phi_bins", "max_level", "tolerance" });
+  input.CheckKeys(
+    j, pointer, { "theta_bins", "phi_bins", "max_level", "tolerance", "min_patch_size" });
   if (j.contains("theta_bins"))
   {
     settings.ThetaBins = input.PositiveInteger(j["theta_bins"], Child(pointer, "theta_bins"), 4096);
@@ -40,6 +41,15 @@ SceneSettings ParseSettings(const JsonInput& input,
     if (!(settings.Tolerance >= MinimumTolerance))
     {
       input.Fail(Child(pointer, "tolerance"), "must be >= 1e-9");
+    }
+  }
+  if (j.contains("min_patch_size"))
+  {
+    settings.MinPatchSize = input.Number(j["min_patch_size"], Child(pointer, "min_patch_size"));
+    if (!(settings.MinPatchSize >= 0.0 && settings.MinPatchSize < 1.0))
+    {
+      input.Fail(Child(pointer, "min_patch_size"),
+        "must be >= 0 and < 1 (a fraction of the scene's bounding-box diagonal)");
     }
   }
   return settings;

@@ -65,6 +65,7 @@ public:
     const std::vector<int>& leaves,
     const std::vector<bool>& leafIsNew,
     const SubdivisionSettings& settings,
+    double minimumDiagonal,
     std::vector<std::atomic<int>>& requested)
     : Views(std::move(views))
     , Nodes(nodes)
@@ -72,6 +73,7 @@ public:
     , LeafIsNew(leafIsNew)
     , Settings(settings)
     , CellAngle(settings.CellAngle())
+    , MinimumDiagonal(minimumDiagonal)
     , Requested(requested)
     , Boxes(BoxesOf(nodes, leaves))
     , Tree(this->Boxes)
@@ -91,11 +93,12 @@ public:
   std::size_t LimitedPairs() const { return this->Limited.load(); }
 
 private:
-  /// A split of patch k is allowed when it is not at MaxLevel and projects, from the point
-  /// that asks, to more than about one cell (§4.3 note 2).
+  /// A split of patch k is allowed when it is not at MaxLevel, is larger than MinPatchSize and
+  /// projects, from the point that asks, to more than about one cell (§4.3 note 2).
   bool CanSplit(size_t k, const glm::dvec3& from) const
   {
-    if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= this->Settings.MaxLevel)
+    if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= this->Settings.MaxLevel ||
+      this->Boxes[k].Diagonal() <= this->MinimumDiagonal)
     {
       return false;
     }
@@ -121,6 +124,8 @@ private:
   const std::vector<bool>& LeafIsNew;
   const SubdivisionSettings& Settings;
   const double CellAngle;
+  /// MinPatchSize times the diagonal of the scene's box.
+  const double MinimumDiagonal;
   std::vector<std::atomic<int>>& Requested;
   std::vector<Box> Boxes;
   BoundingBoxTree Tree;
@@ -193,6 +198,15 @@ IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSe
     this->Leaves.push_back(static_cast<int>(s));
     this->LeafIsNew.push_back(true);
     this->NodeBytes += BytesOfPatch(scene.Surfaces[s].Patch);
+  }
+  if (!this->Nodes.empty())
+  {
+    Box all = BoxOf(this->Nodes.front());
+    for (const Patch& surface : this->Nodes)
+    {
+      all.Extend(BoxOf(surface));
+    }
+    this->SceneDiagonal = all.Diagonal();
   }
 }
 
@@ -268,8 +282,13 @@ bool IntervalSubdivision::ExaminePairs(std::vector<std::atomic<int>>& requested,
   {
     views.push_back(this->ViewOfPatch(this->Nodes[static_cast<size_t>(node)]));
   }
-  SweepExamination sweep(
-    std::move(views), this->Nodes, this->Leaves, this->LeafIsNew, this->Settings, requested);
+  SweepExamination sweep(std::move(views),
+    this->Nodes,
+    this->Leaves,
+    this->LeafIsNew,
+    this->Settings,
+    this->Settings.MinPatchSize * this->SceneDiagonal,
+    requested);
 
   // Receivers in batches, so progress is reported (and abort honoured) from this thread.
   for (size_t first = 0; first < count; first += BatchSize)

@@ -16,7 +16,10 @@
  * sweep re-examines only pairs with a new patch, since the others have not changed.
  *
  * Limits (§4.3 note 2): no patch goes deeper than MaxLevel, and no patch is split once it
- * projects, from the point that asks, to about one (theta,phi) cell of the cover's grid. A
+ * projects, from the point that asks, to about one (theta,phi) cell of the cover's grid, or
+ * once its box's diagonal is at most MinPatchSize times the scene's. MaxLevel counts splits per
+ * surface, so alone it gives a small block face as many points as a large wall; the size limit
+ * spends them where the surfaces are large. A
  * budget (MaximumPatches, MemoryLimitBytes, MaximumPairTests) stops a subdivision that would
  * grow beyond them with an error before the sweep's splits, or the sweep, are made.
  *
@@ -113,6 +116,8 @@ private:
   std::vector<bool> LeafIsNew;
   /// Bytes held by Nodes (the budget's measure).
   std::size_t NodeBytes = 0;
+  /// Diagonal of the box of all surfaces (MinPatchSize's unit).
+  double SceneDiagonal = 0.0;
   SubdivisionStatistics Stats;
 };
 

@@ -26,6 +26,11 @@ std::string SubdivisionSettings::Problem() const
                "domain), got "
             << this->MaxLevel;
   }
+  else if (!(this->MinPatchSize >= 0.0 && this->MinPatchSize < 1.0))
+  {
+    problem << "MinPatchSize must be >= 0 and < 1 (a fraction of the scene's diagonal), got "
+            << this->MinPatchSize;
+  }
   else if (this->MaximumPatches < 1)
   {
     problem << "MaximumPatches must be >= 1";

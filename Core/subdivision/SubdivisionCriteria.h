@@ -74,6 +74,10 @@ struct SubdivisionSettings
   /// Deepest subdivision level (number of ternary splits from a surface), at most
   /// MaxSubdivisionLevel.
   int MaxLevel = 5;
+  /// No patch is split once its interval box's diagonal is at most this fraction of the
+  /// diagonal of the box of all surfaces (0: no such limit): the points go where the scene is
+  /// large, not equally to every surface whatever its size.
+  double MinPatchSize = 0.0;
   /// The subdivision stops with an error (std::length_error) rather than make more patches
   /// than this, or hold more bytes of patches than MemoryLimitBytes.
   std::size_t MaximumPatches = DefaultMaximumPatches;

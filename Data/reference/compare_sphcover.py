@@ -91,14 +91,16 @@ def write_exr(path, array):
 
 
 def scene_settings(reader_output):
-    """theta_bins, phi_bins, max_level, tolerance from the reader's `SceneSettings` field."""
+    """theta_bins, phi_bins, max_level, tolerance, min_patch_size from the reader's
+    `SceneSettings` field."""
     values = reader_output.GetFieldData().GetArray("SceneSettings")
-    if values is None or values.GetNumberOfComponents() != 4:
+    if values is None or values.GetNumberOfComponents() != 5:
         raise RuntimeError("the scene reader gave no SceneSettings")
     return {"theta_bins": int(values.GetComponent(0, 0)),
             "phi_bins": int(values.GetComponent(0, 1)),
             "max_level": int(values.GetComponent(0, 2)),
-            "tolerance": values.GetComponent(0, 3)}
+            "tolerance": values.GetComponent(0, 3),
+            "min_patch_size": values.GetComponent(0, 4)}
 
 
 def render(scene=SCENE, solution=None, camera="", size=None, spp=16, overrides=None,
@@ -141,6 +143,7 @@ def render(scene=SCENE, solution=None, camera="", size=None, spp=16, overrides=N
         subdivision.SetPhiBins(settings["phi_bins"])
         subdivision.SetMaxLevel(settings["max_level"])
         subdivision.SetTolerance(settings["tolerance"])
+        subdivision.SetMinPatchSize(settings["min_patch_size"])
         cover = vtkSphericalCoverFilter()
         cover.SetInputConnection(subdivision.GetOutputPort(0))
         cover.SetThetaBins(settings["theta_bins"])

@@ -8,7 +8,9 @@
 //   back-facing pieces found at shallow levels;
 // - Bernstein bounds need no more patches than natural interval arithmetic;
 // - limits (MaxLevel, one cell), bad settings, and thread-count independence.
+#include "scene/InputError.h"
 #include "scene/SceneLoader.h"
+#include "scene/SettingsOverride.h"
 #include "subdivision/IntervalSubdivision.h"
 #include "subdivision/SubdivisionCriteria.h"
 
@@ -17,6 +19,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <thread>
 
@@ -418,6 +421,61 @@ TEST(IntervalSubdivision, LimitsHold)
   EXPECT_LT(coarse.size(), Subdivide(scene, settings).size());
 }
 
+// MinPatchSize: no patch is split once its box's diagonal is at most that fraction of the
+// scene's. Every criterion asks for splits in the Cornell box down to MaxLevel, so the patches
+// of each flat surface are what splitting its longer side in three until the pieces are that
+// small gives (computed here from the surfaces' edges): 27 x 27 on a wall, 9 x 9 on a block's
+// face, where MaxLevel 5 alone gives every surface 243.
+TEST(IntervalSubdivision, MinPatchSizeSpendsPointsBySize)
+{
+  const auto CornerPolygon = [](const BezierPatch& patch)
+  {
+    return std::vector<glm::dvec3>{
+      patch.Evaluate(0, 0), patch.Evaluate(1, 0), patch.Evaluate(1, 1), patch.Evaluate(0, 1)
+    };
+  };
+  const Scene scene = LoadSceneFile(SPHCOVER_DATA_DIR "/scenes/cornell_box.scene");
+  SubdivisionSettings settings;
+  settings.MaxLevel = 8;
+  settings.MinPatchSize = 0.05;
+  glm::dvec3 lower(std::numeric_limits<double>::max());
+  glm::dvec3 upper(std::numeric_limits<double>::lowest());
+  for (const Surface& surface : scene.Surfaces)
+  {
+    for (const glm::dvec3& corner : CornerPolygon(surface.Patch))
+    {
+      lower = glm::min(lower, corner);
+      upper = glm::max(upper, corner);
+    }
+  }
+  const double limit = settings.MinPatchSize * glm::length(upper - lower);
+  std::map<int, size_t> made;
+  for (const Patch& patch : Subdivide(scene, settings))
+  {
+    ++made[patch.SurfaceIndex];
+  }
+  size_t walls = 0;
+  for (size_t s = 0; s < scene.Surfaces.size(); ++s)
+  {
+    const std::vector<glm::dvec3> corners = CornerPolygon(scene.Surfaces[s].Patch);
+    // Each surface is an axis-aligned rectangle: its box's diagonal is the rectangle's.
+    double alongU = glm::length(corners[1] - corners[0]);
+    double alongV = glm::length(corners[3] - corners[0]);
+    size_t expected = 1;
+    for (int level = 0; level < settings.MaxLevel && std::hypot(alongU, alongV) > limit; ++level)
+    {
+      (alongU >= alongV ? alongU : alongV) /= 3.0;
+      expected *= 3;
+    }
+    EXPECT_EQ(made[static_cast<int>(s)], expected) << "surface " << s;
+    walls += expected == 729 ? 1 : 0;
+  }
+  EXPECT_EQ(walls, 5u); // floor, ceiling and three walls
+  settings.MinPatchSize = 0.0;
+  settings.MaxLevel = 5;
+  EXPECT_EQ(Subdivide(scene, settings).size(), 243 * scene.Surfaces.size());
+}
+
 TEST(IntervalSubdivision, ResultDoesNotDependOnThreads)
 {
   const Scene scene = LoadSceneFile(SPHCOVER_DATA_DIR "/scenes/teapot_room.scene");
@@ -451,6 +509,18 @@ TEST(IntervalSubdivision, BadSettingsAreRejected)
   settings = SubdivisionSettings();
   settings.ThetaBins = 0;
   EXPECT_THROW(IntervalSubdivision(scene, settings), std::invalid_argument);
+  for (const double size : { -0.1, 1.0 })
+  {
+    settings = SubdivisionSettings();
+    settings.MinPatchSize = size;
+    EXPECT_NE(settings.Problem().find("MinPatchSize"), std::string::npos);
+    EXPECT_THROW(IntervalSubdivision(scene, settings), std::invalid_argument);
+  }
+  // The scene setting is checked as it is read (a scene file's settings block or --set).
+  EXPECT_THROW(OverrideSetting(SceneSettings(), "min_patch_size=1"), InputError);
+  EXPECT_THROW(OverrideSetting(SceneSettings(), "min_patch_size=-0.01"), InputError);
+  EXPECT_THROW(OverrideSetting(SceneSettings(), "min_patch_size=\"a\""), InputError);
+  EXPECT_EQ(OverrideSetting(SceneSettings(), "min_patch_size=0.05").MinPatchSize, 0.05);
 }
 
 TEST(IntervalSubdivision, AbortKeepsTheLastCompleteSweep)

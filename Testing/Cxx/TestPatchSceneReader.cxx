@@ -71,7 +71,7 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
   vtkDataArray* cameras = fd->GetArray(names::CameraParameters);
   Check(cameras && cameras->GetNumberOfComponents() == 12, file + ": CameraParameters");
   vtkDataArray* settings = fd->GetArray(names::SceneSettings);
-  Check(settings && settings->GetNumberOfComponents() == 4 && settings->GetNumberOfTuples() == 1,
+  Check(settings && settings->GetNumberOfComponents() == 5 && settings->GetNumberOfTuples() == 1,
     file + ": SceneSettings");
 }
 

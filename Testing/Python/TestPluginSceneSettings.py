@@ -39,7 +39,7 @@ scene["cameras"][0]["width"], scene["cameras"][0]["height"] = 48, 36
 scene_file = os.path.join(folder, "coarse_cornell_box.scene")
 with open(scene_file, "w") as stream:
     json.dump(scene, stream)
-SETTINGS = [1, 8, 32, 0.05, 0.05, 0.05, 0.05]  # SubdivisionSettings' order
+SETTINGS = [1, 8, 32, 0.05, 0.05, 0.05, 0.05, 0.0]  # SubdivisionSettings' order
 
 
 def run(*arguments):
