@@ -50,7 +50,8 @@ int main(int argc, char** argv)
     .add_option(
       "--threads", options.Threads, "Worker threads for the parallel stages (0: one per core)")
     ->check(CLI::Range(0, 4096));
-  app.add_flag("--quiet,-q", options.Quiet, "No progress bars");
+  app.add_flag(
+    "--quiet,-q", options.Quiet, "No progress on stderr (bars on a terminal, lines elsewhere)");
   app
     .add_option("--memory-limit",
       options.MemoryLimit,
