@@ -116,7 +116,8 @@ int main(int argc, char** argv)
     ->required();
   render->add_option("-o,--output",
     options.Output,
-    "Image file: .exr (HDR Radiance and Depth, float) or .png (tone-mapped sRGB)");
+    "Image file: .exr (HDR Radiance as R, G, B and the depth as Z, float; Z is +inf where no "
+    "surface is seen) or .png (tone-mapped sRGB)");
   render->add_option("--png", options.Png, "PNG file (tone-mapped sRGB)");
   render->add_option("--camera", options.Camera, "Camera of the scene (default: the first)");
   render->add_option("--size", options.Size, "Image size WIDTHxHEIGHT (default: the camera's)");
