@@ -203,5 +203,5 @@ unshot = history.GetColumnByName("UnshotEnergy").GetValue(rows - 1) if rows else
 print(f"shots                {rows} (the history's rows), unshot at the end {unshot:.6g} W "
       f"= {unshot / max(emitted.sum(), 1e-300):.2e} of the emitted power")
 print("timings (s)          " + ", ".join(f"{stage.name} {stage.seconds:.3f}" for stage in stages))
-print(f"wrote {arguments.output}: Radiance, Depth and SurfaceId, "
+print(f"wrote {arguments.output}: Radiance (R, G, B), Depth (as Z) and SurfaceId, "
       f"{arguments.size[0]} x {arguments.size[1]}")
