@@ -109,6 +109,9 @@ constexpr const char* SolutionStatistics = "SolutionStatistics";
 
 // Rendering (Documentation/Pipeline.md#rendering): point data of the image (with SurfaceId).
 constexpr const char* Radiance = "Radiance";
+/// The mean distance from the eye, along the camera rays, of a pixel's samples on its surface;
+/// -1 where no surface is seen (finite, for colour maps). vtkOpenEXRWriter writes it as
+/// OpenEXR's channel `Z` with +infinity there, vtkOpenEXRReader reads it back as this array.
 constexpr const char* Depth = "Depth";
 constexpr const char* RGB = "RGB";
 }

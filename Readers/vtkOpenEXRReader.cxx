@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenEXRReader.h"
 
+#include "vtkSphericalCoverArrayNames.h"
+
 #include <vtkDataObject.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -25,6 +27,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -47,6 +50,9 @@ struct ImageLayout
   bool HasColor = false;
   /// The channels that become arrays of their own (all but R, G, B when HasColor).
   std::vector<std::string> OtherChannels;
+  /// The channel `Z` (OpenEXR's depth) becomes the array `Depth`, the renderer's name: the
+  /// file has `Z` and no channel `Depth` (files written before `Z` have `Depth`, read as is).
+  bool ZAsDepth = false;
   double Origin[3] = { 0, 0, 0 };
   double Spacing[3] = { 1, 1, 1 };
 };
@@ -335,6 +341,9 @@ ImageLayout ReadLayout(const Imf::Header& header, vtkIdType maximumPixels)
     }
   }
 
+  layout.ZAsDepth =
+    channels.findChannel("Z") && !channels.findChannel(vtkSphericalCoverArrayNames::Depth);
+
   // The writer's geometry attributes; absent in files from other tools.
   if (const auto* origin = header.findTypedAttribute<Imf::V3dAttribute>("vtkOrigin"))
   {
@@ -409,7 +418,9 @@ Imf::FrameBuffer NewArraysFrameBuffer(const ImageLayout& layout,
   }
   for (const std::string& name : layout.OtherChannels)
   {
-    vtkSmartPointer<vtkFloatArray> array = NewFloatArray(name, 1, pixels);
+    const bool depth = layout.ZAsDepth && name == "Z";
+    vtkSmartPointer<vtkFloatArray> array =
+      NewFloatArray(depth ? vtkSphericalCoverArrayNames::Depth : name, 1, pixels);
     frameBuffer.insert(name, Imf::Slice::Make(Imf::FLOAT, array->GetPointer(0), layout.Window));
     others.push_back(array);
   }
@@ -543,6 +554,19 @@ int vtkOpenEXRReader::RequestData(vtkInformation*,
     for (vtkFloatArray* array : others)
     {
       FlipRows(array->GetPointer(0), layout.Height, layout.Width);
+      if (layout.ZAsDepth && std::string(array->GetName()) == vtkSphericalCoverArrayNames::Depth)
+      {
+        // OpenEXR's +infinity (nothing seen) is the renderer's -1: the same image as the
+        // Radiance Image filter gives, and finite ranges for colour maps.
+        float* z = array->GetPointer(0);
+        for (vtkIdType k = 0; k < pixels; ++k)
+        {
+          if (z[k] == std::numeric_limits<float>::infinity())
+          {
+            z[k] = -1.0f;
+          }
+        }
+      }
       output->GetPointData()->AddArray(array);
     }
     return 1;

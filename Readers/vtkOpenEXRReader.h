@@ -2,7 +2,10 @@
 /**
  * @class vtkOpenEXRReader
  * @brief Reads an OpenEXR image into a 2-D vtkImageData: R, G, B as the float point array
- * `Radiance` (3 components) and every other channel as a float array of its own name.
+ * `Radiance` (3 components) and every other channel as a float array of its own name, except
+ * OpenEXR's depth channel `Z`: it is read as the array `Depth` (the renderer's name,
+ * vtkSphericalCoverArrayNames::Depth) with +infinity (nothing seen) as -1, the inverse of
+ * vtkOpenEXRWriter, unless the file also has a channel `Depth` (then both keep their names).
  *
  * The inverse of vtkOpenEXRWriter (Documentation/Pipeline.md#rendering): the extent is the file's
  * data window, rows are flipped back (EXR scanline y is VTK row ymin + ymax - y) and the origin and

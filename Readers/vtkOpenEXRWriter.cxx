@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkOpenEXRWriter.h"
 
+#include "vtkSphericalCoverArrayNames.h"
+
 #include <vtkArrayDispatch.h>
 #include <vtkDataArray.h>
 #include <vtkDataArrayRange.h>
@@ -22,6 +24,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <set>
 #include <sstream>
@@ -40,7 +43,13 @@ struct ChannelSource
   vtkDataArray* Array;
   int Component;
   Imf::PixelType Type;
+  /// The renderer's `Depth` written as OpenEXR's `Z`: its "no surface" marker (negative, -1)
+  /// becomes +infinity, OpenEXR's depth of a pixel that sees nothing.
+  bool DepthToZ = false;
 };
+
+/// OpenEXR's name of the depth channel (the distance from the viewer).
+constexpr const char* ZChannel = "Z";
 
 /// Copies one component of a float or double array into a plane of floats in EXR scanline
 /// order (rows flipped: VTK's y points up, EXR's down). float -> float is a copy, so the
@@ -144,11 +153,13 @@ std::string AddArrayChannels(vtkPointData* pointData,
     }
     return std::string();
   }
-  if (!channelNames.insert(name).second)
+  const bool depth = name == vtkSphericalCoverArrayNames::Depth;
+  const std::string channel = depth ? ZChannel : name;
+  if (!channelNames.insert(channel).second)
   {
-    return "the channel '" + name + "' is written twice";
+    return "the channel '" + channel + "' is written twice";
   }
-  channels.push_back({ name, array, 0, Imf::FLOAT });
+  channels.push_back({ channel, array, 0, Imf::FLOAT, depth });
   return std::string();
 }
 
@@ -192,6 +203,16 @@ void CopyPlanes(const std::vector<ChannelSource>& channels,
     {
       CopyComponentFlipped{}(
         channels[k].Array, channels[k].Component, width, height, planes[k].data());
+    }
+    if (channels[k].DepthToZ)
+    {
+      for (float& z : planes[k])
+      {
+        if (z < 0.0f)
+        {
+          z = std::numeric_limits<float>::infinity();
+        }
+      }
     }
     if (channels[k].Type == Imf::HALF)
     {

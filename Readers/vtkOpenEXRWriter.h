@@ -13,9 +13,14 @@
  * Layout of the file:
  * - channels `R`, `G`, `B` from the array named by ColorArrayName (default `Radiance`), each
  *   component one channel; float or double arrays (double is rounded to float);
- * - one extra channel per name given to AddChannelArray(), named like the array (so `Depth`
- *   is written as the channel `Depth` and reads back as the array `Depth`); extra channels
- *   are always 32-bit float, whatever PixelType says (depth needs float precision);
+ * - one extra channel per name given to AddChannelArray(), named like the array, except the
+ *   renderer's depth: the array `Depth` (vtkSphericalCoverArrayNames::Depth, the distance
+ *   from the eye along the camera ray, -1 where no surface is seen) is written as the channel
+ *   `Z`, OpenEXR's name for the depth (distance from the viewer), with +infinity where no
+ *   surface is seen (every negative value: the renderer's only negative depth is -1), so that
+ *   compositing tools read it as depth; vtkOpenEXRReader reads `Z` back as `Depth` with -1.
+ *   Extra channels are always 32-bit float, whatever PixelType says (depth needs float
+ *   precision);
  * - data window = display window = the image's x and y extent (non-zero origins kept);
  * - rows flipped so that the image is upright in EXR viewers: VTK's row j (y up) is EXR's
  *   scanline y = ymin + ymax - j (y down);
@@ -83,7 +88,7 @@ public:
 
   ///@{
   /// Extra single-component point arrays (float or double), each written as a 32-bit float
-  /// channel named like the array. Default: none.
+  /// channel named like the array (`Depth` as `Z`, see above). Default: none.
   void AddChannelArray(const char* arrayName);
   void RemoveAllChannelArrays();
   int GetNumberOfChannelArrays() const;

@@ -51,7 +51,7 @@ void ParseSize(const std::string& text, int& width, int& height)
   }
 }
 
-/// The image files -o and --png name: -o is the HDR image (.exr, Radiance and Depth) or a
+/// The image files -o and --png name: -o is the HDR image (.exr, Radiance and Depth as Z) or a
 /// tone-mapped PNG; --png adds a tone-mapped PNG.
 struct RenderOutputs
 {

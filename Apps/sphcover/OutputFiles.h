@@ -60,7 +60,8 @@ void WriteTextAtomically(const std::string& text, const std::string& path);
 /// The image's `RGB` array as PNG.
 void WritePngAtomically(vtkImageData* image, const std::string& path);
 
-/// The image's HDR `Radiance` (float RGB) and `Depth` as OpenEXR.
+/// The image's HDR `Radiance` (float RGB, channels R, G, B) and `Depth` as OpenEXR (channel
+/// `Z`, +infinity where no surface is seen: vtkOpenEXRWriter.h).
 void WriteExrAtomically(vtkImageData* image, const std::string& path);
 }
 

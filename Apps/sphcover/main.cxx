@@ -4,6 +4,7 @@
  * @brief `sphcover`: the command-line program (README.md#command-line): its options and the
  * dispatch to the commands (Commands.h), which run the VTK pipeline and format what it gives.
  *
+ *   sphcover --version
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
@@ -18,6 +19,7 @@
 #include "Commands.h"
 #include "Options.h"
 #include "OutputFiles.h"
+#include "SphcoverVersion.h"
 
 #include <CLI/CLI.hpp>
 #include <vtkLogger.h>
@@ -35,6 +37,12 @@ int main(int argc, char** argv)
   CLI::App app{ "sphcover: view-independent global illumination of Bezier-patch scenes by the "
                 "spherical cover of Mudur and Pattanaik (1990)" };
   app.require_subcommand(1);
+  // CLI11 handles the flag before the subcommand requirement: prints, exits 0.
+  app.set_version_flag("--version",
+    "sphcover " SPHCOVER_VERSION "\n"
+    "built with VTK " SPHCOVER_VTK_VERSION ", Embree " SPHCOVER_EMBREE_VERSION
+    ", OpenEXR " SPHCOVER_OPENEXR_VERSION,
+    "Print the version of sphcover and of the VTK, Embree and OpenEXR it was built with");
   // Global options may also follow the subcommand: `sphcover info X --threads 2`.
   app.fallthrough();
   sphcover_cli::Options options;
@@ -42,7 +50,8 @@ int main(int argc, char** argv)
     .add_option(
       "--threads", options.Threads, "Worker threads for the parallel stages (0: one per core)")
     ->check(CLI::Range(0, 4096));
-  app.add_flag("--quiet,-q", options.Quiet, "No progress bars");
+  app.add_flag(
+    "--quiet,-q", options.Quiet, "No progress on stderr (bars on a terminal, lines elsewhere)");
   app
     .add_option("--memory-limit",
       options.MemoryLimit,
@@ -88,10 +97,11 @@ int main(int argc, char** argv)
   solve->add_option("--report", options.Report, "Report file (.json)");
   solve->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
     ->check(CLI::IsMember({ "projection", "raycasting" }));
-  solve->add_option("--lamps",
-         options.Lamps,
-         "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
-         "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
+  solve
+    ->add_option("--lamps",
+      options.Lamps,
+      "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
+      "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
     ->check(CLI::IsMember({ "cells", "measured" }));
   solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
@@ -106,7 +116,8 @@ int main(int argc, char** argv)
     ->required();
   render->add_option("-o,--output",
     options.Output,
-    "Image file: .exr (HDR Radiance and Depth, float) or .png (tone-mapped sRGB)");
+    "Image file: .exr (HDR Radiance as R, G, B and the depth as Z, float; Z is +inf where no "
+    "surface is seen) or .png (tone-mapped sRGB)");
   render->add_option("--png", options.Png, "PNG file (tone-mapped sRGB)");
   render->add_option("--camera", options.Camera, "Camera of the scene (default: the first)");
   render->add_option("--size", options.Size, "Image size WIDTHxHEIGHT (default: the camera's)");
@@ -126,10 +137,11 @@ int main(int argc, char** argv)
   render->add_option("--report", options.Report, "Report file (.json), with timings_s.render");
   render->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
     ->check(CLI::IsMember({ "projection", "raycasting" }));
-  render->add_option("--lamps",
-         options.Lamps,
-         "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
-         "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
+  render
+    ->add_option("--lamps",
+      options.Lamps,
+      "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
+      "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
     ->check(CLI::IsMember({ "cells", "measured" }));
   render->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");

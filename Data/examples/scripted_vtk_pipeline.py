@@ -8,8 +8,8 @@ The whole method as an ordinary VTK pipeline, one algorithm per stage of the pap
   -> vtkLightPropagationFilter     progressive shooting to equilibrium (§5.1)
   -> vtkRadianceImageFilter        the view through a camera of the scene (§5.3); port 0 the
                                    illumination, port 1 the subdivision's patches
-  -> vtkOpenEXRWriter              the HDR image: Radiance (float RGB, W m^-2 sr^-1), Depth and
-                                   SurfaceId (float channels)
+  -> vtkOpenEXRWriter              the HDR image: Radiance (float RGB, W m^-2 sr^-1), Depth (as
+                                   OpenEXR's depth channel Z) and SurfaceId (float channels)
 
 Each stage is updated in turn, so the script can time it; a ProgressEvent observer shows its
 progress on stderr and an ErrorEvent observer turns a failed stage into one line and exit
@@ -137,7 +137,7 @@ writer = vtkOpenEXRWriter()
 writer.SetInputConnection(surface_channel.GetOutputPort())
 writer.SetFileName(arguments.output)
 writer.SetColorArrayName("Radiance")
-writer.AddChannelArray("Depth")
+writer.AddChannelArray("Depth")  # as OpenEXR's channel Z, +inf where nothing is seen
 writer.AddChannelArray("SurfaceId")
 
 try:
@@ -203,5 +203,5 @@ unshot = history.GetColumnByName("UnshotEnergy").GetValue(rows - 1) if rows else
 print(f"shots                {rows} (the history's rows), unshot at the end {unshot:.6g} W "
       f"= {unshot / max(emitted.sum(), 1e-300):.2e} of the emitted power")
 print("timings (s)          " + ", ".join(f"{stage.name} {stage.seconds:.3f}" for stage in stages))
-print(f"wrote {arguments.output}: Radiance, Depth and SurfaceId, "
+print(f"wrote {arguments.output}: Radiance (R, G, B), Depth (as Z) and SurfaceId, "
       f"{arguments.size[0]} x {arguments.size[1]}")

@@ -322,11 +322,23 @@ int TestOpenEXRBadInput(int, char*[])
     writer->RemoveAllChannelArrays();
     writer->AddChannelArray("Depth");
     writer->AddChannelArray("Depth");
+    // Depth is written as OpenEXR's channel Z (vtkOpenEXRWriter.h).
+    CheckWriterFails(
+      writer, folder, "out.exr", { out, "'Z' is written twice" }, "the same extra channel twice");
+    writer->RemoveAllChannelArrays();
+    writer->AddChannelArray("Depth");
+    writer->AddChannelArray("Z");
+    vtkNew<vtkFloatArray> z;
+    z->SetName("Z");
+    z->SetNumberOfTuples(image->GetNumberOfPoints());
+    z->Fill(1.0);
+    image->GetPointData()->AddArray(z);
     CheckWriterFails(writer,
       folder,
       "out.exr",
-      { out, "'Depth' is written twice" },
-      "the same extra channel twice");
+      { out, "'Z' is written twice" },
+      "an array Z next to Depth, which is written as the channel Z");
+    image->GetPointData()->RemoveArray("Z");
   }
   {
     vtkNew<vtkImageData> bytesImage;

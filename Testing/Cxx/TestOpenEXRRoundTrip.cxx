@@ -8,7 +8,10 @@
 //   pixel at the data window's first scanline, and the header has the data window = extent;
 // - half pixels: R, G, B within half precision (relative 2^-11 for normal half values) and
 //   actually rounded, while the extra channel stays 32-bit exact;
-// - a double colour array is written as its values rounded to float.
+// - a double colour array is written as its values rounded to float;
+// - the renderer's Depth is OpenEXR's Z: the array `Depth` is written as the channel `Z` (no
+//   channel `Depth`) with +infinity where it is -1 and its values elsewhere, and read back as
+//   the array `Depth` (no `Z`) with -1 there (an array Z next to Depth: TestOpenEXRBadInput).
 #include "TestFailures.h"
 #include "vtkOpenEXRReader.h"
 #include "vtkOpenEXRWriter.h"
@@ -33,6 +36,7 @@
 #include <limits>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -86,7 +90,7 @@ bool SameBits(vtkDataArray* a, vtkDataArray* b)
     std::memcmp(fa->GetPointer(0), fb->GetPointer(0), sizeof(float) * fa->GetNumberOfValues()) == 0;
 }
 
-/// A 37 x 23 image with extent origin (-5, 7), slice z = 0, Radiance (float, 3), Depth
+/// A 37 x 23 image with extent origin (-5, 7), slice z = 0, Radiance (float, 3), Mask
 /// (float), Weight (double).
 vtkSmartPointer<vtkImageData> MakeImage(std::mt19937& random)
 {
@@ -101,7 +105,7 @@ vtkSmartPointer<vtkImageData> MakeImage(std::mt19937& random)
   radiance->SetNumberOfTuples(pixels);
   FillRandomBits(radiance, random);
   vtkNew<vtkFloatArray> depth;
-  depth->SetName("Depth");
+  depth->SetName("Mask");
   depth->SetNumberOfTuples(pixels);
   FillRandomBits(depth, random);
   vtkNew<vtkDoubleArray> weight;
@@ -134,7 +138,7 @@ int TestOpenEXRRoundTrip(int, char*[])
   std::mt19937 random(20260611u);
   vtkSmartPointer<vtkImageData> image = MakeImage(random);
   auto* radiance = image->GetPointData()->GetArray("Radiance");
-  auto* depth = image->GetPointData()->GetArray("Depth");
+  auto* depth = image->GetPointData()->GetArray("Mask");
   auto* weight = vtkDoubleArray::SafeDownCast(image->GetPointData()->GetArray("Weight"));
 
   // Bit-exact round trip, every lossless compression.
@@ -151,7 +155,7 @@ int TestOpenEXRRoundTrip(int, char*[])
     writer->SetInputData(image);
     writer->SetFileName(file.c_str());
     writer->SetCompression(compression);
-    writer->AddChannelArray("Depth");
+    writer->AddChannelArray("Mask");
     writer->AddChannelArray("Weight");
     Check(writer->Write() == 1, what + ": Write failed");
 
@@ -175,8 +179,8 @@ int TestOpenEXRRoundTrip(int, char*[])
       what + ": Radiance is the active scalars");
     Check(SameBits(output->GetPointData()->GetArray("Radiance"), radiance),
       what + ": Radiance is not bit-exact");
-    Check(SameBits(output->GetPointData()->GetArray("Depth"), depth),
-      what + ": Depth is not bit-exact");
+    Check(
+      SameBits(output->GetPointData()->GetArray("Mask"), depth), what + ": Mask is not bit-exact");
     auto* weightRead = vtkFloatArray::SafeDownCast(output->GetPointData()->GetArray("Weight"));
     bool weightRounded =
       weightRead && weightRead->GetNumberOfValues() == weight->GetNumberOfValues();
@@ -233,7 +237,7 @@ int TestOpenEXRRoundTrip(int, char*[])
     }
     smooth->GetPointData()->AddArray(values);
     vtkNew<vtkFloatArray> smoothDepth;
-    smoothDepth->SetName("Depth");
+    smoothDepth->SetName("Mask");
     smoothDepth->SetNumberOfTuples(smooth->GetNumberOfPoints());
     FillRandomBits(smoothDepth, random);
     smooth->GetPointData()->AddArray(smoothDepth);
@@ -243,13 +247,13 @@ int TestOpenEXRRoundTrip(int, char*[])
     writer->SetInputData(smooth);
     writer->SetFileName(file.c_str());
     writer->SetPixelTypeToHalf();
-    writer->AddChannelArray("Depth");
+    writer->AddChannelArray("Mask");
     Check(writer->Write() == 1, "half: Write failed");
     {
       Imf::InputFile exr(file.c_str());
       Check(exr.header().channels().findChannel("G")->type == Imf::HALF, "half: G is not HALF");
-      Check(exr.header().channels().findChannel("Depth")->type == Imf::FLOAT,
-        "half: Depth is not FLOAT");
+      Check(
+        exr.header().channels().findChannel("Mask")->type == Imf::FLOAT, "half: Mask is not FLOAT");
     }
     vtkNew<vtkOpenEXRReader> reader;
     vtkImageData* output = Read(reader, file);
@@ -267,8 +271,8 @@ int TestOpenEXRRoundTrip(int, char*[])
               << values->GetNumberOfValues() << " values changed by rounding\n";
     Check(worst <= std::exp2(-11.0), "half: error beyond half precision (2^-11 relative)");
     Check(rounded > values->GetNumberOfValues() / 2, "half: values were not rounded to half");
-    Check(SameBits(output->GetPointData()->GetArray("Depth"), smoothDepth),
-      "half: the Depth channel is not float-exact");
+    Check(SameBits(output->GetPointData()->GetArray("Mask"), smoothDepth),
+      "half: the Mask channel is not float-exact");
   }
 
   // A double colour array is written as float.
@@ -300,6 +304,64 @@ int TestOpenEXRRoundTrip(int, char*[])
       same = read->GetValue(k) == static_cast<float>(values->GetValue(k));
     }
     Check(same, "double: the colour is not the double values rounded to float");
+  }
+
+  // Depth as Z: OpenEXR's name for depth and its +infinity where nothing is seen.
+  {
+    vtkNew<vtkImageData> rendered;
+    rendered->SetExtent(0, 7, 0, 5, 0, 0);
+    const vtkIdType pixels = rendered->GetNumberOfPoints();
+    vtkNew<vtkFloatArray> colour;
+    colour->SetName("Radiance");
+    colour->SetNumberOfComponents(3);
+    colour->SetNumberOfTuples(pixels);
+    colour->Fill(0.5);
+    vtkNew<vtkFloatArray> depth;
+    depth->SetName("Depth");
+    depth->SetNumberOfTuples(pixels);
+    std::uniform_real_distribution<float> distance(0.0f, 1e4f);
+    for (vtkIdType k = 0; k < pixels; ++k)
+    {
+      // Every third pixel sees nothing (the renderer's -1), pixel 1 is at distance 0.
+      depth->SetValue(k, k % 3 == 0 ? -1.0f : (k == 1 ? 0.0f : distance(random)));
+    }
+    rendered->GetPointData()->AddArray(colour);
+    rendered->GetPointData()->AddArray(depth);
+    const std::string file = (folder / "depth.exr").string();
+    vtkNew<vtkOpenEXRWriter> writer;
+    writer->SetInputData(rendered);
+    writer->SetFileName(file.c_str());
+    writer->AddChannelArray("Depth");
+    Check(writer->Write() == 1, "depth: Write failed");
+    {
+      Imf::InputFile exr(file.c_str());
+      const Imf::ChannelList& channels = exr.header().channels();
+      Check(channels.findChannel("Z") && channels.findChannel("Z")->type == Imf::FLOAT,
+        "depth: no FLOAT channel Z");
+      Check(!channels.findChannel("Depth"), "depth: a channel Depth besides Z");
+      std::vector<float> z(static_cast<std::size_t>(pixels));
+      Imf::FrameBuffer frameBuffer;
+      frameBuffer.insert("Z", Imf::Slice::Make(Imf::FLOAT, z.data(), exr.header().dataWindow()));
+      exr.setFrameBuffer(frameBuffer);
+      exr.readPixels(0, 5);
+      bool right = true;
+      for (int j = 0; j < 6; ++j)
+      {
+        for (int i = 0; i < 8; ++i)
+        {
+          const float written = depth->GetValue(j * 8 + i);
+          const float inFile = z[static_cast<std::size_t>(5 - j) * 8 + i]; // rows flipped
+          right = right &&
+            (written < 0 ? inFile == std::numeric_limits<float>::infinity() : inFile == written);
+        }
+      }
+      Check(right, "depth: Z is not the Depth with +infinity where nothing is seen");
+    }
+    vtkNew<vtkOpenEXRReader> reader;
+    vtkImageData* output = Read(reader, file);
+    Check(output->GetPointData()->GetArray("Z") == nullptr, "depth: the reader gave an array Z");
+    Check(SameBits(output->GetPointData()->GetArray("Depth"), depth),
+      "depth: Z did not read back as the Depth written (-1 where nothing is seen)");
   }
   return TestFailures::ExitCode();
 }

@@ -108,7 +108,8 @@ else:
         if "cover" in timings or "render" not in timings:
             failures.append(f"render --solution timings {timings}: expected read and render only")
 
-# -o out.exr writes the HDR Radiance (and Depth) that vtkOpenEXRReader reads back: finite,
+# -o out.exr writes the HDR Radiance (and Depth, as the channel Z: TestCommandLineVersionProgressDepth)
+# that vtkOpenEXRReader reads back: finite,
 # non-negative, and brighter where the PNG is brighter (the PNG is its tone mapping).
 hdr = os.path.join(folder, "hdr.exr")
 hdr_png = os.path.join(folder, "hdr.png")

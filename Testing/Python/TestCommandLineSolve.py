@@ -234,7 +234,7 @@ if len(runs) == 2:
                 failures.append(f"the solutions on 1 and 2 threads differ in {name}")
 
 bad = subprocess.run([sphcover, "solve", f"{data}/../Testing/Data/bad/unknown_material.scene", "--report",
-                      os.path.join(folder, "bad.json")], capture_output=True, text=True, timeout=60)
+                      os.path.join(folder, "bad.json"), "--quiet"], capture_output=True, text=True, timeout=60)
 if bad.returncode == 0 or len(bad.stderr.strip().splitlines()) != 1 or os.path.exists(os.path.join(folder, "bad.json")):
     failures.append(f"a bad scene did not fail cleanly: {bad.stderr!r}")
 

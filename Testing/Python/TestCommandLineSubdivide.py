@@ -52,7 +52,8 @@ if len(counts) == 2 and counts["1"][0] != counts["2"][0]:
 if "1" in counts and "pair tests:" not in counts["1"][1]:
     failures.append("no pair-test count reported")
 
-bad = run("subdivide", scene, "-o", os.path.join(folder, "bad.vtm"), "--set", "tolerance=-1")
+bad = run("subdivide", scene, "-o", os.path.join(folder, "bad.vtm"), "--set", "tolerance=-1",
+          "--quiet")
 if bad.returncode == 0 or "tolerance" not in bad.stderr or len(bad.stderr.strip().splitlines()) != 1:
     failures.append(f"a bad --set did not fail with one line: {bad.stderr!r}")
 unwritable = run("subdivide", scene, "-o", "/nonexistent/folder/x.vtm", "--quiet")

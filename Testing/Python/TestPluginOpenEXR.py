@@ -1,11 +1,11 @@
 """pvbatch: the plug-in's OpenEXR writer and reader proxies (Documentation/Pipeline.md#rendering).
 - "Save Data" on image data with a .exr name picks the OpenEXR Writer; every property's XML
   default equals the C++ constructor's value;
-- the file it writes (a float Radiance, a double Depth as extra channel, a non-zero extent
-  origin) opens through the reader factory as the OpenEXR Reader and gives back the extent,
-  Radiance bit for bit and Depth rounded to float;
+- the file it writes (a float Radiance, a double positive Depth as extra channel, written as
+  OpenEXR's depth channel Z, a non-zero extent origin) opens through the reader factory as the
+  OpenEXR Reader and gives back the extent, Radiance bit for bit and Depth rounded to float;
 - a standard tool, exrheader (Debian package openexr), reads the file and lists the channels
-  B, Depth, G, R as 32-bit float and the data window of the extent (skipped with a message only
+  B, G, R, Z as 32-bit float and the data window of the extent (skipped with a message only
   if exrheader is not installed);
 - a file that is not an EXR is refused by the reader factory (CanReadFile) and, opened with the
   reader proxy by name, gives an empty output without a crash."""
@@ -29,12 +29,13 @@ from sphericalcover import vtkOpenEXRReader, vtkOpenEXRWriter  # noqa: E402
 failures = []
 folder = tempfile.mkdtemp()
 
-# An image with a non-zero extent origin: float Radiance, double Depth.
+# An image with a non-zero extent origin: float Radiance, double Depth (positive: a negative
+# depth means "nothing seen" and is written as +infinity, TestOpenEXRRoundTrip).
 wavelet = Wavelet(WholeExtent=[-10, 10, -5, 7, 0, 0])
 radiance = Calculator(Input=wavelet, ResultArrayName="Radiance", ResultArrayType="Float",
                       Function="RTData*iHat + coordsX*jHat + (coordsY/3)*kHat")
 image = Calculator(Input=radiance, ResultArrayName="Depth", ResultArrayType="Double",
-                   Function="coordsX*coordsY/7 + 0.1")
+                   Function="abs(coordsX*coordsY)/7 + 0.1")
 image.UpdatePipeline()
 
 # The writer the factory picks for .exr, and its defaults against C++.
@@ -98,8 +99,8 @@ else:
         failures.append(f"exrheader failed: {header.stderr.strip()}")
     channels = re.findall(r"^\s+(\S+), 32-bit floating-point, sampling 1 1$", header.stdout,
                           re.MULTILINE)
-    if channels != ["B", "Depth", "G", "R"]:
-        failures.append(f"exrheader lists the float channels {channels}, not B, Depth, G, R")
+    if channels != ["B", "G", "R", "Z"]:
+        failures.append(f"exrheader lists the float channels {channels}, not B, G, R, Z")
     if "dataWindow (type box2i): (-10 -5) - (10 7)" not in header.stdout:
         failures.append("exrheader does not show the data window (-10 -5) - (10 7):\n"
                         + header.stdout)
