@@ -40,6 +40,17 @@ struct ReceiverFilter
   bool BackFacesOcclude;
 };
 
+/// The filter of the rays from `receiver`'s point under the fill's options.
+ReceiverFilter FilterFor(std::size_t receiver,
+  const Patch& patch,
+  const RBufferFillOptions& options)
+{
+  return { receiver,
+    static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
+    options.CountSelfVisibility,
+    options.BackFacesOcclude };
+}
+
 bool AcceptForReceiver(const void* context, std::size_t patch, float distance, bool front)
 {
   const ReceiverFilter& receiver = *static_cast<const ReceiverFilter*>(context);
@@ -198,11 +209,7 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   RBuffer& buffer) const
 {
   const HemisphereGrid& grid = this->Grid;
-  const Patch& patch = this->Patches[receiver];
-  const ReceiverFilter receiverFilter{ receiver,
-    static_cast<float>(this->Options.SelfExclusionFraction * patch.Geometry.Size()),
-    this->Options.CountSelfVisibility,
-    this->Options.BackFacesOcclude };
+  const ReceiverFilter receiverFilter = FilterFor(receiver, this->Patches[receiver], this->Options);
 
   HitScratch& scratch = ThreadScratch();
   scratch.U.resize(grid.SampleCount());
@@ -394,10 +401,7 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
   const Patch& self = this->Patches[receiver];
   const Patch& target = this->Patches[source];
   const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
-  const ReceiverFilter receiverFilter{ receiver,
-    static_cast<float>(this->Options.SelfExclusionFraction * self.Geometry.Size()),
-    this->Options.CountSelfVisibility,
-    this->Options.BackFacesOcclude };
+  const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options);
   const RayFilter filter{ AcceptForReceiver, &receiverFilter };
   const double distance = glm::length(target.Point - frame.Origin);
   const double size = target.Geometry.Size();

@@ -24,6 +24,19 @@ constexpr std::size_t DefaultBatchSize = 64;
 }
 
 static_assert(sizeof(SphericalCover::Strip) == 6, "a strip is three uint16");
+
+/// The sum of the cells' measures of the strips [first, last).
+double MeasureOfStrips(const HemisphereGrid& grid,
+  const SphericalCover::Strip* first,
+  const SphericalCover::Strip* last)
+{
+  double sum = 0.0;
+  for (const SphericalCover::Strip* strip = first; strip != last; ++strip)
+  {
+    sum += (strip->PhiEnd - strip->PhiBegin) * grid.CellMeasure(strip->Row);
+  }
+  return sum;
+}
 static_assert(sizeof(SphericalCover::Entry) == 8, "an entry is two uint32");
 
 /// One hemisphere's strips and entries before they join the cover.
@@ -123,6 +136,7 @@ void SphericalCover::ExtractRow(const RBuffer& buffer, Row& row)
 void SphericalCover::MeasureRow(std::size_t receiver,
   const RayCastFiller& filler,
   const std::vector<Patch>& patches,
+  const std::vector<std::vector<uint32_t>>& piecesOfSurface,
   Row& row) const
 {
   const std::vector<bool>& measured = this->BuildOptions.MeasuredSurfaces;
@@ -130,15 +144,12 @@ void SphericalCover::MeasureRow(std::size_t receiver,
   const size_t entries = row.Sources.size();
   std::vector<double> cells(entries, 0.0);
   std::vector<char> isMeasured(entries, 0);
-  size_t strip = 0;
+  const Strip* strips = row.Strips.data();
   bool any = false;
   for (size_t e = 0; e < entries; ++e)
   {
-    for (uint32_t k = 0; k < row.StripCounts[e]; ++k, ++strip)
-    {
-      const Strip& s = row.Strips[strip];
-      cells[e] += (s.PhiEnd - s.PhiBegin) * grid.CellMeasure(s.Row);
-    }
+    cells[e] = MeasureOfStrips(grid, strips, strips + row.StripCounts[e]);
+    strips += row.StripCounts[e];
     const size_t surface = static_cast<size_t>(patches[row.Sources[e]].SurfaceIndex);
     isMeasured[e] = surface < measured.size() && measured[surface];
     any = any || isMeasured[e];
@@ -172,7 +183,7 @@ void SphericalCover::MeasureRow(std::size_t receiver,
   for (const int surface : surfaces)
   {
     // The surface's pieces together get at least 8 x 8 nodes, each at least 2 x 2.
-    const std::vector<uint32_t>& pieces = this->MeasuredPatches[static_cast<size_t>(surface)];
+    const std::vector<uint32_t>& pieces = piecesOfSurface[static_cast<size_t>(surface)];
     const int side =
       std::max(2, static_cast<int>(std::ceil(8.0 / std::sqrt(static_cast<double>(pieces.size())))));
     pieceMeasures.assign(pieces.size(), 0.0);
@@ -293,13 +304,14 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
   {
     rayFiller = dynamic_cast<const RayCastFiller*>(filler.get());
   }
-  this->MeasuredPatches.assign(options.MeasuredSurfaces.size(), {});
+  // Per measured surface its patches, ascending.
+  std::vector<std::vector<uint32_t>> measuredPieces(options.MeasuredSurfaces.size());
   for (size_t j = 0; rayFiller && j < patches.size(); ++j)
   {
     const size_t surface = static_cast<size_t>(patches[j].SurfaceIndex);
     if (surface < options.MeasuredSurfaces.size() && options.MeasuredSurfaces[surface])
     {
-      this->MeasuredPatches[surface].push_back(static_cast<uint32_t>(j));
+      measuredPieces[surface].push_back(static_cast<uint32_t>(j));
     }
   }
 
@@ -327,7 +339,7 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
           ExtractRow(buffer, rows[k]);
           if (rayFiller)
           {
-            this->MeasureRow(batchBegin + k, *rayFiller, patches, rows[k]);
+            this->MeasureRow(batchBegin + k, *rayFiller, patches, measuredPieces, rows[k]);
           }
         }
       });
@@ -521,14 +533,9 @@ double SphericalCover::ProjectedSolidAngle(std::size_t entry) const
 
 double SphericalCover::CellsMeasure(std::size_t entry) const
 {
-  const HemisphereGrid& grid = this->Grid();
-  double sum = 0.0;
-  for (size_t s = this->StripBegin(entry); s < this->StripEnd(entry); ++s)
-  {
-    const Strip& strip = this->Strips[s];
-    sum += (strip.PhiEnd - strip.PhiBegin) * grid.CellMeasure(strip.Row);
-  }
-  return sum;
+  const Strip* strips = this->Strips.data();
+  return MeasureOfStrips(
+    this->Grid(), strips + this->StripBegin(entry), strips + this->StripEnd(entry));
 }
 
 double SphericalCover::ProjectedSolidAngle(std::size_t receiver, std::size_t source) const

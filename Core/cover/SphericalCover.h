@@ -254,10 +254,12 @@ public:
 private:
   struct Row;
   static void ExtractRow(const RBuffer& buffer, Row& row);
-  /// Measures the row's regions of measured surfaces on their sources (see the file comment).
+  /// Measures the row's regions of measured surfaces on their sources (see the file comment);
+  /// piecesOfSurface[s] lists the patches of measured surface s, ascending.
   void MeasureRow(std::size_t receiver,
     const RayCastFiller& filler,
     const std::vector<Patch>& patches,
+    const std::vector<std::vector<uint32_t>>& piecesOfSurface,
     Row& row) const;
   void AppendRow(Row& row);
   /// The sum of the measures of entry e's cells.
@@ -277,8 +279,6 @@ private:
   std::vector<ColumnEntry> Columns;
   std::vector<double> Areas;
   std::vector<float> Measures;
-  /// While building: per measured surface its patches.
-  std::vector<std::vector<uint32_t>> MeasuredPatches;
   bool UnoccludedKnown = false;
   CullingStatistics CullingCounts;
 };

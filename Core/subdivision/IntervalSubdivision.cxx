@@ -98,7 +98,7 @@ private:
   bool CanSplit(size_t k, const glm::dvec3& from) const
   {
     if (this->Nodes[static_cast<size_t>(this->Leaves[k])].Level >= this->Settings.MaxLevel ||
-      this->Boxes[k].Diagonal() <= this->MinimumDiagonal)
+      (this->MinimumDiagonal > 0.0 && this->Boxes[k].Diagonal() <= this->MinimumDiagonal))
     {
       return false;
     }
@@ -199,14 +199,12 @@ IntervalSubdivision::IntervalSubdivision(const Scene& scene, const SubdivisionSe
     this->LeafIsNew.push_back(true);
     this->NodeBytes += BytesOfPatch(scene.Surfaces[s].Patch);
   }
-  if (!this->Nodes.empty())
+  if (!scene.Surfaces.empty())
   {
-    Box all = BoxOf(this->Nodes.front());
-    for (const Patch& surface : this->Nodes)
-    {
-      all.Extend(BoxOf(surface));
-    }
-    this->SceneDiagonal = all.Diagonal();
+    glm::dvec3 lower;
+    glm::dvec3 upper;
+    scene.Bounds(lower, upper);
+    this->SceneDiagonal = glm::length(upper - lower);
   }
 }
 

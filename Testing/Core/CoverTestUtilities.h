@@ -12,6 +12,7 @@
 #include "cover/CoverRefinement.h"
 #include "cover/SphericalCover.h"
 #include "geometry/BezierPatch.h"
+#include "geometry/RayCaster.h"
 #include "math/Constants.h"
 #include "math/ParallelFor.h"
 #include "propagation/LightPropagation.h"
@@ -239,6 +240,32 @@ inline int SurfaceNamed(const sphcover::Scene& scene, const std::string& name)
 inline std::vector<glm::dvec3> CornerPolygon(const sphcover::BezierPatch& patch)
 {
   return { patch.Evaluate(0, 0), patch.Evaluate(1, 0), patch.Evaluate(1, 1), patch.Evaluate(0, 1) };
+}
+
+/// Whether rays from `point` to 9 x 9 points of the lamp (surface `lampSurface`, geometry
+/// `lamp`) all first meet its front side: the whole lamp is in view.
+inline bool SeesWholeLamp(const sphcover::RayCaster& rays,
+  const std::vector<sphcover::Patch>& patches,
+  const glm::dvec3& point,
+  const sphcover::BezierPatch& lamp,
+  int lampSurface)
+{
+  for (int a = 0; a <= 8; ++a)
+  {
+    for (int b = 0; b <= 8; ++b)
+    {
+      const glm::dvec3 target = lamp.Evaluate(0.01 + 0.98 * a / 8.0, 0.01 + 0.98 * b / 8.0);
+      std::size_t hit = 0;
+      double distance = 0.0;
+      bool front = false;
+      if (!rays.FirstHit(point, glm::normalize(target - point), 1e-3, hit, distance, front) ||
+        patches[hit].SurfaceIndex != lampSurface || !front)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 /**

@@ -252,25 +252,7 @@ TEST(AdaptiveSampling, CornellLampFromTheFloorCorners)
     // The lamp's boundary cells are sampled in full, so its cells are the full fill's.
     EXPECT_EQ(cellsAdaptive, cellsFull) << "corner " << k;
     // Unoccluded: rays to 9 x 9 points of the lamp all reach its front side.
-    bool visible = true;
-    for (int u = 0; u <= 8 && visible; ++u)
-    {
-      for (int v = 0; v <= 8 && visible; ++v)
-      {
-        const glm::dvec3 target = lampPatch.Evaluate(0.01 + 0.98 * u / 8.0, 0.01 + 0.98 * v / 8.0);
-        std::size_t hit = 0;
-        double distance = 0.0;
-        bool front = false;
-        visible = full.Caster().FirstHit(patches[i].Point,
-                    glm::normalize(target - patches[i].Point),
-                    1e-3,
-                    hit,
-                    distance,
-                    front) &&
-          patches[hit].SurfaceIndex == lamp && front;
-      }
-    }
-    if (visible)
+    if (SeesWholeLamp(full.Caster(), patches, patches[i].Point, lampPatch, lamp))
     {
       // A cell of 28 is 3.6 %: the boundary cells' rounding, as in the full fill.
       EXPECT_NEAR(cellsAdaptive, exact, 0.05 * exact) << "corner " << k;

@@ -79,22 +79,7 @@ TEST(CornellDirectLight, LampProjectedSolidAngle)
         {
           continue;
         }
-        bool visible = true;
-        for (int a = 0; a <= 8 && visible; ++a)
-        {
-          for (int b = 0; b <= 8 && visible; ++b)
-          {
-            const glm::dvec3 target =
-              lampPatch.Evaluate(0.01 + 0.98 * a / 8.0, 0.01 + 0.98 * b / 8.0);
-            const glm::dvec3 direction = glm::normalize(target - p.Point);
-            size_t hit = 0;
-            double distance = 0.0;
-            bool front = false;
-            visible = rays.FirstHit(p.Point, direction, 1e-3, hit, distance, front) &&
-              patches[hit].SurfaceIndex == lamp && front;
-          }
-        }
-        if (!visible)
+        if (!SeesWholeLamp(rays, patches, p.Point, lampPatch, lamp))
         {
           continue;
         }
@@ -223,20 +208,7 @@ TEST(CornellDirectLight, MeasuredLampRegions)
     {
       visible = visible && glm::dot(corner - p.Point, p.Normal) > 1e-9;
     }
-    for (int a = 0; a <= 8 && visible; ++a)
-    {
-      for (int b = 0; b <= 8 && visible; ++b)
-      {
-        const glm::dvec3 target = lampPatch.Evaluate(0.01 + 0.98 * a / 8.0, 0.01 + 0.98 * b / 8.0);
-        size_t hit = 0;
-        double distance = 0.0;
-        bool front = false;
-        visible =
-          rays.FirstHit(p.Point, glm::normalize(target - p.Point), 1e-3, hit, distance, front) &&
-          patches[hit].SurfaceIndex == lamp && front;
-      }
-    }
-    if (!visible)
+    if (!visible || !SeesWholeLamp(rays, patches, p.Point, lampPatch, lamp))
     {
       continue;
     }

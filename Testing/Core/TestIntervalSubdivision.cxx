@@ -19,7 +19,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <map>
 #include <thread>
 
@@ -438,16 +437,9 @@ TEST(IntervalSubdivision, MinPatchSizeSpendsPointsBySize)
   SubdivisionSettings settings;
   settings.MaxLevel = 8;
   settings.MinPatchSize = 0.05;
-  glm::dvec3 lower(std::numeric_limits<double>::max());
-  glm::dvec3 upper(std::numeric_limits<double>::lowest());
-  for (const Surface& surface : scene.Surfaces)
-  {
-    for (const glm::dvec3& corner : CornerPolygon(surface.Patch))
-    {
-      lower = glm::min(lower, corner);
-      upper = glm::max(upper, corner);
-    }
-  }
+  glm::dvec3 lower;
+  glm::dvec3 upper;
+  scene.Bounds(lower, upper);
   const double limit = settings.MinPatchSize * glm::length(upper - lower);
   std::map<int, size_t> made;
   for (const Patch& patch : Subdivide(scene, settings))
