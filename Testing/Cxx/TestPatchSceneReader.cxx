@@ -11,6 +11,7 @@
 #include "vtkBPTReader.h"
 #include "vtkPatchSceneReader.h"
 #include "vtkSceneFileLoader.h"
+#include "vtkSceneSettingsArray.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 
@@ -19,6 +20,7 @@
 #include <vtkCellData.h>
 #include <vtkCellType.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
@@ -195,6 +197,28 @@ int TestPatchSceneReader(int, char*[])
       boundsOk = boundsOk && std::fabs(b[k] - model.Bounds[k]) < 1e-5;
     }
     Check(boundsOk, file + ": bounds");
+  }
+
+  // SceneSettings: the Cornell box's min_patch_size reads back; a file written before the
+  // setting (four components) reads with min_patch_size 0 and its other values.
+  {
+    vtkNew<vtkPatchSceneReader> reader;
+    reader->SetFileName((scenes + "cornell_box.scene").c_str());
+    reader->Update();
+    const sphcover::SceneSettings current =
+      vtkSceneSettingsArray::Read(reader->GetOutput()->GetFieldData());
+    Check(current.MinPatchSize == 0.05 && current.MaxLevel == 5, "min_patch_size reads back");
+    vtkNew<vtkDoubleArray> older;
+    older->SetName(vtkSphericalCoverArrayNames::SceneSettings);
+    older->SetNumberOfComponents(4);
+    const double values[4] = { 16, 64, 3, 0.1 };
+    older->InsertNextTuple(values);
+    vtkNew<vtkFieldData> fd;
+    fd->AddArray(older);
+    const sphcover::SceneSettings read = vtkSceneSettingsArray::Read(fd);
+    Check(read.ThetaBins == 16 && read.PhiBins == 64 && read.MaxLevel == 3 &&
+        read.Tolerance == 0.1 && read.MinPatchSize == 0.0,
+      "four-component SceneSettings read with min_patch_size 0");
   }
   return TestFailures::ExitCode();
 }

@@ -21,7 +21,9 @@
 #include <vtkCellData.h>
 #include <vtkCommand.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -178,6 +180,44 @@ int TestSphericalCoverFilter(int, char*[])
               << worstRow << "\n";
     Check(worstRow < 1e-5 && changed > built.PatchCount() / 2,
       "measured lamp regions keep every row's covered measure");
+
+    // A corrupt CoverMeasures is refused with one explanation, the cover left empty: a
+    // negative or NaN measure, one of the wrong length, one of the wrong type.
+    const auto refused = [&](vtkAbstractArray* replacement, const char* what)
+    {
+      vtkNew<vtkPolyData> copy;
+      copy->ShallowCopy(cover->GetOutput());
+      vtkNew<vtkFieldData> fd;
+      fd->DeepCopy(cover->GetOutput()->GetFieldData());
+      fd->RemoveArray("CoverMeasures");
+      replacement->SetName("CoverMeasures");
+      fd->AddArray(replacement);
+      copy->SetFieldData(fd);
+      sphcover::SphericalCover loaded;
+      const std::string problem = vtkSphericalCoverArrays::Load(copy, loaded);
+      std::cout << what << ": " << problem << "\n";
+      Check(!problem.empty() && loaded.Empty(), what);
+    };
+    const vtkIdType entries = static_cast<vtkIdType>(measures.size());
+    for (const float bad : { -1.0f, std::nanf("") })
+    {
+      vtkNew<vtkFloatArray> values;
+      values->SetNumberOfTuples(entries);
+      for (vtkIdType e = 0; e < entries; ++e)
+      {
+        values->SetValue(e, measures[static_cast<size_t>(e)]);
+      }
+      values->SetValue(entries / 2, bad);
+      refused(values, "a negative or NaN measure is refused");
+    }
+    vtkNew<vtkFloatArray> shorter;
+    shorter->SetNumberOfTuples(entries - 1);
+    shorter->FillValue(0.0f);
+    refused(shorter, "measures of the wrong length are refused");
+    vtkNew<vtkDoubleArray> doubles;
+    doubles->SetNumberOfTuples(entries);
+    doubles->FillValue(0.0);
+    refused(doubles, "measures of the wrong type are refused");
   }
 
   // Two threads build the same cover.

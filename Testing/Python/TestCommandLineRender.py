@@ -279,6 +279,31 @@ for arguments, words in [
         failures.append(f"{arguments[2:]}: exit {result.returncode}, stderr {result.stderr!r}")
     else:
         print(lines[0])
+# --lamps: the lamp's regions measured on the lamp (the default) or counted in cells. The same
+# cells either way, so the same rows' totals; the floor's form factor to the lamp moves by the
+# cells' error (here, on a 16 x 64 grid, about 7 %).
+if os.path.exists(report_file):
+    cells_report = os.path.join(folder, "cells.json")
+    result = run("solve", scene, "--report", cells_report, "--quiet", "--lamps", "cells", *coarse)
+    if result.returncode != 0:
+        failures.append(f"solve --lamps cells failed: {result.stderr.strip()}")
+    else:
+        measured = json.load(open(report_file))["form_factors"]
+        counted = json.load(open(cells_report))["form_factors"]
+        names = measured["names"]
+        floor, light = names.index("floor"), names.index("light")
+        a, b = measured["matrix"][floor][light], counted["matrix"][floor][light]
+        rows_a = [sum(row) for row in measured["matrix"]]
+        rows_b = [sum(row) for row in counted["matrix"]]
+        print(f"--lamps: floor -> light {a:.6f} measured, {b:.6f} in cells")
+        if not abs(a - b) > 1e-4 * b:
+            failures.append(f"--lamps cells gives the same floor -> light form factor {a}")
+        if any(abs(x - y) > 1e-5 for x, y in zip(rows_a, rows_b)):
+            failures.append(f"--lamps changes the rows' totals: {rows_a} vs {rows_b}")
+# An unknown --lamps value is CLI11's error (its line and a pointer to --help), nothing written.
+result = run("render", scene, "-o", bad_output, "--lamps", "exact", "--quiet")
+if result.returncode == 0 or "--lamps" not in result.stderr.splitlines()[0]:
+    failures.append(f"--lamps exact: exit {result.returncode}, stderr {result.stderr!r}")
 leftovers = [name for name in os.listdir(folder) if name.startswith("bad") or "partial" in name]
 if leftovers:
     failures.append(f"files left behind by failures: {leftovers}")
