@@ -14,7 +14,9 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
+#include <string>
 
 namespace names = vtkSphericalCoverArrayNames;
 
@@ -72,7 +74,63 @@ bool vtkIlluminationAdapter::Read(vtkPolyData* points,
     error = e.what();
     return false;
   }
+  if (!vtkIlluminationAdapter::ReadDirectIrradiance(points, illumination, error))
+  {
+    return false;
+  }
   return !directional || vtkIlluminationAdapter::ReadDirectional(points, illumination, error);
+}
+
+bool vtkIlluminationAdapter::ReadDirectIrradiance(vtkPolyData* points,
+  Illumination& illumination,
+  std::string& error)
+{
+  illumination.Direct = sphcover::DirectLight();
+  vtkPointData* pd = points->GetPointData();
+  vtkDataArray* nodes = pd->GetArray(names::DirectIrradiance);
+  if (!nodes)
+  {
+    return true;
+  }
+  const int components = nodes->GetNumberOfComponents();
+  const int side = static_cast<int>(std::lround(std::sqrt(components / 3.0)));
+  if (components != 3 * side * side || side < 3 || side > 33 || side % 2 == 0)
+  {
+    error = "the point array DirectIrradiance has " + std::to_string(components) +
+      " components, not 3 n^2 for an odd n from 3 to 33";
+    return false;
+  }
+  vtkDataArray* diffuse = pd->GetArray(names::Diffuse);
+  if (!diffuse || diffuse->GetNumberOfComponents() != 3)
+  {
+    error = "the points have DirectIrradiance but no point array Diffuse (3 components)";
+    return false;
+  }
+  const vtkIdType count = points->GetNumberOfPoints();
+  std::vector<float> values(static_cast<size_t>(count) * static_cast<size_t>(components));
+  std::vector<glm::dvec3> reflectance(static_cast<size_t>(count));
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    for (int c = 0; c < components; ++c)
+    {
+      const double value = nodes->GetComponent(i, c);
+      if (!std::isfinite(value) || value < 0.0)
+      {
+        error =
+          "DirectIrradiance of point " + std::to_string(i) + " is negative or not a finite number";
+        return false;
+      }
+      values[static_cast<size_t>(i) * static_cast<size_t>(components) + static_cast<size_t>(c)] =
+        static_cast<float>(value);
+    }
+    diffuse->GetTuple(static_cast<vtkIdType>(i), &reflectance[static_cast<size_t>(i)][0]);
+  }
+  sphcover::DirectIrradianceNodes direct;
+  direct.NodesPerSide = side;
+  direct.Values = std::move(values);
+  illumination.Direct =
+    sphcover::DirectLight(std::move(direct), reflectance, static_cast<std::size_t>(count));
+  return true;
 }
 
 bool vtkIlluminationAdapter::ReadDirectional(vtkPolyData* points,

@@ -41,6 +41,10 @@ public:
     std::vector<bool> TwoSidedSurface;
     /// The directional part of paper §5.3.1 (null when every point is diffuse).
     std::unique_ptr<sphcover::DirectionalIllumination> Directional;
+    /// The lamps' direct light: the irradiance on the nodes of every point's patch
+    /// (`DirectIrradiance`) and every point's diffuse reflectance (`Diffuse`); empty without
+    /// `DirectIrradiance`.
+    sphcover::DirectLight Direct;
   };
 
   /// False with a message in `error` (one sentence naming what is missing) when the points
@@ -67,6 +71,11 @@ public:
   static bool ReadFrames(vtkPolyData* points, std::vector<sphcover::HemisphereFrame>& frames);
 
 private:
+  /// Fills Illumination::Direct when the points have `DirectIrradiance`: 3 n^2
+  /// components for an odd n from 3 to 33, finite and not negative, with `Diffuse` (3).
+  static bool ReadDirectIrradiance(vtkPolyData* points,
+    Illumination& illumination,
+    std::string& error);
   /// Fills Illumination::Directional when some point is non-diffuse.
   static bool ReadDirectional(vtkPolyData* points, Illumination& illumination, std::string& error);
 };

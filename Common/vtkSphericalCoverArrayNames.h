@@ -70,6 +70,10 @@ constexpr const char* CoverUnoccluded = "CoverUnoccluded";
 constexpr const char* CoverStrips = "CoverStrips";
 constexpr const char* CoverStripDepths = "CoverStripDepths";
 constexpr const char* CoverMeasures = "CoverMeasures";
+/// Point data, 3 n^2 components: the lamps' direct irradiance (RGB, W m^-2) at the n x n nodes
+/// of every point's patch, node (i, j) band b at component (j n + i) 3 + b (Core's
+/// DirectIrradiance.h).
+constexpr const char* DirectIrradiance = "DirectIrradiance";
 constexpr const char* Receiver = "Receiver";
 constexpr const char* Source = "Source";
 constexpr const char* Theta = "Theta";

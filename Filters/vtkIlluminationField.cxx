@@ -79,8 +79,11 @@ void SamplePatch(const sphcover::Patch& patch,
       normal = length > 0.0 ? normal / length : patch.Normal;
       const double u = patch.Domain.U0 + s * (patch.Domain.U1 - patch.Domain.U0);
       const double v = patch.Domain.V0 + t * (patch.Domain.V1 - patch.Domain.V0);
+      // As the render (RadianceRenderer::SurfaceRadiance): the rest interpolated, the lamps'
+      // direct light from its nodes.
       const glm::dvec3 l = sphcover::InterpolateRadiance(
-        lit.Interpolator, lit.ExitantRadiance, patch.SurfaceIndex, u, v);
+                             lit.Interpolator, lit.ExitantRadiance, patch.SurfaceIndex, u, v) +
+        lit.Direct.At(lit.Interpolator, patch.SurfaceIndex, u, v);
       field.Points->SetPoint(id, q.x, q.y, q.z);
       field.Radiance->SetTypedTuple(id,
         std::array<float, 3>{
@@ -229,8 +232,10 @@ int vtkIlluminationField::RequestData(vtkInformation*,
 
   try
   {
-    // As the render does (vtkRadianceImageFilter): no point takes after a buried one.
+    // As the render does (vtkRadianceImageFilter): no point takes after a buried one, and the
+    // points' I less their direct light is what is interpolated (SamplePatch).
     lit.Interpolator.SetExcludedPoints(sphcover::BuriedPoints(lit.Interpolator, patches));
+    lit.ExitantRadiance = lit.Direct.Rest(std::move(lit.ExitantRadiance));
   }
   catch (const std::exception& e)
   {

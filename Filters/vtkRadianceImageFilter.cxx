@@ -160,6 +160,11 @@ bool RenderImage(vtkRadianceImageFilter* self,
       std::move(lit.Interpolator),
       std::move(lit.ExitantRadiance),
       std::move(lit.TwoSidedSurface));
+    if (!lit.Direct.Empty())
+    {
+      // The lamps' direct light from its nodes, the rest interpolated (DirectIrradiance.h).
+      renderer.SetDirectLight(std::move(lit.Direct));
+    }
     if (lit.Directional)
     {
       // Non-diffuse surfaces: the BRDF toward the eye applied to the interpolated incident

@@ -12,8 +12,11 @@
 
 #include "cover/BrightEmitters.h"
 #include "cover/CoverRefinement.h"
+#include "cover/DirectIrradiance.h"
 #include "cover/HemisphereGrid.h"
+#include "cover/RayCastFill.h"
 #include "cover/SphericalCover.h"
+#include "geometry/RayCaster.h"
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
 
@@ -215,9 +218,8 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
   return true;
 }
 
-/// The bright emitters among the patches' surfaces (BrightEmitters.h), each patch's emission
-/// that of the input cell it was cut from.
-std::vector<bool> LampsOf(const sphcover::Scene& scene,
+/// Each patch's emitted radiance, that of the input cell it was cut from.
+std::vector<glm::dvec3> EmissionOf(const sphcover::Scene& scene,
   const std::vector<sphcover::Patch>& patches,
   const std::vector<vtkIdType>& cellOfPatch)
 {
@@ -231,11 +233,59 @@ std::vector<bool> LampsOf(const sphcover::Scene& scene,
       emission[k] = scene.Materials[material].Emission;
     }
   }
-  return sphcover::BrightEmitters(patches, emission);
+  return emission;
+}
+
+/// The lamps' direct irradiance on the nodes of every patch (DirectIrradiance.h), reporting
+/// progress from 0.9 to 0.98; false, with a warning or the error reported, when it was
+/// aborted or failed. Empty when the scene has no bright emitter.
+bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
+  const std::vector<sphcover::Patch>& patches,
+  const std::vector<glm::dvec3>& emission,
+  const sphcover::SphericalCoverOptions& options,
+  sphcover::DirectIrradianceNodes& nodes)
+{
+  try
+  {
+    const std::vector<bool> lamps = sphcover::BrightEmitters(patches, emission);
+    if (std::find(lamps.begin(), lamps.end(), true) == lamps.end())
+    {
+      return true;
+    }
+    const sphcover::RayCaster caster(
+      sphcover::RayCastPatches(patches), sphcover::RayCastOptions(options.FillOptions));
+    sphcover::DirectIrradianceOptions direct;
+    direct.NodesPerSide = self->GetDirectIrradianceNodes();
+    direct.SelfExclusionFraction = options.FillOptions.SelfExclusionFraction;
+    direct.BackFacesOcclude = options.FillOptions.BackFacesOcclude;
+    const bool completed = sphcover::ComputeDirectIrradiance(patches,
+      caster,
+      lamps,
+      emission,
+      direct,
+      nodes,
+      vtkSMPParallelFor::Make(),
+      [self](double fraction)
+      {
+        self->UpdateProgress(0.9 + 0.08 * fraction);
+        return !self->GetAbortExecute();
+      });
+    if (!completed)
+    {
+      vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+      return false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(self, << "Direct irradiance failed: " << e.what());
+    return false;
+  }
+  return true;
 }
 
 /// The spherical cover of the patches (paper §3.3), reporting progress from coverStart to
-/// 0.95; false, with a warning or the error reported, when it does not fit the budget, was
+/// 0.9; false, with a warning or the error reported, when it does not fit the budget, was
 /// aborted or failed.
 bool BuildCover(vtkSphericalCoverFilter* self,
   const std::vector<sphcover::Patch>& patches,
@@ -255,7 +305,7 @@ bool BuildCover(vtkSphericalCoverFilter* self,
       vtkSMPParallelFor::Make(),
       [self, coverStart](double fraction)
       {
-        self->UpdateProgress(coverStart + (0.95 - coverStart) * fraction);
+        self->UpdateProgress(coverStart + (0.9 - coverStart) * fraction);
         return !self->GetAbortExecute();
       });
     if (!completed)
@@ -495,9 +545,10 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     return 0;
   }
   const double coverStart = this->Refinement == REFINEMENT_OFF ? 0.0 : refinementShare;
+  const std::vector<glm::dvec3> emission = EmissionOf(scene, patches, cellOfPatch);
   if (this->MeasureLamps)
   {
-    options.MeasuredSurfaces = LampsOf(scene, patches, cellOfPatch);
+    options.MeasuredSurfaces = sphcover::BrightEmitters(patches, emission);
   }
 
   sphcover::SphericalCover cover;
@@ -505,8 +556,22 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   {
     return 0;
   }
+  sphcover::DirectIrradianceNodes direct;
+  if (this->DirectIrradianceNodes > 0 &&
+    !ComputeDirectIrradiance(this, patches, emission, options, direct))
+  {
+    return 0;
+  }
   WriteCharacteristicPoints(
     input, patches, cellOfPatch, this->Refinement != REFINEMENT_OFF, cover, pointsOut);
+  if (!direct.Empty())
+  {
+    const int components = 3 * direct.NodesPerSide * direct.NodesPerSide;
+    auto array = vtkNamedArrays::New<vtkFloatArray>(
+      names::DirectIrradiance, components, static_cast<vtkIdType>(patches.size()));
+    std::copy(direct.Values.begin(), direct.Values.end(), array->GetPointer(0));
+    pointsOut->GetPointData()->AddArray(array);
+  }
   WriteStrips(cover, patches.size(), stripsOut);
   this->UpdateProgress(1.0);
   return 1;
@@ -522,6 +587,7 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
   os << indent << "MeasureLamps: " << this->MeasureLamps << "\n";
+  os << indent << "DirectIrradianceNodes: " << this->DirectIrradianceNodes << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Refinement: "
      << (this->Refinement == REFINEMENT_OFF

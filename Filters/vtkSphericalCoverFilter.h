@@ -119,6 +119,19 @@ public:
 
   ///@{
   /**
+   * Nodes along each side of every patch at which the lamps' direct irradiance is computed
+   * (Core's DirectIrradiance.h: the output's point array DirectIrradiance): the render and the
+   * illumination field then interpolate the sharp direct light from these nodes and only the
+   * smooth rest between the characteristic points. Odd, 3 to 33; 0: none (every point's
+   * light interpolated alike, the paper's §5.3.2). Scenes without a bright emitter get none.
+   * Default is 3 (a patch's corners, edge midpoints and centre).
+   */
+  vtkSetMacro(DirectIrradianceNodes, int);
+  vtkGetMacro(DirectIrradianceNodes, int);
+  ///@}
+
+  ///@{
+  /**
    * Back sides of surfaces hide what lies behind them (opaque surfaces). Off: the paper's
    * culling of back-facing patches, which makes them transparent. Default is on.
    */
@@ -184,6 +197,7 @@ protected:
   int FillMethod = RAY_CASTING;
   bool BackFacesOcclude = true;
   bool MeasureLamps = true;
+  int DirectIrradianceNodes = 3;
   double MemoryLimit = 8192.0;
   int Refinement = REFINEMENT_ENCLOSURES;
   int RefinementLevels = 3;

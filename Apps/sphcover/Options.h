@@ -21,6 +21,8 @@ struct Options
   std::string Fill = "raycasting";
   /// The cover's measure of the lamps' regions: "measured" (on the lamp) or "cells".
   std::string Lamps = "measured";
+  /// vtkSphericalCoverFilter::DirectIrradianceNodes (0: none).
+  int DirectNodes = 3;
   std::vector<std::string> Settings;
   std::string Png;
   std::string Camera;

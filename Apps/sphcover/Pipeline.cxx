@@ -98,6 +98,7 @@ void Solution::Solve(const Options& options)
     this->Cover->SetFillMethodToProjection();
   }
   this->Cover->SetMeasureLamps(options.Lamps == "measured");
+  this->Cover->SetDirectIrradianceNodes(options.DirectNodes);
   {
     ProgressBar bar(this->Cover, "cover", options.Quiet);
     const double cpuStart = ProcessorSeconds();

@@ -8,7 +8,7 @@
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
- *                  [--lamps measured|cells]
+ *                  [--lamps measured|cells] [--direct-nodes N]
  *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH]
  *                   [--spp N] [--exposure E] [--solution solution.vtm] [--report report.json]
  *                   [--set k=v]
@@ -103,6 +103,13 @@ int main(int argc, char** argv)
       "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
       "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
     ->check(CLI::IsMember({ "cells", "measured" }));
+  solve
+    ->add_option("--direct-nodes",
+      options.DirectNodes,
+      "Nodes per patch side at which the lamps' direct light is computed and interpolated "
+      "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
+      "points (the paper's)")
+    ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
   solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
   solve->add_option(
@@ -143,6 +150,13 @@ int main(int argc, char** argv)
       "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
       "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
     ->check(CLI::IsMember({ "cells", "measured" }));
+  render
+    ->add_option("--direct-nodes",
+      options.DirectNodes,
+      "Nodes per patch side at which the lamps' direct light is computed and interpolated "
+      "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
+      "points (the paper's)")
+    ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
   render->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
 

@@ -394,16 +394,15 @@ void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistic
     this->Options.DiffuseRounding);
 }
 
-double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
+double VisibleProjectedSolidAngle(const RayCaster& caster,
+  const glm::dvec3& origin,
+  const glm::dvec3& normal,
+  const RayFilter& filter,
   std::size_t source,
-  int minimumSide) const
+  const Patch& target,
+  int minimumSide)
 {
-  const Patch& self = this->Patches[receiver];
-  const Patch& target = this->Patches[source];
-  const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
-  const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options);
-  const RayFilter filter{ AcceptForReceiver, &receiverFilter };
-  const double distance = glm::length(target.Point - frame.Origin);
+  const double distance = glm::length(target.Point - origin);
   const double size = target.Geometry.Size();
   const int n = distance > 0.0
     ? static_cast<int>(std::clamp(
@@ -420,7 +419,7 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
       const glm::dvec3 q = target.Geometry.Evaluate(u, v);
       // |dQ/du x dQ/dv| du dv, oriented along the front normal.
       const glm::dvec3 area = target.Geometry.UnnormalizedNormal(u, v) * (step * step);
-      const glm::dvec3 toward = q - frame.Origin;
+      const glm::dvec3 toward = q - origin;
       const double r2 = glm::dot(toward, toward);
       if (!(r2 > 0.0))
       {
@@ -428,15 +427,15 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
       }
       const double r = std::sqrt(r2);
       const glm::dvec3 direction = toward / r;
-      const double cosReceiver = glm::dot(direction, frame.Normal);
+      const double cosReceiver = glm::dot(direction, normal);
       const double projectedArea = -glm::dot(direction, area); // cos(theta_j) dA
       if (!(cosReceiver > 0.0) || !(projectedArea > 0.0))
       {
         continue;
       }
       TriangleHit hit;
-      if (!this->Rays.Intersect(frame.Origin, direction, 0.0f, filter, false, hit) ||
-        hit.Patch != source || !hit.FrontSide)
+      if (!caster.Intersect(origin, direction, 0.0f, filter, false, hit) || hit.Patch != source ||
+        !hit.FrontSide)
       {
         continue;
       }
@@ -444,6 +443,18 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
     }
   }
   return sum;
+}
+
+double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
+  std::size_t source,
+  int minimumSide) const
+{
+  const Patch& self = this->Patches[receiver];
+  const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
+  const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options);
+  const RayFilter filter{ AcceptForReceiver, &receiverFilter };
+  return sphcover::VisibleProjectedSolidAngle(
+    this->Rays, frame.Origin, frame.Normal, filter, source, this->Patches[source], minimumSide);
 }
 
 } // namespace sphcover

@@ -51,6 +51,23 @@ namespace sphcover
 
 /// The caster's view of the patches (their geometry and surface; the patches must outlive it).
 std::vector<RayCastPatch> RayCastPatches(const std::vector<Patch>& patches);
+
+/**
+ * The projected solid angle through which the point `origin` with unit normal `normal` sees the
+ * front side of `target` (patch `source` of `caster`), integrated over the patch: the integral
+ * over it of V cos(theta_i) cos(theta_j) / r^2 dA by the midpoint rule on an n x n grid of its
+ * (u, v), n = clamp(4 Size / |origin - target's centre|, minimumSide, 32) per side (finer when
+ * it is near), the visibility V of each node by one ray from `origin` through `filter`: a node
+ * counts when the ray's first accepted hit is `source`'s front side. Safe to call from several
+ * threads.
+ */
+double VisibleProjectedSolidAngle(const RayCaster& caster,
+  const glm::dvec3& origin,
+  const glm::dvec3& normal,
+  const RayFilter& filter,
+  std::size_t source,
+  const Patch& target,
+  int minimumSide);
 /// The caster's options among a fill's.
 RayCasterOptions RayCastOptions(const RBufferFillOptions& options);
 
@@ -74,15 +91,10 @@ public:
 
   /**
    * The projected solid angle through which `receiver`'s point P_i sees the patch `source`
-   * (Q_j), integrated over Q_j instead of counted in cells: the integral over Q_j of
-   * V cos(theta_i) cos(theta_j) / r^2 dA by the midpoint rule on an n x n grid of Q_j's (u, v),
-   * n = clamp(4 Size(Q_j) / |P_i - Q_j's centre|, minimumSide, 32) per side (finer when Q_j is
-   * near), the
-   * visibility V of each node by one ray from P_i through the same filter as the samples (back
-   * sides pass unless BackFacesOcclude, P_i's own patch is P_i); a node counts when the ray's
-   * first accepted hit is Q_j's front side. Only Q_j's front side is seen (cos(theta_j) > 0).
-   * Used by SphericalCover for the regions of SphericalCoverOptions::MeasuredSurfaces. Safe to
-   * call from several threads.
+   * (Q_j), integrated over Q_j instead of counted in cells (the free function above), with the
+   * same filter as the samples (back sides pass unless BackFacesOcclude, P_i's own patch is
+   * P_i). Used by SphericalCover for the regions of SphericalCoverOptions::MeasuredSurfaces.
+   * Safe to call from several threads.
    */
   double VisibleProjectedSolidAngle(std::size_t receiver,
     std::size_t source,

@@ -241,7 +241,84 @@ glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolat
 
 glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) const
 {
-  return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v);
+  return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v) +
+    this->Direct.At(this->Interpolator, surface, u, v);
+}
+
+DirectLight::DirectLight(DirectIrradianceNodes nodes,
+  const std::vector<glm::dvec3>& diffuse,
+  std::size_t points)
+{
+  const std::size_t perPoint =
+    3 * static_cast<std::size_t>(nodes.NodesPerSide) * static_cast<std::size_t>(nodes.NodesPerSide);
+  if (diffuse.size() != points || nodes.Values.size() != perPoint * points)
+  {
+    throw std::invalid_argument("direct irradiance of " +
+      std::to_string(perPoint > 0 ? nodes.Values.size() / perPoint : 0) + " points and " +
+      std::to_string(diffuse.size()) + " reflectances for " + std::to_string(points) +
+      " characteristic points");
+  }
+  this->Factor.resize(points);
+  for (std::size_t p = 0; p < points; ++p)
+  {
+    this->Factor[p] = diffuse[p] / Pi;
+  }
+  this->Nodes = std::move(nodes);
+}
+
+glm::dvec3 DirectLight::AtPoint(std::size_t point) const
+{
+  return this->Factor[point] * this->Nodes.At(point, 0.5, 0.5);
+}
+
+glm::dvec3 DirectLight::At(const CharacteristicPointInterpolator& interpolator,
+  int surface,
+  double u,
+  double v) const
+{
+  if (this->Empty())
+  {
+    return glm::dvec3(0.0);
+  }
+  const std::ptrdiff_t point = interpolator.ContainingPoint(surface, u, v);
+  if (point < 0)
+  {
+    return glm::dvec3(0.0);
+  }
+  const std::size_t p = static_cast<std::size_t>(point);
+  const UVRect& domain = interpolator.Domain(p);
+  const double s = (u - domain.U0) / (domain.U1 - domain.U0);
+  const double t = (v - domain.V0) / (domain.V1 - domain.V0);
+  return this->Factor[p] * this->Nodes.At(p, s, t);
+}
+
+std::vector<glm::dvec3> DirectLight::Rest(std::vector<glm::dvec3> exitantRadiance) const
+{
+  if (!this->Empty())
+  {
+    for (std::size_t p = 0; p < exitantRadiance.size(); ++p)
+    {
+      exitantRadiance[p] -= this->AtPoint(p);
+    }
+  }
+  return exitantRadiance;
+}
+
+void RadianceRenderer::SetDirectLight(DirectLight direct)
+{
+  if (!direct.Empty() && direct.Factor.size() != this->Interpolator.PointCount())
+  {
+    throw std::invalid_argument("RadianceRenderer: direct light of " +
+      std::to_string(direct.Factor.size()) + " points for " +
+      std::to_string(this->Interpolator.PointCount()) + " characteristic points");
+  }
+  // The rest is taken of the points' own I (an earlier direct light given back first).
+  for (std::size_t p = 0; p < this->Exitant.size() && !this->Direct.Empty(); ++p)
+  {
+    this->Exitant[p] += this->Direct.AtPoint(p);
+  }
+  this->Exitant = direct.Rest(std::move(this->Exitant));
+  this->Direct = std::move(direct);
 }
 
 void RadianceRenderer::SetDirectionalIllumination(DirectionalIllumination illumination)
@@ -332,7 +409,7 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
     }
     radiance += stencil.Weights[static_cast<size_t>(k)] * value;
   }
-  return glm::max(radiance, glm::dvec3(0.0));
+  return glm::max(radiance, glm::dvec3(0.0)) + this->Direct.At(this->Interpolator, surface, u, v);
 }
 
 bool RadianceRenderer::TraceSample(const glm::dvec3& eye,

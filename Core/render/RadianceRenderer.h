@@ -31,6 +31,7 @@
 #ifndef SPHCOVER_RADIANCERENDERER_H
 #define SPHCOVER_RADIANCERENDERER_H
 
+#include "cover/DirectIrradiance.h"
 #include "cover/HemisphereGrid.h"
 #include "cover/SphericalCover.h"
 #include "math/ParallelFor.h"
@@ -110,6 +111,33 @@ glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolat
   double u,
   double v);
 
+/// The lamps' direct light over the surfaces (DirectIrradiance.h) as the renderer and the
+/// illumination field use it: the direct irradiance on the nodes of every characteristic
+/// point's patch and every point's diffuse reflectance rho.
+struct DirectLight
+{
+  DirectIrradianceNodes Nodes;
+  /// rho / pi of every point.
+  std::vector<glm::dvec3> Factor;
+
+  /// Throws std::invalid_argument when the sizes differ from `points`.
+  DirectLight(DirectIrradianceNodes nodes,
+    const std::vector<glm::dvec3>& diffuse,
+    std::size_t points);
+  DirectLight() = default;
+  bool Empty() const { return this->Nodes.Empty(); }
+  /// rho / pi E_direct at the point's own centre, the characteristic point.
+  glm::dvec3 AtPoint(std::size_t point) const;
+  /// rho / pi E_direct at (u, v) of the surface, from the nodes of the point whose patch holds
+  /// (u, v); zero where the surface has no points.
+  glm::dvec3 At(const CharacteristicPointInterpolator& interpolator,
+    int surface,
+    double u,
+    double v) const;
+  /// The rest that §5.3.2 interpolates between the points: I - AtPoint, per point.
+  std::vector<glm::dvec3> Rest(std::vector<glm::dvec3> exitantRadiance) const;
+};
+
 /// The camera and settings' problem in one sentence, or "" when they can be rendered: a view
 /// angle outside (0, 180) degrees, the eye at the focal point, a view up parallel to the view
 /// direction (or zero), a width or height below 1, SamplesPerPixel outside [1, 4096], a
@@ -156,6 +184,17 @@ public:
    */
   void SetDirectionalIllumination(DirectionalIllumination illumination);
   bool HasDirectionalIllumination() const { return this->Directional != nullptr; }
+
+  /**
+   * The lamps' direct light (DirectLight, the points' order): the Lambertian radiance becomes
+   * the interpolated rest, I - rho / pi E_direct at the points, plus rho / pi E_direct at (u, v)
+   * interpolated from the nodes of the point whose patch holds (u, v). At a characteristic
+   * point this is I itself; between them the direct light follows its nodes (shadows, contact
+   * shadows, the fall along a wall under the lamp) and only the smooth rest is interpolated by
+   * §5.3.2. Throws std::invalid_argument when it has another number of points.
+   */
+  void SetDirectLight(DirectLight direct);
+  bool HasDirectLight() const { return !this->Direct.Empty(); }
 
   /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
   /// §5.3.2); zero where the surface has no characteristic points. The Lambertian part only.
@@ -213,6 +252,7 @@ private:
   std::vector<bool> TwoSided;
   std::unique_ptr<RayCaster> Caster;
   std::unique_ptr<DirectionalIllumination> Directional;
+  DirectLight Direct;
   PointReflectances Reflectances;
 };
 

@@ -10,8 +10,8 @@
 // - the output arrays and the image size; RGB is the sRGB encoding of Exposure * Radiance;
 // - without camera properties, the scene's first camera at its size; a property set wins;
 // - bad input: raw surfaces without illumination, an unknown camera, bad camera properties,
-//   an image beyond the memory limit, non-diffuse points without IncidentRadiance: one clear
-//   error each.
+//   an image beyond the memory limit, non-diffuse points without IncidentRadiance, corrupt
+//   DirectIrradiance nodes: one clear error each.
 #include "FailureExpectation.h"
 #include "RenderTestPipeline.h"
 #include "TestFailures.h"
@@ -21,12 +21,15 @@
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIntArray.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <cmath>
 #include <iostream>
+#include <string>
+#include <vector>
 
 namespace
 {
@@ -87,6 +90,8 @@ void Furnace(const char* scene, int maxLevel, const double* albedo = nullptr)
       render, { "non-diffuse", "IncidentRadiance" }, "non-diffuse points without E"));
   }
 }
+
+void BadDirectIrradiance(RenderTestPipeline::Pipeline& pipeline);
 
 void CornellBackWall()
 {
@@ -170,6 +175,62 @@ void CornellBackWall()
         "RGB: sRGB encoding of Exposure * Radiance");
     }
   }
+  BadDirectIrradiance(pipeline);
+}
+
+/// The lamps' direct light from corrupt nodes (a solution file edited or damaged): a wrong
+/// number of components, a negative or NaN value, or no Diffuse to reflect it give one clear
+/// error each.
+void BadDirectIrradiance(RenderTestPipeline::Pipeline& pipeline)
+{
+  vtkPolyData* lit = pipeline.Propagation->GetOutput();
+  vtkDataArray* nodes = lit->GetPointData()->GetArray("DirectIrradiance");
+  Check(nodes && nodes->GetNumberOfComponents() == 27,
+    "Cornell: the cover's DirectIrradiance, 3 x 3 nodes of 3 bands");
+  if (!nodes)
+  {
+    return;
+  }
+  auto corrupt = [&](const char* what, const std::vector<std::string>& words, auto edit)
+  {
+    vtkNew<vtkPolyData> bad;
+    bad->ShallowCopy(lit); // its own point data, sharing the arrays
+    edit(bad->GetPointData());
+    vtkNew<vtkTrivialProducer> producer;
+    producer->SetOutput(bad);
+    vtkNew<vtkRadianceImageFilter> render;
+    render->SetInputConnection(0, producer->GetOutputPort());
+    render->SetPatchesConnection(pipeline.Subdivision->GetOutputPort(0));
+    render->SetWidth(8);
+    render->SetHeight(8);
+    TestFailures::Add(FailureExpectation::Check(render, words, what));
+  };
+  corrupt("DirectIrradiance of 12 components",
+    { "DirectIrradiance", "12 components" },
+    [&](vtkPointData* pd)
+    {
+      vtkNew<vtkFloatArray> wrong;
+      wrong->SetName("DirectIrradiance");
+      wrong->SetNumberOfComponents(12);
+      wrong->SetNumberOfTuples(lit->GetNumberOfPoints());
+      wrong->Fill(0.0);
+      pd->AddArray(wrong);
+    });
+  for (const double value : { -1.0, std::nan("") })
+  {
+    corrupt("a negative or NaN DirectIrradiance",
+      { "DirectIrradiance of point 7", "negative or not a finite number" },
+      [&](vtkPointData* pd)
+      {
+        vtkNew<vtkFloatArray> copy;
+        copy->DeepCopy(nodes);
+        copy->SetComponent(7, 4, value);
+        pd->AddArray(copy);
+      });
+  }
+  corrupt("DirectIrradiance without Diffuse",
+    { "DirectIrradiance", "no point array Diffuse" },
+    [&](vtkPointData* pd) { pd->RemoveArray("Diffuse"); });
 }
 
 /// Centre pixel's depth (the image has an odd or even size: the pixel right of the centre).

@@ -1,0 +1,299 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The lamps' direct irradiance at the nodes of every patch (Core/cover/DirectIrradiance.h):
+// under a square lamp it is the analytic irradiance of a parallel rectangle (Howell's
+// differential element to a parallel rectangle); a node on the edge where the floor meets a
+// wall sees the lamp as a brute-force integral says (the wall does not shadow the node on it);
+// an occluder that hides the lamp gives zero; the nodes do not depend on the thread count; a
+// scene without a bright emitter has none. The renderer keeps I at the characteristic points
+// and adds the nodes' variation between them.
+#include "cover/BrightEmitters.h"
+#include "cover/DirectIrradiance.h"
+#include "cover/RayCastFill.h"
+#include "render/RadianceRenderer.h"
+
+#include "CoverTestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace sphcover;
+using namespace sphcover_test;
+
+namespace
+{
+constexpr double LampHeight = 0.5;
+const glm::dvec3 LampEmission(1.0, 2.0, 3.0);
+
+/// The unit floor at z = 0 (front +z, surface 0, split 3 x 3), a lamp [0.25, 0.75]^2 at
+/// z = LampHeight facing down (surface 1, split 3 x 3), a wall at x = 0 facing +x (surface 2)
+/// and, with `occluder`, an opaque square [0.3, 0.7]^2 at z = 0.25 facing down (surface 3).
+std::vector<Patch> LampOverFloor(bool occluder)
+{
+  std::vector<Patch> patches;
+  AppendSplit(patches,
+    Parallelogram(glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0), glm::dvec3(0.0, 1.0, 0.0)),
+    0,
+    3,
+    3);
+  AppendSplit(patches,
+    Parallelogram(
+      glm::dvec3(0.25, 0.25, LampHeight), glm::dvec3(0.0, 0.5, 0.0), glm::dvec3(0.5, 0.0, 0.0)),
+    1,
+    3,
+    3);
+  AppendSplit(patches,
+    Parallelogram(glm::dvec3(0.0), glm::dvec3(0.0, 1.0, 0.0), glm::dvec3(0.0, 0.0, 1.0)),
+    2,
+    1,
+    1);
+  if (occluder)
+  {
+    AppendSplit(patches,
+      Parallelogram(
+        glm::dvec3(0.3, 0.3, 0.25), glm::dvec3(0.0, 0.4, 0.0), glm::dvec3(0.4, 0.0, 0.0)),
+      3,
+      1,
+      1);
+  }
+  return patches;
+}
+
+std::vector<glm::dvec3> EmissionOf(const std::vector<Patch>& patches)
+{
+  std::vector<glm::dvec3> emission;
+  for (const Patch& patch : patches)
+  {
+    emission.push_back(patch.SurfaceIndex == 1 ? LampEmission : glm::dvec3(0.0));
+  }
+  return emission;
+}
+
+DirectIrradianceNodes Compute(const std::vector<Patch>& patches,
+  const ParallelFor& parallelFor = SequentialFor,
+  int nodesPerSide = 3)
+{
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  const std::vector<glm::dvec3> emission = EmissionOf(patches);
+  DirectIrradianceOptions options;
+  options.NodesPerSide = nodesPerSide;
+  DirectIrradianceNodes nodes;
+  EXPECT_TRUE(ComputeDirectIrradiance(
+    patches, caster, BrightEmitters(patches, emission), emission, options, nodes, parallelFor));
+  return nodes;
+}
+
+/// Projected solid angle of a rectangle a x b parallel to the receiver at height c, seen from
+/// the point under one of its corners: pi times Howell's configuration factor B-3.
+double CornerProjectedSolidAngle(double a, double b, double c)
+{
+  const double x = a / c;
+  const double y = b / c;
+  const double sx = std::sqrt(1.0 + x * x);
+  const double sy = std::sqrt(1.0 + y * y);
+  return 0.5 * (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy));
+}
+
+/// The lamp's projected solid angle from the floor point p (normal +z) by the midpoint rule on
+/// a fine grid, with the occluder of LampOverFloor when `occluder` (visibility by where the ray
+/// crosses its plane): an independent integral.
+double BruteForceProjectedSolidAngle(const glm::dvec3& p, bool occluder = false)
+{
+  const int n = 600;
+  const double h = 0.5 / n;
+  double sum = 0.0;
+  for (int a = 0; a < n; ++a)
+  {
+    for (int b = 0; b < n; ++b)
+    {
+      const glm::dvec3 q(0.25 + (a + 0.5) * h, 0.25 + (b + 0.5) * h, LampHeight);
+      const glm::dvec3 d = q - p;
+      const double r2 = glm::dot(d, d);
+      const glm::dvec3 crossing = p + d * ((0.25 - p.z) / d.z);
+      if (occluder && crossing.x > 0.3 && crossing.x < 0.7 && crossing.y > 0.3 && crossing.y < 0.7)
+      {
+        continue;
+      }
+      sum += (d.z / std::sqrt(r2)) * (d.z / std::sqrt(r2)) / r2 * h * h;
+    }
+  }
+  return sum;
+}
+
+/// The floor's patch holding (x, y) of the 3 x 3 split and its own (s, t) there.
+std::size_t FloorPatch(double x, double y, double& s, double& t)
+{
+  const int a = std::min(2, static_cast<int>(x * 3.0));
+  const int b = std::min(2, static_cast<int>(y * 3.0));
+  s = x * 3.0 - a;
+  t = y * 3.0 - b;
+  return static_cast<std::size_t>(b * 3 + a);
+}
+}
+
+TEST(DirectIrradiance, UnderTheLampItIsTheParallelRectanglesIrradiance)
+{
+  const std::vector<Patch> patches = LampOverFloor(false);
+  const DirectIrradianceNodes nodes = Compute(patches);
+  ASSERT_EQ(nodes.NodesPerSide, 3);
+  ASSERT_EQ(nodes.Values.size(), patches.size() * 9 * 3);
+  // The floor's centre is the centre node of its middle patch: four corners of 0.25 x 0.25.
+  const double exact = 4.0 * CornerProjectedSolidAngle(0.25, 0.25, LampHeight);
+  const glm::dvec3 centre = nodes.At(4, 0.5, 0.5);
+  for (int band = 0; band < 3; ++band)
+  {
+    EXPECT_NEAR(centre[band] / (LampEmission[band] * exact), 1.0, 5e-3) << "band " << band;
+  }
+  // Under a corner of the lamp: one rectangle of 0.5 x 0.5 (the node of patch 4 at (0, 0)
+  // lies at (1/3, 1/3), not under the corner; take patch 0's node (2, 2) at (1/3, 1/3) and
+  // compare with the superposition of four rectangles from there).
+  const double u = 1.0 / 3.0 - 0.25;
+  const double w = 0.75 - 1.0 / 3.0;
+  const double fromThird = CornerProjectedSolidAngle(w, w, LampHeight) +
+    2.0 * CornerProjectedSolidAngle(w, u, LampHeight) + CornerProjectedSolidAngle(u, u, LampHeight);
+  EXPECT_NEAR(nodes.At(0, 1.0, 1.0).x / (LampEmission.x * fromThird), 1.0, 5e-3);
+  // The same point as a node of the neighbouring patches: one value on their shared corner.
+  EXPECT_FLOAT_EQ(nodes.At(0, 1.0, 1.0).x, nodes.At(4, 0.0, 0.0).x);
+  // The lamp does not light itself.
+  for (std::size_t p = 9; p < 18; ++p)
+  {
+    EXPECT_EQ(nodes.At(p, 0.5, 0.5), glm::dvec3(0.0));
+  }
+}
+
+TEST(DirectIrradiance, ANodeWhereTheFloorMeetsAWallIsLit)
+{
+  const std::vector<Patch> patches = LampOverFloor(false);
+  const DirectIrradianceNodes nodes = Compute(patches);
+  // (0, 0.5) on the floor lies on the wall's plane; the rays to the lamp leave the wall at once.
+  double s;
+  double t;
+  const std::size_t patch = FloorPatch(0.0, 0.5, s, t);
+  const double expected = BruteForceProjectedSolidAngle(glm::dvec3(0.0, 0.5, 0.0));
+  ASSERT_GT(expected, 0.05);
+  EXPECT_NEAR(nodes.At(patch, s, t).y / (LampEmission.y * expected), 1.0, 5e-3);
+  // And the wall's own node at its foot, in the floor's plane, sees the lamp too.
+  const glm::dvec3 wall = nodes.At(18, 0.5, 0.0);
+  EXPECT_GT(wall.x, 0.0);
+}
+
+TEST(DirectIrradiance, AnOccluderCastsItsShadow)
+{
+  const DirectIrradianceNodes open = Compute(LampOverFloor(false));
+  const DirectIrradianceNodes shaded = Compute(LampOverFloor(true));
+  // Seen from the floor's centre the occluder (at half the lamp's height, 0.4 wide) covers
+  // [0.1, 0.9]^2 of the lamp's plane: the whole lamp.
+  EXPECT_EQ(shaded.At(4, 0.5, 0.5), glm::dvec3(0.0));
+  // From the floor's corner (0, 0) the occluder hides part of the lamp only (its far corner
+  // [0.6, 0.75]^2), and from (1/6, 1/6) more of it ([0.43, 0.75]^2): as the brute-force
+  // integral says, to the quadrature's resolution of the shadow's edge (a ninth of the lamp).
+  const double cornerOpen = open.At(0, 0.0, 0.0).z;
+  const double cornerShaded = shaded.At(0, 0.0, 0.0).z;
+  const double sixth = 1.0 / 6.0;
+  for (const glm::dvec3& p : { glm::dvec3(0.0), glm::dvec3(sixth, sixth, 0.0) })
+  {
+    double s;
+    double t;
+    const std::size_t patch = FloorPatch(p.x, p.y, s, t);
+    const double expectedOpen = BruteForceProjectedSolidAngle(p);
+    const double expectedShaded = BruteForceProjectedSolidAngle(p, true);
+    ASSERT_LT(expectedShaded, 0.97 * expectedOpen);
+    EXPECT_NEAR(open.At(patch, s, t).z / LampEmission.z, expectedOpen, 5e-3 * expectedOpen);
+    EXPECT_NEAR(shaded.At(patch, s, t).z / LampEmission.z, expectedShaded, 0.05 * expectedOpen)
+      << "at (" << p.x << ", " << p.y << ")";
+  }
+  // The far corner (1, 1) is shaded alike (lamp and occluder are symmetric about the floor's
+  // centre), up to a shadow ray through the occluder's edge.
+  EXPECT_NEAR(shaded.At(8, 1.0, 1.0).z, cornerShaded, 0.02 * cornerOpen);
+}
+
+TEST(DirectIrradiance, IndependentOfThreadsAndBilinearBetweenNodes)
+{
+  const std::vector<Patch> patches = LampOverFloor(true);
+  const DirectIrradianceNodes one = Compute(patches, SequentialFor, 5);
+  const DirectIrradianceNodes two = Compute(patches, ThreadedFor(2), 5);
+  ASSERT_EQ(one.Values, two.Values);
+  // Between nodes the values are bilinear: at the middle of four nodes, their mean.
+  const glm::dvec3 mean = 0.25 *
+    (one.At(4, 0.25, 0.25) + one.At(4, 0.5, 0.25) + one.At(4, 0.25, 0.5) + one.At(4, 0.5, 0.5));
+  const glm::dvec3 middle = one.At(4, 0.375, 0.375);
+  for (int band = 0; band < 3; ++band)
+  {
+    EXPECT_NEAR(middle[band], mean[band], 1e-6 * (1.0 + mean[band]));
+  }
+}
+
+TEST(DirectIrradiance, NoBrightEmitterNoNodesAndBadSizesRefused)
+{
+  std::vector<Patch> patches = LampOverFloor(false);
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  // Everything emitting alike (a furnace): no lamp, no direct part.
+  const std::vector<glm::dvec3> even(patches.size(), glm::dvec3(1.0));
+  DirectIrradianceNodes nodes;
+  EXPECT_TRUE(ComputeDirectIrradiance(
+    patches, caster, BrightEmitters(patches, even), even, DirectIrradianceOptions(), nodes));
+  EXPECT_TRUE(nodes.Empty());
+  const std::vector<glm::dvec3> emission = EmissionOf(patches);
+  const std::vector<bool> lamps = BrightEmitters(patches, emission);
+  DirectIrradianceOptions even4;
+  even4.NodesPerSide = 4;
+  EXPECT_THROW(
+    ComputeDirectIrradiance(patches, caster, lamps, emission, even4, nodes), std::invalid_argument);
+  const std::vector<glm::dvec3> shortEmission(3, glm::dvec3(1.0));
+  EXPECT_THROW(ComputeDirectIrradiance(
+                 patches, caster, lamps, shortEmission, DirectIrradianceOptions(), nodes),
+    std::invalid_argument);
+  // Abort between batches: false, nothing returned.
+  EXPECT_FALSE(ComputeDirectIrradiance(patches,
+    caster,
+    lamps,
+    emission,
+    DirectIrradianceOptions(),
+    nodes,
+    SequentialFor,
+    [](double) { return false; }));
+  EXPECT_TRUE(nodes.Empty());
+}
+
+TEST(DirectIrradiance, RendererKeepsThePointsAndAddsTheNodesBetween)
+{
+  const std::vector<Patch> all = LampOverFloor(false);
+  const std::vector<Patch> floor(all.begin(), all.begin() + 9);
+  const DirectIrradianceNodes lit = Compute(all);
+  DirectIrradianceNodes nodes;
+  nodes.NodesPerSide = lit.NodesPerSide;
+  nodes.Values.assign(lit.Values.begin(), lit.Values.begin() + 9 * 9 * 3);
+  // Every floor point's I: its reflected direct light plus an even rest of 0.1.
+  const glm::dvec3 rho(0.5, 0.6, 0.7);
+  std::vector<glm::dvec3> exitant;
+  for (std::size_t p = 0; p < floor.size(); ++p)
+  {
+    exitant.push_back(rho / Pi * nodes.At(p, 0.5, 0.5) + glm::dvec3(0.1));
+  }
+  RadianceRenderer renderer(floor, CharacteristicPointInterpolator::OfPatches(floor), exitant);
+  renderer.SetDirectLight(
+    DirectLight(nodes, std::vector<glm::dvec3>(floor.size(), rho), floor.size()));
+  ASSERT_TRUE(renderer.HasDirectLight());
+  for (std::size_t p = 0; p < floor.size(); ++p)
+  {
+    const glm::dvec3 atPoint =
+      renderer.SurfaceRadiance(0, floor[p].Domain.CenterU(), floor[p].Domain.CenterV());
+    for (int band = 0; band < 3; ++band)
+    {
+      EXPECT_NEAR(atPoint[band], exitant[p][band], 1e-9) << "point " << p;
+    }
+  }
+  // Between the points: the rest (0.1) plus the nodes' own direct light at (u, v), here at the
+  // floor's corner (0, 0), a node, and at (0.4, 0.1) inside patch 1.
+  const glm::dvec3 corner = renderer.SurfaceRadiance(0, 0.0, 0.0);
+  const glm::dvec3 inside = renderer.SurfaceRadiance(0, 0.4, 0.1);
+  for (int band = 0; band < 3; ++band)
+  {
+    EXPECT_NEAR(corner[band], 0.1 + rho[band] / Pi * nodes.At(0, 0.0, 0.0)[band], 1e-9);
+    EXPECT_NEAR(
+      inside[band], 0.1 + rho[band] / Pi * nodes.At(1, 0.4 * 3.0 - 1.0, 0.1 * 3.0)[band], 1e-9);
+  }
+  EXPECT_THROW(
+    DirectLight(nodes, std::vector<glm::dvec3>(2, rho), floor.size()), std::invalid_argument);
+}
