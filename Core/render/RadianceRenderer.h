@@ -22,7 +22,10 @@
  *
  * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, row 0 at the
  * bottom. SamplesPerPixel stratified, deterministic positions per pixel (Hammersley: one per
- * column of width 1/N, the rows by the base-2 radical inverse); Radiance is their mean (an
+ * column of width 1/N, the rows by the base-2 radical inverse), the pattern shifted modulo 1 by
+ * an offset hashed from the pixel's index when N > 1 (a Cranley-Patterson rotation: an edge
+ * along a row of pixels then cuts each pattern elsewhere and the coverage errors average out
+ * instead of adding up; one sample is the pixel's centre when N = 1); Radiance is their mean (an
  * escaping ray counts 0), SurfaceId the surface most samples hit (ties: the lowest index; -1:
  * none) and Depth their mean distance on it (-1: none). Cost: O(samples x (log triangles +
  * stencil)); rows in ten batches through a ParallelFor, progress and abort between batches;

@@ -183,6 +183,46 @@ TEST(RadianceRenderer, ThreadIndependentAndAbortable)
   EXPECT_EQ(calls, 1);
 }
 
+TEST(RadianceRenderer, AnEdgeAcrossARowOfPixelsCoversItsShareOnAverage)
+{
+  // The square's top edge (y = 1) crosses pixel row 9 of a 128 x 16 image 3/32 of a row above
+  // the row's bottom, across every column: the row's mean coverage (band z of the square's
+  // radiance is 1) is 3/32. With one sample pattern for all pixels, 16 samples would count one
+  // sample below the edge in every pixel, 1/16 (the file comment of RadianceRenderer.h: a
+  // pattern shifted per pixel).
+  const RadianceRenderer renderer = LinearSquare();
+  Camera camera;
+  const double halfHeight = 0.1; // tan(view angle / 2)
+  const double distance = 0.5;
+  const double edgeRow = 9.0 + 3.0 / 32.0;
+  const double y = 1.0 - (edgeRow / 8.0 - 1.0) * halfHeight * distance;
+  camera.Position = glm::dvec3(0.5, y, distance);
+  camera.FocalPoint = glm::dvec3(0.5, y, 0.0);
+  camera.ViewUp = glm::dvec3(0.0, 1.0, 0.0);
+  camera.ViewAngle = 2.0 * std::atan(halfHeight) * 180.0 / Pi;
+  camera.Width = 128;
+  camera.Height = 16;
+  RenderSettings settings;
+  settings.SamplesPerPixel = 16;
+  RenderedImage image;
+  ASSERT_TRUE(renderer.Render(camera, settings, image));
+  double coverage = 0.0;
+  for (int i = 0; i < camera.Width; ++i)
+  {
+    const std::size_t pixel = 9 * static_cast<std::size_t>(camera.Width) + i;
+    coverage += image.Radiance[3 * pixel + 2];
+    // Every pixel counts one or two of its 16 samples: one per row stratum.
+    EXPECT_TRUE(std::fabs(image.Radiance[3 * pixel + 2] - 1.0 / 16.0) < 1e-6 ||
+      std::fabs(image.Radiance[3 * pixel + 2] - 2.0 / 16.0) < 1e-6)
+      << "column " << i << ": " << image.Radiance[3 * pixel + 2];
+  }
+  coverage /= camera.Width;
+  EXPECT_NEAR(coverage, 3.0 / 32.0, 0.008);
+  // The rows below are covered, the rows above not.
+  EXPECT_FLOAT_EQ(image.Radiance[3 * (8 * 128 + 64) + 2], 1.0f);
+  EXPECT_FLOAT_EQ(image.Radiance[3 * (10 * 128 + 64) + 2], 0.0f);
+}
+
 TEST(RadianceRenderer, BadCamerasAreRefusedWithOneMessage)
 {
   const RadianceRenderer renderer = LinearSquare();
