@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 
 namespace sphcover
 {
@@ -119,63 +121,93 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     return true;
   }
 
+  // A node on a border between patches of one surface belongs to each of them (3 x 3 nodes per
+  // patch are about 4 distinct ones on a uniform layout): each distinct (surface, u, v) is
+  // computed once, from the first patch that has it.
   const std::size_t nodesPerPatch = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
-  std::vector<float> values(patches.size() * nodesPerPatch * 3, 0.0f);
-  auto computePatch = [&](std::size_t p)
+  std::vector<std::size_t> nodeOf(patches.size() * nodesPerPatch);
+  std::vector<std::size_t> firstPatch;
+  std::vector<int> firstIndex; // j * n + i in that patch
   {
+    std::map<std::tuple<int, long long, long long>, std::size_t> distinct;
+    const double quantum = 1e9; // rectangles of a ternary subdivision are exact to far better
+    for (std::size_t p = 0; p < patches.size(); ++p)
+    {
+      const UVRect& domain = patches[p].Domain;
+      for (int j = 0; j < n; ++j)
+      {
+        for (int i = 0; i < n; ++i)
+        {
+          const double u = domain.U0 + (domain.U1 - domain.U0) * i / (n - 1);
+          const double v = domain.V0 + (domain.V1 - domain.V0) * j / (n - 1);
+          const auto key = std::make_tuple(
+            patches[p].SurfaceIndex, std::llround(u * quantum), std::llround(v * quantum));
+          const auto found = distinct.emplace(key, firstPatch.size());
+          if (found.second)
+          {
+            firstPatch.push_back(p);
+            firstIndex.push_back(j * n + i);
+          }
+          nodeOf[p * nodesPerPatch + static_cast<std::size_t>(j * n + i)] = found.first->second;
+        }
+      }
+    }
+  }
+
+  std::vector<glm::dvec3> irradianceOfNode(firstPatch.size(), glm::dvec3(0.0));
+  auto computeNode = [&](std::size_t node)
+  {
+    const std::size_t p = firstPatch[node];
     const Patch& patch = patches[p];
     const NodeFilter nodeFilter{ static_cast<float>(
                                    options.SelfExclusionFraction * patch.Geometry.Size()),
       options.BackFacesOcclude };
     const RayFilter filter{ AcceptForNode, &nodeFilter };
-    for (int j = 0; j < n; ++j)
+    const double s = static_cast<double>(firstIndex[node] % n) / (n - 1);
+    const double t = static_cast<double>(firstIndex[node] / n) / (n - 1);
+    const glm::dvec3 origin = patch.Geometry.Evaluate(s, t);
+    const glm::dvec3 normal = patch.Geometry.Normal(s, t);
+    glm::dvec3 irradiance(0.0);
+    for (const LampPiece& piece : pieces)
     {
-      for (int i = 0; i < n; ++i)
+      if (patches[piece.Patch].SurfaceIndex == patch.SurfaceIndex)
       {
-        const double s = static_cast<double>(i) / (n - 1);
-        const double t = static_cast<double>(j) / (n - 1);
-        const glm::dvec3 origin = patch.Geometry.Evaluate(s, t);
-        const glm::dvec3 normal = patch.Geometry.Normal(s, t);
-        glm::dvec3 irradiance(0.0);
-        for (const LampPiece& piece : pieces)
-        {
-          if (piece.Patch == p)
-          {
-            continue; // a surface does not light itself directly
-          }
-          irradiance += piece.Emission *
-            VisibleProjectedSolidAngle(
-              caster, origin, normal, filter, piece.Patch, patches[piece.Patch], piece.MinimumSide);
-        }
-        float* out =
-          &values[((p * static_cast<size_t>(n) + static_cast<size_t>(j)) * static_cast<size_t>(n) +
-                    static_cast<size_t>(i)) *
-            3];
-        out[0] = static_cast<float>(irradiance.x);
-        out[1] = static_cast<float>(irradiance.y);
-        out[2] = static_cast<float>(irradiance.z);
+        continue; // the lamp's own light is not direct light on it
       }
+      irradiance += piece.Emission *
+        VisibleProjectedSolidAngle(
+          caster, origin, normal, filter, piece.Patch, patches[piece.Patch], piece.MinimumSide);
     }
+    irradianceOfNode[node] = irradiance;
   };
 
-  // Batches of patches through the ParallelFor; progress and abort between batches. Every
-  // patch's nodes are written by one task, so the result does not depend on the threads.
-  const std::size_t batch = std::max<std::size_t>(64, patches.size() / 50);
-  for (std::size_t first = 0; first < patches.size(); first += batch)
+  // Batches of nodes through the ParallelFor; progress and abort between batches. Every node
+  // is written by one task, so the result does not depend on the threads.
+  const std::size_t count = firstPatch.size();
+  const std::size_t batch = std::max<std::size_t>(256, count / 50);
+  for (std::size_t first = 0; first < count; first += batch)
   {
-    const std::size_t last = std::min(patches.size(), first + batch);
+    const std::size_t last = std::min(count, first + batch);
     parallelFor(last - first,
       [&](std::size_t begin, std::size_t end)
       {
         for (std::size_t k = begin; k < end; ++k)
         {
-          computePatch(first + k);
+          computeNode(first + k);
         }
       });
-    if (progress && !progress(static_cast<double>(last) / static_cast<double>(patches.size())))
+    if (progress && !progress(static_cast<double>(last) / static_cast<double>(count)))
     {
       return false;
     }
+  }
+  std::vector<float> values(patches.size() * nodesPerPatch * 3, 0.0f);
+  for (std::size_t k = 0; k < nodeOf.size(); ++k)
+  {
+    const glm::dvec3& irradiance = irradianceOfNode[nodeOf[k]];
+    values[3 * k + 0] = static_cast<float>(irradiance.x);
+    values[3 * k + 1] = static_cast<float>(irradiance.y);
+    values[3 * k + 2] = static_cast<float>(irradiance.z);
   }
   result.NodesPerSide = n;
   result.Values = std::move(values);

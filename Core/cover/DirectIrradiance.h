@@ -16,17 +16,18 @@
  * direct part and keeps the plain interpolation. For every patch, the nodes are (i, j) at the
  * patch's own parameters (i / (n - 1), j / (n - 1)), n = NodesPerSide (odd, so that the centre,
  * the characteristic point, is a node). A node's irradiance is, per band,
- * sum over lamp pieces L of Emission(L) x the projected solid angle of L's visible front side
- * from the node (VisibleProjectedSolidAngle: the midpoint rule over L's (u, v), one shadow ray
- * per quadrature node). The lamp's own light reflected again, and all other light, is not
- * direct: the propagation counts it.
+ * sum over lamp pieces L of other surfaces of Emission(L) x the projected solid angle of L's
+ * visible front side from the node (VisibleProjectedSolidAngle: the midpoint rule over L's
+ * (u, v), one shadow ray per quadrature node). The lamp's own light reflected again, and all
+ * other light, is not direct: the propagation counts it. A node on the border of patches of
+ * one surface is computed once (by its (surface, u, v)) and shared by them.
  *
  * Shadow rays start at the exact surface point; a hit nearer than SelfExclusionFraction x the
  * patch's Size() is where the node lies (its own surface's tessellation around the exact point,
  * and for a node on an edge where two surfaces meet, the other surface's plane, which the ray
  * leaves at once), not an occluder; a back side occludes when BackFacesOcclude (the cover's
  * semantics, RBuffer.h). Cost: patches x NodesPerSide^2 x the lamp's quadrature
- * nodes rays (Cornell box: 4836 patches x 9 nodes x 27 lamp pieces, about 1.2e6). The result does
+ * nodes rays at most (fewer where nodes are shared). The result does
  * not depend on the thread count.
  */
 #ifndef SPHCOVER_DIRECTIRRADIANCE_H
