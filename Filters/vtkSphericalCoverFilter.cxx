@@ -218,31 +218,35 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
   return true;
 }
 
-/// Each patch's emitted radiance, that of the input cell it was cut from.
-std::vector<glm::dvec3> EmissionOf(const sphcover::Scene& scene,
+/// Each patch's emitted radiance (or diffuse reflectance), that of the input cell it was cut
+/// from.
+std::vector<glm::dvec3> MaterialOf(const sphcover::Scene& scene,
   const std::vector<sphcover::Patch>& patches,
-  const std::vector<vtkIdType>& cellOfPatch)
+  const std::vector<vtkIdType>& cellOfPatch,
+  glm::dvec3 sphcover::Material::*property)
 {
-  std::vector<glm::dvec3> emission(patches.size(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> values(patches.size(), glm::dvec3(0.0));
   for (size_t k = 0; k < patches.size(); ++k)
   {
     const size_t cell = static_cast<size_t>(cellOfPatch[k]);
     const size_t material = static_cast<size_t>(scene.Surfaces[cell].MaterialIndex);
     if (material < scene.Materials.size())
     {
-      emission[k] = scene.Materials[material].Emission;
+      values[k] = scene.Materials[material].*property;
     }
   }
-  return emission;
+  return values;
 }
 
-/// The lamps' direct irradiance on the nodes of every patch (DirectIrradiance.h), reporting
+/// The lamps' direct irradiance and its first bounce on the nodes of every patch
+/// (DirectIrradiance.h), reporting
 /// progress from 0.9 to 0.98; false, with a warning or the error reported, when it was
 /// aborted or failed. Empty when the scene has no bright emitter.
 bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
   const std::vector<sphcover::Patch>& patches,
   const std::vector<glm::dvec3>& emission,
   const sphcover::SphericalCoverOptions& options,
+  const std::vector<glm::dvec3>& diffuse,
   sphcover::DirectIrradianceNodes& nodes)
 {
   try
@@ -258,10 +262,12 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
     direct.NodesPerSide = self->GetDirectIrradianceNodes();
     direct.SelfExclusionFraction = options.FillOptions.SelfExclusionFraction;
     direct.BackFacesOcclude = options.FillOptions.BackFacesOcclude;
+    direct.BounceRaysPerSide = self->GetDirectBounceRays();
     const bool completed = sphcover::ComputeDirectIrradiance(patches,
       caster,
       lamps,
       emission,
+      diffuse,
       direct,
       nodes,
       vtkSMPParallelFor::Make(),
@@ -545,7 +551,8 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     return 0;
   }
   const double coverStart = this->Refinement == REFINEMENT_OFF ? 0.0 : refinementShare;
-  const std::vector<glm::dvec3> emission = EmissionOf(scene, patches, cellOfPatch);
+  const std::vector<glm::dvec3> emission =
+    MaterialOf(scene, patches, cellOfPatch, &sphcover::Material::Emission);
   if (this->MeasureLamps)
   {
     options.MeasuredSurfaces = sphcover::BrightEmitters(patches, emission);
@@ -558,7 +565,12 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   }
   sphcover::DirectIrradianceNodes direct;
   if (this->DirectIrradianceNodes > 0 &&
-    !ComputeDirectIrradiance(this, patches, emission, options, direct))
+    !ComputeDirectIrradiance(this,
+      patches,
+      emission,
+      options,
+      MaterialOf(scene, patches, cellOfPatch, &sphcover::Material::Diffuse),
+      direct))
   {
     return 0;
   }
@@ -588,6 +600,7 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
   os << indent << "MeasureLamps: " << this->MeasureLamps << "\n";
   os << indent << "DirectIrradianceNodes: " << this->DirectIrradianceNodes << "\n";
+  os << indent << "DirectBounceRays: " << this->DirectBounceRays << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Refinement: "
      << (this->Refinement == REFINEMENT_OFF

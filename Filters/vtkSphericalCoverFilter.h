@@ -119,7 +119,8 @@ public:
 
   ///@{
   /**
-   * Nodes along each side of every patch at which the lamps' direct irradiance is computed
+   * Nodes along each side of every patch at which the lamps' direct irradiance (and its first
+   * bounce, DirectBounceRays) is computed
    * (Core's DirectIrradiance.h: the output's point array DirectIrradiance): the render and the
    * illumination field then interpolate the sharp direct light from these nodes and only the
    * smooth rest between the characteristic points. Odd, 3 to 33; 0: none (every point's
@@ -128,6 +129,17 @@ public:
    */
   vtkSetMacro(DirectIrradianceNodes, int);
   vtkGetMacro(DirectIrradianceNodes, int);
+  ///@}
+
+  ///@{
+  /**
+   * Rays per side (g x g in all, cosine-weighted) with which the first bounce of the lamps'
+   * direct light is gathered at every node of DirectIrradianceNodes and added to it (Core's
+   * DirectIrradiance.h): near concave edges and contact shadows the once-reflected light
+   * changes below a patch too. 0 to 256; 0: the direct light only. Default is 32.
+   */
+  vtkSetClampMacro(DirectBounceRays, int, 0, 256);
+  vtkGetMacro(DirectBounceRays, int);
   ///@}
 
   ///@{
@@ -198,6 +210,7 @@ protected:
   bool BackFacesOcclude = true;
   bool MeasureLamps = true;
   int DirectIrradianceNodes = 3;
+  int DirectBounceRays = 32;
   double MemoryLimit = 8192.0;
   int Refinement = REFINEMENT_ENCLOSURES;
   int RefinementLevels = 3;

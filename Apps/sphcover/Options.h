@@ -23,6 +23,8 @@ struct Options
   std::string Lamps = "measured";
   /// vtkSphericalCoverFilter::DirectIrradianceNodes (0: none).
   int DirectNodes = 3;
+  /// vtkSphericalCoverFilter::DirectBounceRays (0: the direct light only).
+  int BounceRays = 32;
   std::vector<std::string> Settings;
   std::string Png;
   std::string Camera;

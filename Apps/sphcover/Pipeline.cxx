@@ -99,6 +99,7 @@ void Solution::Solve(const Options& options)
   }
   this->Cover->SetMeasureLamps(options.Lamps == "measured");
   this->Cover->SetDirectIrradianceNodes(options.DirectNodes);
+  this->Cover->SetDirectBounceRays(options.BounceRays);
   {
     ProgressBar bar(this->Cover, "cover", options.Quiet);
     const double cpuStart = ProcessorSeconds();

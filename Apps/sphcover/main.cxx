@@ -8,7 +8,7 @@
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
- *                  [--lamps measured|cells] [--direct-nodes N]
+ *                  [--lamps measured|cells] [--direct-nodes N] [--bounce-rays N]
  *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH]
  *                   [--spp N] [--exposure E] [--solution solution.vtm] [--report report.json]
  *                   [--set k=v]
@@ -110,6 +110,12 @@ int main(int argc, char** argv)
       "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
       "points (the paper's)")
     ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
+  solve
+    ->add_option("--bounce-rays",
+      options.BounceRays,
+      "Rays per side (N x N) gathering the first bounce of the lamps' direct light at every "
+      "node of --direct-nodes (0 to 256; default 32); 0: the direct light only")
+    ->check(CLI::Range(0, 256));
   solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
   solve->add_option(
@@ -157,6 +163,12 @@ int main(int argc, char** argv)
       "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
       "points (the paper's)")
     ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
+  render
+    ->add_option("--bounce-rays",
+      options.BounceRays,
+      "Rays per side (N x N) gathering the first bounce of the lamps' direct light at every "
+      "node of --direct-nodes (0 to 256; default 32); 0: the direct light only")
+    ->check(CLI::Range(0, 256));
   render->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
 

@@ -3,6 +3,7 @@
 
 #include "cover/RayCastFill.h"
 #include "geometry/RayCaster.h"
+#include "math/Constants.h"
 #include "subdivision/Patch.h"
 
 #include <glm/geometric.hpp>
@@ -20,23 +21,39 @@ namespace sphcover
 namespace
 {
 
-/// The shadow rays' filter: whatever the ray meets right at the node is where the node lies
-/// (its own surface's tessellation, and at a node on an edge where surfaces meet, the other
-/// surface's plane, which the ray leaves at once).
+/// The rays' filter at a node: a hit on the node's own surface nearer than SelfExclusion is
+/// the node itself (its surface's tessellation around the exact point).
 struct NodeFilter
 {
+  const std::vector<int32_t>* SurfaceOfPatch;
+  int32_t Surface;
   float SelfExclusion;
   bool BackFacesOcclude;
 };
 
-bool AcceptForNode(const void* context, std::size_t, float distance, bool front)
+bool AcceptForNode(const void* context, std::size_t patch, float distance, bool front)
 {
   const NodeFilter& node = *static_cast<const NodeFilter*>(context);
   if (!front && !node.BackFacesOcclude)
   {
     return false;
   }
-  return !(distance < node.SelfExclusion);
+  return !(distance < node.SelfExclusion && (*node.SurfaceOfPatch)[patch] == node.Surface);
+}
+
+/// Where the rays of node (s, t) of a patch start: the surface point moved a hair (1e-4 of the
+/// patch's parameters and of its Size()) toward the patch's centre and off its front. A node on
+/// an edge where surfaces meet then lies on one side of the other surface: a ray into that
+/// surface's front meets it (the floor, from the foot of a block's face), a ray leaving it
+/// does not (the lamp, from the foot of a wall), and at a convex edge (a block's top) the side
+/// face lies wholly behind the node.
+glm::dvec3 RayOrigin(const Patch& patch, double s, double t, glm::dvec3& normal)
+{
+  const double inward = 1e-4;
+  const double si = s + (0.5 - s) * inward;
+  const double ti = t + (0.5 - t) * inward;
+  normal = patch.Geometry.Normal(si, ti);
+  return patch.Geometry.Evaluate(si, ti) + normal * (inward * patch.Geometry.Size());
 }
 
 /// One lamp piece: its patch, its emission and its quadrature's least side.
@@ -46,6 +63,38 @@ struct LampPiece
   glm::dvec3 Emission;
   int MinimumSide;
 };
+
+/// Runs `body` on nodes 0 .. count - 1 in batches through the ParallelFor, progress from
+/// `from` to `to` and abort between batches; false when aborted. Every node is written by one
+/// task, so the result does not depend on the threads.
+template<typename Body>
+bool ForEachNode(std::size_t count,
+  const Body& body,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress,
+  double from,
+  double to)
+{
+  const std::size_t batch = std::max<std::size_t>(256, count / 50);
+  for (std::size_t first = 0; first < count; first += batch)
+  {
+    const std::size_t last = std::min(count, first + batch);
+    parallelFor(last - first,
+      [&](std::size_t begin, std::size_t end)
+      {
+        for (std::size_t k = begin; k < end; ++k)
+        {
+          body(first + k);
+        }
+      });
+    if (progress &&
+      !progress(from + (to - from) * static_cast<double>(last) / static_cast<double>(count)))
+    {
+      return false;
+    }
+  }
+  return true;
+}
 
 } // namespace
 
@@ -74,16 +123,24 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   const RayCaster& caster,
   const std::vector<bool>& lamps,
   const std::vector<glm::dvec3>& emission,
+  const std::vector<glm::dvec3>& diffuse,
   const DirectIrradianceOptions& options,
   DirectIrradianceNodes& result,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress)
 {
-  if (emission.size() != patches.size() || caster.PatchCount() != patches.size())
+  const bool bounce = options.BounceRaysPerSide > 0;
+  if (emission.size() != patches.size() || caster.PatchCount() != patches.size() ||
+    (bounce && diffuse.size() != patches.size()))
   {
     throw std::invalid_argument("ComputeDirectIrradiance: " + std::to_string(patches.size()) +
-      " patches, the emission of " + std::to_string(emission.size()) + " and a caster of " +
-      std::to_string(caster.PatchCount()));
+      " patches, the emission of " + std::to_string(emission.size()) + ", the reflectance of " +
+      std::to_string(diffuse.size()) + " and a caster of " + std::to_string(caster.PatchCount()));
+  }
+  if (options.BounceRaysPerSide < 0 || options.BounceRaysPerSide > 256)
+  {
+    throw std::invalid_argument("ComputeDirectIrradiance: BounceRaysPerSide " +
+      std::to_string(options.BounceRaysPerSide) + " is not in [0, 256]");
   }
   const int n = options.NodesPerSide;
   if (n < 3 || n > 33 || n % 2 == 0)
@@ -94,8 +151,10 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   result = DirectIrradianceNodes();
 
   std::vector<std::size_t> piecesOfSurface(lamps.size(), 0);
+  std::vector<int32_t> surfaceOfPatch(patches.size());
   for (std::size_t k = 0; k < patches.size(); ++k)
   {
+    surfaceOfPatch[k] = patches[k].SurfaceIndex;
     const std::size_t surface = static_cast<std::size_t>(patches[k].SurfaceIndex);
     if (surface < lamps.size() && lamps[surface])
     {
@@ -159,14 +218,15 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   {
     const std::size_t p = firstPatch[node];
     const Patch& patch = patches[p];
-    const NodeFilter nodeFilter{ static_cast<float>(
-                                   options.SelfExclusionFraction * patch.Geometry.Size()),
+    const NodeFilter nodeFilter{ &surfaceOfPatch,
+      patch.SurfaceIndex,
+      static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
       options.BackFacesOcclude };
     const RayFilter filter{ AcceptForNode, &nodeFilter };
     const double s = static_cast<double>(firstIndex[node] % n) / (n - 1);
     const double t = static_cast<double>(firstIndex[node] / n) / (n - 1);
-    const glm::dvec3 origin = patch.Geometry.Evaluate(s, t);
-    const glm::dvec3 normal = patch.Geometry.Normal(s, t);
+    glm::dvec3 normal;
+    const glm::dvec3 origin = RayOrigin(patch, s, t, normal);
     glm::dvec3 irradiance(0.0);
     for (const LampPiece& piece : pieces)
     {
@@ -181,37 +241,88 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     irradianceOfNode[node] = irradiance;
   };
 
-  // Batches of nodes through the ParallelFor; progress and abort between batches. Every node
-  // is written by one task, so the result does not depend on the threads.
   const std::size_t count = firstPatch.size();
-  const std::size_t batch = std::max<std::size_t>(256, count / 50);
-  for (std::size_t first = 0; first < count; first += batch)
+  const double directShare = bounce ? 0.25 : 1.0;
+  if (!ForEachNode(count, computeNode, parallelFor, progress, 0.0, directShare))
   {
-    const std::size_t last = std::min(count, first + batch);
-    parallelFor(last - first,
-      [&](std::size_t begin, std::size_t end)
+    return false;
+  }
+  DirectIrradianceNodes direct;
+  direct.NodesPerSide = n;
+  direct.Values.assign(patches.size() * nodesPerPatch * 3, 0.0f);
+  auto store = [&](const std::vector<glm::dvec3>& ofNode, std::vector<float>& values)
+  {
+    for (std::size_t k = 0; k < nodeOf.size(); ++k)
+    {
+      const glm::dvec3& irradiance = ofNode[nodeOf[k]];
+      values[3 * k + 0] = static_cast<float>(irradiance.x);
+      values[3 * k + 1] = static_cast<float>(irradiance.y);
+      values[3 * k + 2] = static_cast<float>(irradiance.z);
+    }
+  };
+  store(irradianceOfNode, direct.Values);
+
+  if (bounce)
+  {
+    // The first bounce of the direct light: at every node, g x g cosine-weighted rays, each
+    // meeting a front side y whose Lambertian radiance rho(y) / pi E_direct(y) comes from the
+    // direct light just computed at y's patch's nodes; E = pi x their mean.
+    const int g = options.BounceRaysPerSide;
+    std::vector<glm::dvec3> local(static_cast<std::size_t>(g) * static_cast<std::size_t>(g));
+    for (int a = 0; a < g; ++a)
+    {
+      for (int b = 0; b < g; ++b)
       {
-        for (std::size_t k = begin; k < end; ++k)
+        // The midpoints of g x g strata of (sin^2 theta, phi), in the node's frame.
+        const double sin2 = (a + 0.5) / g;
+        const double phi = 2.0 * Pi * (b + 0.5) / g;
+        local[static_cast<std::size_t>(a * g + b)] = glm::dvec3(
+          std::sqrt(sin2) * std::cos(phi), std::sqrt(sin2) * std::sin(phi), std::sqrt(1.0 - sin2));
+      }
+    }
+    std::vector<glm::dvec3> bounced(count, glm::dvec3(0.0));
+    auto gatherNode = [&](std::size_t node)
+    {
+      const Patch& patch = patches[firstPatch[node]];
+      const NodeFilter nodeFilter{ &surfaceOfPatch,
+        patch.SurfaceIndex,
+        static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
+        options.BackFacesOcclude };
+      const RayFilter filter{ AcceptForNode, &nodeFilter };
+      glm::dvec3 normal;
+      const glm::dvec3 origin = RayOrigin(patch,
+        static_cast<double>(firstIndex[node] % n) / (n - 1),
+        static_cast<double>(firstIndex[node] / n) / (n - 1),
+        normal);
+      // Any tangent frame: the strata are the same in every one.
+      const glm::dvec3 helper =
+        std::fabs(normal.x) < 0.6 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
+      const glm::dvec3 tangent = glm::normalize(glm::cross(helper, normal));
+      const glm::dvec3 bitangent = glm::cross(normal, tangent);
+      glm::dvec3 sum(0.0);
+      for (const glm::dvec3& d : local)
+      {
+        const glm::dvec3 direction = d.x * tangent + d.y * bitangent + d.z * normal;
+        TriangleHit hit;
+        if (caster.Intersect(origin, direction, 0.0f, filter, false, hit) && hit.FrontSide)
         {
-          computeNode(first + k);
+          sum += diffuse[hit.Patch] * direct.At(hit.Patch, hit.U, hit.V);
         }
-      });
-    if (progress && !progress(static_cast<double>(last) / static_cast<double>(count)))
+      }
+      bounced[node] = sum / static_cast<double>(local.size());
+    };
+    if (!ForEachNode(count, gatherNode, parallelFor, progress, directShare, 1.0))
     {
       return false;
     }
+    std::vector<float> values(direct.Values.size());
+    store(bounced, values);
+    for (std::size_t k = 0; k < values.size(); ++k)
+    {
+      direct.Values[k] += values[k];
+    }
   }
-  std::vector<float> values(patches.size() * nodesPerPatch * 3, 0.0f);
-  for (std::size_t k = 0; k < nodeOf.size(); ++k)
-  {
-    const glm::dvec3& irradiance = irradianceOfNode[nodeOf[k]];
-    values[3 * k + 0] = static_cast<float>(irradiance.x);
-    values[3 * k + 1] = static_cast<float>(irradiance.y);
-    values[3 * k + 2] = static_cast<float>(irradiance.z);
-  }
-  result.NodesPerSide = n;
-  result.Values = std::move(values);
+  result = std::move(direct);
   return true;
 }
-
 } // namespace sphcover

@@ -1,34 +1,43 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file DirectIrradiance.h
- * @brief The lamps' direct irradiance over every patch, on a grid of nodes finer than the
- * characteristic points: the part of the illumination that changes fastest, sampled where it
- * changes, so that the render interpolates only the smooth rest between the points.
+ * @brief The lamps' direct irradiance and its first bounce over every patch, on a grid of nodes
+ * finer than the characteristic points: the part of the illumination that changes fastest,
+ * sampled where it changes, so that the render interpolates only the smooth rest between the
+ * points.
  *
  * Why: a characteristic point stands for its patch's illumination (paper §3.4), and §5.3.2
  * interpolates between the points. The light that arrives straight from a lamp has the sharp
  * features of a scene (a shadow's penumbra, the contact shadow at a block's foot, the fall to
- * zero along a wall under the lamp's plane) at scales below a patch; what arrives after a
- * bounce is smooth. Splitting them is the lightmap's old trick, and it keeps the solution
- * view-independent: the nodes are part of the solution, a view only interpolates them.
+ * zero along a wall under the lamp's plane) at scales below a patch, and so has its first
+ * bounce near where surfaces meet (along a concave edge a wall sees mostly the strip of the
+ * other surface next to it, whose direct light falls to zero there: the corner's dip, which
+ * no extrapolation from patch centres follows). After that the light is smooth. Splitting
+ * them is the lightmap's old trick, and it keeps the solution view-independent: the nodes are
+ * part of the solution, a view only interpolates them.
  *
  * Lamps are the bright emitters (BrightEmitters.h); a scene with none (a white furnace) has no
- * direct part and keeps the plain interpolation. For every patch, the nodes are (i, j) at the
+ * nodes and keeps the plain interpolation. For every patch, the nodes are (i, j) at the
  * patch's own parameters (i / (n - 1), j / (n - 1)), n = NodesPerSide (odd, so that the centre,
- * the characteristic point, is a node). A node's irradiance is, per band,
- * sum over lamp pieces L of other surfaces of Emission(L) x the projected solid angle of L's
- * visible front side from the node (VisibleProjectedSolidAngle: the midpoint rule over L's
- * (u, v), one shadow ray per quadrature node). The lamp's own light reflected again, and all
- * other light, is not direct: the propagation counts it. A node on the border of patches of
- * one surface is computed once (by its (surface, u, v)) and shared by them.
+ * the characteristic point, is a node). A node's value is, per band, E_direct + E_bounce:
+ *  - E_direct: the sum over lamp pieces L of other surfaces of Emission(L) x the projected
+ *    solid angle of L's visible front side from the node (VisibleProjectedSolidAngle: the
+ *    midpoint rule over L's (u, v), one shadow ray per quadrature node);
+ *  - E_bounce (BounceRaysPerSide g > 0): pi x the mean, over g x g cosine-weighted rays (the
+ *    midpoints of strata of sin^2 theta and phi, the same pattern at every node), of the
+ *    Lambertian radiance rho(y) / pi E_direct(y) of the front side y each ray meets, E_direct(y)
+ *    interpolated from y's patch's nodes (rho: `diffuse`, the patches' diffuse reflectance; a
+ *    mirror or the back of a two-sided surface sends nothing here, the propagation counts it).
+ * The rest of the light (the lamp's own light reflected again, later bounces, what mirrors
+ * send) is the propagation's. A node on the border of patches of one surface is computed once
+ * (by its (surface, u, v)) and shared by them.
  *
- * Shadow rays start at the exact surface point; a hit nearer than SelfExclusionFraction x the
- * patch's Size() is where the node lies (its own surface's tessellation around the exact point,
- * and for a node on an edge where two surfaces meet, the other surface's plane, which the ray
- * leaves at once), not an occluder; a back side occludes when BackFacesOcclude (the cover's
- * semantics, RBuffer.h). Cost: patches x NodesPerSide^2 x the lamp's quadrature
- * nodes rays at most (fewer where nodes are shared). The result does
- * not depend on the thread count.
+ * Rays start a hair inside the patch and off its front (RayOrigin in the source), so that at
+ * an edge where surfaces meet a ray into the other surface's front meets it and a ray leaving
+ * its plane does not; a hit on the node's own surface nearer than SelfExclusionFraction x the
+ * patch's Size() is the node itself; a back side occludes when BackFacesOcclude (the cover's
+ * semantics, RBuffer.h). Cost: distinct nodes x (the lamp's quadrature nodes + g^2) rays. The
+ * result does not depend on the thread count.
  */
 #ifndef SPHCOVER_DIRECTIRRADIANCE_H
 #define SPHCOVER_DIRECTIRRADIANCE_H
@@ -53,11 +62,15 @@ struct DirectIrradianceOptions
   /// The quadrature of a whole lamp takes at least this many nodes per side (shared among its
   /// pieces, at least one each).
   int LampNodesPerSide = 8;
+  /// The first bounce of the direct light is gathered at every node with g x g cosine-weighted
+  /// rays, g this (0 to 256; 0: the direct light only).
+  int BounceRaysPerSide = 32;
   double SelfExclusionFraction = 1e-3;
   bool BackFacesOcclude = true;
 };
 
-/// Per patch NodesPerSide^2 nodes, RGB each: patch p's node (i, j) band b is at
+/// Per patch NodesPerSide^2 nodes, RGB irradiance (E_direct + E_bounce) each: patch p's node (i, j)
+/// band b is at
 /// ((p * n + j) * n + i) * 3 + b (i along u).
 struct DirectIrradianceNodes
 {
@@ -71,16 +84,19 @@ struct DirectIrradianceNodes
 
 /**
  * The direct irradiance of the lamps (`lamps`: per surface index, whether it is one;
- * `emission`: each patch's emitted radiance) at the nodes of every patch (see the file
- * comment), computed with `caster`, a RayCaster over `patches` in the same order. Empty
+ * `emission`: each patch's emitted radiance) and its first bounce (`diffuse`: each patch's
+ * diffuse reflectance; may be empty when BounceRaysPerSide is 0) at the nodes of every patch
+ * (see the file comment), computed with `caster`, a RayCaster over `patches` in the same
+ * order. Empty
  * (NodesPerSide 0) when no patch belongs to a lamp. Returns false, the result incomplete,
  * when `progress` returned false. Throws std::invalid_argument for sizes that differ or
- * NodesPerSide outside its range.
+ * NodesPerSide or BounceRaysPerSide outside its range.
  */
 bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   const RayCaster& caster,
   const std::vector<bool>& lamps,
   const std::vector<glm::dvec3>& emission,
+  const std::vector<glm::dvec3>& diffuse,
   const DirectIrradianceOptions& options,
   DirectIrradianceNodes& result,
   const ParallelFor& parallelFor = SequentialFor,

@@ -3,8 +3,9 @@
 // under a square lamp it is the analytic irradiance of a parallel rectangle (Howell's
 // differential element to a parallel rectangle); a node on the edge where the floor meets a
 // wall sees the lamp as a brute-force integral says (the wall does not shadow the node on it);
-// an occluder that hides the lamp gives zero; the nodes do not depend on the thread count; a
-// scene without a bright emitter has none. The renderer keeps I at the characteristic points
+// an occluder that hides the lamp gives zero; the first bounce off an evenly lit floor is rho
+// times its direct light; the nodes do not depend on the thread count; a scene without a
+// bright emitter has none. The renderer keeps I at the characteristic points
 // and adds the nodes' variation between them.
 #include "cover/BrightEmitters.h"
 #include "cover/DirectIrradiance.h"
@@ -78,9 +79,10 @@ DirectIrradianceNodes Compute(const std::vector<Patch>& patches,
   const std::vector<glm::dvec3> emission = EmissionOf(patches);
   DirectIrradianceOptions options;
   options.NodesPerSide = nodesPerSide;
+  options.BounceRaysPerSide = 0; // the direct light alone (the bounce: FirstBounceOfAnEvenFloor)
   DirectIrradianceNodes nodes;
   EXPECT_TRUE(ComputeDirectIrradiance(
-    patches, caster, BrightEmitters(patches, emission), emission, options, nodes, parallelFor));
+    patches, caster, BrightEmitters(patches, emission), emission, {}, options, nodes, parallelFor));
   return nodes;
 }
 
@@ -224,31 +226,101 @@ TEST(DirectIrradiance, IndependentOfThreadsAndBilinearBetweenNodes)
   }
 }
 
+TEST(DirectIrradiance, FirstBounceOfAnEvenFloor)
+{
+  // A 40 x 40 floor (rho 0.5, split 5 x 5) under a 20 x 20 lamp at height 1 (split 4 x 4), and
+  // a small plate facing the floor at height 0.25 above (2, 2), between the floor's nodes: the
+  // plate gets no direct light, and its first bounce is rho times the floor's direct light,
+  // nearly even below it (the floor beyond 2 units of it sends 1.5 % of what it sees).
+  std::vector<Patch> patches;
+  AppendSplit(patches,
+    Parallelogram(
+      glm::dvec3(-20.0, -20.0, 0.0), glm::dvec3(40.0, 0.0, 0.0), glm::dvec3(0.0, 40.0, 0.0)),
+    0,
+    5,
+    5);
+  AppendSplit(patches,
+    Parallelogram(
+      glm::dvec3(-10.0, -10.0, 1.0), glm::dvec3(0.0, 20.0, 0.0), glm::dvec3(20.0, 0.0, 0.0)),
+    1,
+    4,
+    4);
+  AppendSplit(patches,
+    Parallelogram(
+      glm::dvec3(1.975, 1.975, 0.25), glm::dvec3(0.0, 0.05, 0.0), glm::dvec3(0.05, 0.0, 0.0)),
+    2,
+    1,
+    1);
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  std::vector<glm::dvec3> emission(patches.size(), glm::dvec3(0.0));
+  std::vector<glm::dvec3> diffuse(patches.size(), glm::dvec3(0.0));
+  for (std::size_t p = 0; p < patches.size(); ++p)
+  {
+    emission[p] = patches[p].SurfaceIndex == 1 ? LampEmission : glm::dvec3(0.0);
+    diffuse[p] = patches[p].SurfaceIndex == 0 ? glm::dvec3(0.5) : glm::dvec3(0.0);
+  }
+  const std::vector<bool> lamps = BrightEmitters(patches, emission);
+  ASSERT_TRUE(lamps.size() > 1 && lamps[1] && !lamps[0]);
+  DirectIrradianceOptions options;
+  DirectIrradianceNodes nodes;
+  ASSERT_TRUE(ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, options, nodes));
+  const std::size_t plate = patches.size() - 1;
+  // The floor's nodes at (4, 4) (patch 18's corner (0, 0)) and at (0, 0) (patch 12's centre).
+  const glm::dvec3 floorA = nodes.At(18, 0.0, 0.0);
+  const glm::dvec3 floorB = nodes.At(12, 0.5, 0.5);
+  ASSERT_GT(floorA.x, 0.0);
+  for (int band = 0; band < 3; ++band)
+  {
+    const double expected = 0.5 * 0.5 * (floorA[band] + floorB[band]);
+    EXPECT_NEAR(nodes.At(plate, 0.5, 0.5)[band] / expected, 1.0, 0.01) << "band " << band;
+    EXPECT_NEAR(nodes.At(plate, 0.0, 1.0)[band] / expected, 1.0, 0.01) << "band " << band;
+  }
+  // Without the bounce the plate has nothing.
+  options.BounceRaysPerSide = 0;
+  ASSERT_TRUE(ComputeDirectIrradiance(patches, caster, lamps, emission, {}, options, nodes));
+  EXPECT_EQ(nodes.At(plate, 0.5, 0.5), glm::dvec3(0.0));
+}
+
 TEST(DirectIrradiance, NoBrightEmitterNoNodesAndBadSizesRefused)
 {
   std::vector<Patch> patches = LampOverFloor(false);
   const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  const std::vector<glm::dvec3> diffuse(patches.size(), glm::dvec3(0.5));
   // Everything emitting alike (a furnace): no lamp, no direct part.
   const std::vector<glm::dvec3> even(patches.size(), glm::dvec3(1.0));
   DirectIrradianceNodes nodes;
-  EXPECT_TRUE(ComputeDirectIrradiance(
-    patches, caster, BrightEmitters(patches, even), even, DirectIrradianceOptions(), nodes));
+  EXPECT_TRUE(ComputeDirectIrradiance(patches,
+    caster,
+    BrightEmitters(patches, even),
+    even,
+    diffuse,
+    DirectIrradianceOptions(),
+    nodes));
   EXPECT_TRUE(nodes.Empty());
   const std::vector<glm::dvec3> emission = EmissionOf(patches);
   const std::vector<bool> lamps = BrightEmitters(patches, emission);
   DirectIrradianceOptions even4;
   even4.NodesPerSide = 4;
-  EXPECT_THROW(
-    ComputeDirectIrradiance(patches, caster, lamps, emission, even4, nodes), std::invalid_argument);
+  EXPECT_THROW(ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, even4, nodes),
+    std::invalid_argument);
+  DirectIrradianceOptions tooMany;
+  tooMany.BounceRaysPerSide = 257;
+  EXPECT_THROW(ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, tooMany, nodes),
+    std::invalid_argument);
   const std::vector<glm::dvec3> shortEmission(3, glm::dvec3(1.0));
   EXPECT_THROW(ComputeDirectIrradiance(
-                 patches, caster, lamps, shortEmission, DirectIrradianceOptions(), nodes),
+                 patches, caster, lamps, shortEmission, diffuse, DirectIrradianceOptions(), nodes),
+    std::invalid_argument);
+  // The bounce needs every patch's reflectance.
+  EXPECT_THROW(
+    ComputeDirectIrradiance(patches, caster, lamps, emission, {}, DirectIrradianceOptions(), nodes),
     std::invalid_argument);
   // Abort between batches: false, nothing returned.
   EXPECT_FALSE(ComputeDirectIrradiance(patches,
     caster,
     lamps,
     emission,
+    diffuse,
     DirectIrradianceOptions(),
     nodes,
     SequentialFor,
