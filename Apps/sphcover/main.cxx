@@ -32,6 +32,35 @@
 #include <iostream>
 #include <string>
 
+namespace
+{
+/// The options of the cover's fill and of the light it measures, the same for solve and render.
+void AddCoverOptions(CLI::App* command, sphcover_cli::Options& options)
+{
+  command->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
+    ->check(CLI::IsMember({ "projection", "raycasting" }));
+  command
+    ->add_option("--lamps",
+      options.Lamps,
+      "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
+      "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
+    ->check(CLI::IsMember({ "cells", "measured" }));
+  command
+    ->add_option("--direct-nodes",
+      options.DirectNodes,
+      "Nodes per patch side at which the lamps' direct light is computed and interpolated "
+      "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
+      "points (the paper's)")
+    ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
+  command
+    ->add_option("--bounce-rays",
+      options.BounceRays,
+      "Rays per side (N x N) gathering the first bounce of the lamps' direct light at every "
+      "node of --direct-nodes (0 to 256; default 32); 0: the direct light only")
+    ->check(CLI::Range(0, 256));
+}
+}
+
 int main(int argc, char** argv)
 {
   CLI::App app{ "sphcover: view-independent global illumination of Bezier-patch scenes by the "
@@ -95,27 +124,7 @@ int main(int argc, char** argv)
   solve->add_option("SCENE", options.Scene, "A .scene or .bpt file")->required();
   solve->add_option("-o,--output", options.Output, "Solution file (.vtm): patches and cover");
   solve->add_option("--report", options.Report, "Report file (.json)");
-  solve->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
-    ->check(CLI::IsMember({ "projection", "raycasting" }));
-  solve
-    ->add_option("--lamps",
-      options.Lamps,
-      "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
-      "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
-    ->check(CLI::IsMember({ "cells", "measured" }));
-  solve
-    ->add_option("--direct-nodes",
-      options.DirectNodes,
-      "Nodes per patch side at which the lamps' direct light is computed and interpolated "
-      "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
-      "points (the paper's)")
-    ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
-  solve
-    ->add_option("--bounce-rays",
-      options.BounceRays,
-      "Rays per side (N x N) gathering the first bounce of the lamps' direct light at every "
-      "node of --direct-nodes (0 to 256; default 32); 0: the direct light only")
-    ->check(CLI::Range(0, 256));
+  AddCoverOptions(solve, options);
   solve->add_option("--range-method", options.RangeMethod, "bernstein (default) or natural")
     ->check(CLI::IsMember({ "bernstein", "natural" }));
   solve->add_option(
@@ -148,27 +157,7 @@ int main(int argc, char** argv)
     options.SolutionFile,
     "A solution written by `sphcover solve -o` (.vtm): only render, no solving");
   render->add_option("--report", options.Report, "Report file (.json), with timings_s.render");
-  render->add_option("--fill", options.Fill, "R-buffer fill: raycasting (default) or projection")
-    ->check(CLI::IsMember({ "projection", "raycasting" }));
-  render
-    ->add_option("--lamps",
-      options.Lamps,
-      "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
-      "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
-    ->check(CLI::IsMember({ "cells", "measured" }));
-  render
-    ->add_option("--direct-nodes",
-      options.DirectNodes,
-      "Nodes per patch side at which the lamps' direct light is computed and interpolated "
-      "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
-      "points (the paper's)")
-    ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
-  render
-    ->add_option("--bounce-rays",
-      options.BounceRays,
-      "Rays per side (N x N) gathering the first bounce of the lamps' direct light at every "
-      "node of --direct-nodes (0 to 256; default 32); 0: the direct light only")
-    ->check(CLI::Range(0, 256));
+  AddCoverOptions(render, options);
   render->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
 

@@ -18,17 +18,18 @@ lamp, the floor at the blocks' bases) and a low bias of the walls of 1.2 to 2 % 
 when RBuffer::Classify diffuses its rounding error along the rows: the plain plurality vote
 loses 1-2 % of the lamp's projected solid angle, Testing/Core/TestCornellDirectLight.cxx).
 
-2026-12-03: with the lamps' direct light taken from its nodes (vtkSphericalCoverFilter's
-DirectIrradianceNodes, Core/cover/DirectIrradiance.h) e = 0.0156, and the issue-16 metric
+2026-12-03: with the lamps' direct light and its first bounce taken from the patches' nodes
+(vtkSphericalCoverFilter's DirectIrradianceNodes and DirectBounceRays,
+Core/cover/DirectIrradiance.h) e = 0.0137, and the issue-16 metric
 (Testing/Benchmarks/time_to_accuracy.py: relative RMS of luminance block means on a 16 x 16
-and a 64 x 64 grid, here 8-px and 2-px blocks) 1.12 % and 2.03 % (without the nodes 1.7 % and
-3.0 %).
+and a 64 x 64 grid, here 8-px and 2-px blocks) 0.95 % and 1.76 % (the direct light alone at
+the nodes: 1.12 % and 2.03 %; no nodes: 1.7 % and 3.0 %).
 
 Asserted, with margins for changes of the method that are not regressions (~0.02 on the
 block errors):
   - e < 0.06 and every e_c < 0.07;
-  - the luminance block errors of the 16 x 16 and 64 x 64 grids below 1.4 % and 2.5 % (the
-    direct light from its nodes: without them 1.7 % and 3.0 %);
+  - the luminance block errors of the 16 x 16 and 64 x 64 grids below 1.05 % and 1.95 % (the
+    direct light and its first bounce from the nodes; without the bounce 1.12 % and 2.03 %);
   - each image mean within 1 % of the reference's (the balance off misses it by half of that
     at coarser settings: -4.6 % at max_level 2 and a 16 x 64 grid).
 Checked by hand: halving the emission (means -50 %), swapping the R and B bands of the red
@@ -58,10 +59,10 @@ print(compare_sphcover.error_map_text(result))
 luminance = time_to_accuracy.errors_against(image, reference)
 print("luminance block errors (issue 16's metric): "
       + ", ".join(f"{grid} x {grid} blocks {100 * value:.2f} %" for grid, value in luminance.items()))
-for grid, limit in ((16, 0.014), (64, 0.025)):
+for grid, limit in ((16, 0.0105), (64, 0.0195)):
     if not luminance[grid] < limit:
         failures.append(f"luminance block error on {grid} x {grid} blocks "
-                        f"{100 * luminance[grid]:.2f} % >= {100 * limit:.1f} %")
+                        f"{100 * luminance[grid]:.2f} % >= {100 * limit:.2f} %")
 if not result["block_rms"] < 0.06:
     failures.append(f"block-RMS relative error {result['block_rms']:.4f} >= 0.06")
 for name, value in zip("RGB", result["block_rms_channel"]):
