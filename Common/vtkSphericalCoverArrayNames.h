@@ -118,6 +118,9 @@ constexpr const char* Radiance = "Radiance";
 /// OpenEXR's channel `Z` with +infinity there, vtkOpenEXRReader reads it back as this array.
 constexpr const char* Depth = "Depth";
 constexpr const char* RGB = "RGB";
+/// vtkIlluminationField's point data for display: the radiance exposed and sRGB-encoded, bytes
+/// shown as they are (Map Scalars off), as the image's RGB.
+constexpr const char* DisplayRGB = "DisplayRGB";
 }
 
 #endif

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkIlluminationField.h"
 
+#include "vtkCoverPatches.h"
 #include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSphericalCoverArrayNames.h"
@@ -22,17 +23,46 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <exception>
 
 namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as a byte; the
+/// encoding of vtkRadianceImageFilter's RGB, so the field and the image show the same colours.
+unsigned char EncodeSRGB(double linear)
+{
+  const double c = std::clamp(linear, 0.0, 1.0);
+  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return static_cast<unsigned char>(std::lround(255.0 * encoded));
+}
+
+/// DisplayRGB: the radiance exposed by `scale` and sRGB-encoded, for display without a colour
+/// map (ParaView's Map Scalars off).
+vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkFloatArray* radiance, double scale)
+{
+  auto rgb = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  rgb->SetName(vtkSphericalCoverArrayNames::DisplayRGB);
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(radiance->GetNumberOfTuples());
+  const float* in = radiance->GetPointer(0);
+  unsigned char* out = rgb->GetPointer(0);
+  for (vtkIdType k = 0; k < 3 * radiance->GetNumberOfTuples(); ++k)
+  {
+    out[k] = EncodeSRGB(scale * in[k]);
+  }
+  return rgb;
+}
+
 /// The field's point arrays: position, Radiance, Normals and SurfaceId, (n + 1)^2 points per
 /// patch.
 struct FieldPoints
@@ -138,8 +168,9 @@ bool SampleField(vtkIlluminationField* self,
   return true;
 }
 
-/// The output: the field's points, n x n quads per patch with their PatchId.
-void WriteField(FieldPoints& field, vtkIdType patchCount, int n, vtkPolyData* output)
+/// The output: the field's points, n x n quads per patch with their PatchId; DisplayRGB (the
+/// radiance times `scale`) the active scalars.
+void WriteField(FieldPoints& field, vtkIdType patchCount, int n, double scale, vtkPolyData* output)
 {
   const vtkIdType perPatch = static_cast<vtkIdType>(n + 1) * (n + 1);
   vtkNew<vtkCellArray> quads;
@@ -168,6 +199,7 @@ void WriteField(FieldPoints& field, vtkIdType patchCount, int n, vtkPolyData* ou
   output->GetPointData()->AddArray(field.Radiance);
   output->GetPointData()->SetNormals(field.Normals);
   output->GetPointData()->AddArray(field.SurfaceId);
+  output->GetPointData()->SetScalars(DisplayColours(field.Radiance, scale));
   output->GetCellData()->AddArray(patchId);
 }
 }
@@ -184,6 +216,11 @@ vtkIlluminationField::~vtkIlluminationField() = default;
 int vtkIlluminationField::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkPolyData" : "vtkDataSet");
+  if (port == 1)
+  {
+    // Unconnected: the patches upstream of the illumination (vtkCoverPatches.h).
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
   return 1;
 }
 
@@ -191,14 +228,16 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  this->SetProgressText("Illumination Field: interpolating");
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
-  vtkDataSet* patchesInput = vtkDataSet::GetData(inputVector[1], 0);
+  vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (!illumination || !patchesInput)
   {
     vtkErrorMacro(<< "Cannot build the illumination field: connect the illumination "
-                     "(vtkLightPropagationFilter's output 0) to port 0 and the patches "
-                     "(vtkIntervalSubdivisionFilter's output 0) to port 1.");
+                     "(vtkLightPropagationFilter's output 0) to port 0 and, unless a Spherical "
+                     "Cover is upstream of it, the patches (vtkIntervalSubdivisionFilter's "
+                     "output 0) to port 1 (Patches).");
     return 0;
   }
   vtkIlluminationAdapter::Illumination lit;
@@ -251,7 +290,7 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   {
     return 0;
   }
-  WriteField(field, patchCount, n, output);
+  WriteField(field, patchCount, n, std::exp2(this->Exposure), output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -260,4 +299,5 @@ void vtkIlluminationField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "Exposure: " << this->Exposure << " stops\n";
 }
