@@ -5,6 +5,7 @@
 #include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
 
 #include "render/BuriedPoints.h"
@@ -141,6 +142,7 @@ bool SampleField(vtkIlluminationField* self,
     // Each patch writes its own block of points: no shared state, any thread count.
     const sphcover::ParallelFor parallelFor = vtkSMPParallelFor::Make();
     const size_t batch = std::max<size_t>(1, patches.size() / 10);
+    vtkStageProgress progress(self, "Illumination Field: interpolating", 0.0, 0.9);
     for (size_t first = 0; first < patches.size(); first += batch)
     {
       const size_t last = std::min(patches.size(), first + batch);
@@ -152,8 +154,7 @@ bool SampleField(vtkIlluminationField* self,
             SamplePatch(patches[k], k, n, lit, field);
           }
         });
-      self->UpdateProgress(0.9 * static_cast<double>(last) / static_cast<double>(patches.size()));
-      if (self->GetAbortExecute())
+      if (!progress(static_cast<double>(last) / static_cast<double>(patches.size())))
       {
         vtkWarningWithObjectMacro(self, "Illumination field aborted.");
         return false;
@@ -208,6 +209,8 @@ vtkStandardNewMacro(vtkIlluminationField);
 
 vtkIlluminationField::vtkIlluminationField()
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Illumination Field");
   this->SetNumberOfInputPorts(2);
 }
 
@@ -228,7 +231,6 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  this->SetProgressText("Illumination Field: interpolating");
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
   vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);

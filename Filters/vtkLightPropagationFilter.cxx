@@ -6,6 +6,7 @@
 #include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
+#include "vtkStageProgress.h"
 
 #include "cover/HemisphereGrid.h"
 #include "cover/SphericalCover.h"
@@ -217,12 +218,12 @@ bool Propagate(vtkLightPropagationFilter* self,
   // first 5% of the progress.
   if (self->GetBalanceExchanges())
   {
+    vtkStageProgress progress(self, "Light Propagation: balancing", 0.0, 0.05);
     const sphcover::ExchangeBalance balance(cover,
       {},
-      [self, &aborted](double fraction)
+      [&progress, &aborted](double fraction)
       {
-        self->UpdateProgress(0.05 * fraction);
-        aborted = self->GetAbortExecute() != 0;
+        aborted = !progress(fraction);
         return !aborted;
       });
     if (aborted)
@@ -232,11 +233,11 @@ bool Propagate(vtkLightPropagationFilter* self,
     }
     propagation.SetExchangeFactors(balance.EntryFactors());
   }
+  vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
   propagation.Run(settings,
-    [self, &aborted](double fraction)
+    [&progress, &aborted](double fraction)
     {
-      self->UpdateProgress(0.05 + 0.9 * fraction);
-      aborted = self->GetAbortExecute() != 0;
+      aborted = !progress(fraction);
       return !aborted;
     });
   if (aborted)
@@ -333,6 +334,8 @@ std::string vtkLightPropagationFilter::AddSolutionFigures(vtkPolyData* illuminat
 
 vtkLightPropagationFilter::vtkLightPropagationFilter()
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Light Propagation");
   this->SetNumberOfOutputPorts(2);
 }
 

@@ -6,6 +6,7 @@
 #include "vtkSMPParallelFor.h"
 #include "vtkSceneCameras.h"
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
 
 #include "render/CharacteristicPointInterpolator.h"
@@ -172,15 +173,12 @@ bool RenderImage(vtkRadianceImageFilter* self,
       // radiance E of the cover (paper §5.3.1).
       renderer.SetDirectionalIllumination(std::move(*lit.Directional));
     }
+    vtkStageProgress progress(self, "Radiance Image: rendering", 0.0, 0.95);
     const bool completed = renderer.Render(camera,
       settings,
       image,
       vtkSMPParallelFor::Make(),
-      [self](double fraction)
-      {
-        self->UpdateProgress(0.95 * fraction);
-        return !self->GetAbortExecute();
-      });
+      [&progress](double fraction) { return progress(fraction); });
     if (!completed)
     {
       vtkWarningWithObjectMacro(self, "Rendering aborted.");
@@ -236,6 +234,8 @@ void WriteImage(const sphcover::RenderedImage& image, double exposure, vtkImageD
 vtkRadianceImageFilter::vtkRadianceImageFilter()
   : CameraNames(vtkStringArray::New())
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Radiance Image");
   this->SetNumberOfInputPorts(2);
 }
 
@@ -308,7 +308,6 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
-  this->SetProgressText("Radiance Image: rendering");
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
   vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);

@@ -8,7 +8,12 @@ plain VTK, on the Cornell box at a coarse setting.
 - an illumination with no Spherical Cover upstream (a copy through a trivial producer, as a
   saved solution) and port 1 unconnected: one error naming the Patches port, empty output;
 - the camera names the filter announces (GetCameraNames, ParaView's CameraName drop-down) are
-  the scene's, after UpdateInformation alone.
+  the scene's, after UpdateInformation alone;
+- every stage names itself in the progress text ParaView's status bar shows
+  (Filters/vtkStageProgress.h): "Interval Subdivision: subdividing", "Spherical Cover: cover",
+  "Light Propagation: shooting", "Radiance Image: rendering", "Illumination Field:
+  interpolating", and the pipeline's own 0 % and 100 % events the filter's label, never the
+  class name.
 
 usage: TestCoverPatches.py DATA_DIR"""
 import sys
@@ -47,10 +52,22 @@ cover.SetThetaBins(8)
 cover.SetPhiBins(32)
 propagation = observe(vtkLightPropagationFilter())
 propagation.SetInputConnection(cover.GetOutputPort(0))
+texts = set()
+
+
+def record_progress_text(algorithm):
+    algorithm.AddObserver(vtkCommand.ProgressEvent,
+                          lambda caller, event: texts.add(caller.GetProgressText() or
+                                                          caller.GetClassName()))
+    return algorithm
+
+
+for stage in (subdivision, cover, propagation):
+    record_progress_text(stage)
 
 
 def renderer(connect_patches, producer=propagation):
-    render = observe(vtkRadianceImageFilter())
+    render = record_progress_text(observe(vtkRadianceImageFilter()))
     render.SetInputConnection(0, producer.GetOutputPort(0))
     if connect_patches:
         render.SetPatchesConnection(subdivision.GetOutputPort(0))
@@ -60,7 +77,7 @@ def renderer(connect_patches, producer=propagation):
 
 
 def field_of(connect_patches):
-    field = observe(vtkIlluminationField())
+    field = record_progress_text(observe(vtkIlluminationField()))
     field.SetInputConnection(0, propagation.GetOutputPort(0))
     if connect_patches:
         field.SetPatchesConnection(subdivision.GetOutputPort(0))
@@ -101,6 +118,15 @@ if field.GetOutput().GetNumberOfCells() != 4 * patches or field.GetOutput().GetN
 
 if errors:
     failures.append(f"errors on good input: {errors}")
+stages = {"Interval Subdivision: subdividing", "Spherical Cover: cover",
+          "Light Propagation: shooting", "Radiance Image: rendering",
+          "Illumination Field: interpolating"}
+named = {text.split(", about")[0] for text in texts}
+if not stages <= named or any(text.startswith("vtk") for text in texts):
+    failures.append(f"progress texts {sorted(texts)}: expected every stage of {sorted(stages)} "
+                    "and no bare class name")
+else:
+    print("progress texts:", sorted(texts))
 errors.clear()
 
 # A solution with nothing upstream: the Patches must be given.
