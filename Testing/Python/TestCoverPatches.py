@@ -13,7 +13,10 @@ plain VTK, on the Cornell box at a coarse setting.
   (Filters/vtkStageProgress.h): "Interval Subdivision: subdividing", "Spherical Cover: cover",
   "Light Propagation: shooting", "Radiance Image: rendering", "Illumination Field:
   interpolating", and the pipeline's own 0 % and 100 % events the filter's label, never the
-  class name.
+  class name;
+- the scene's unit (Cornell box: "unit": "mm") reaches the illumination's field data
+  (SceneUnit, SceneUnitMetres) and its EnergyBalance is in watts: the lamp's pi Le A with A in
+  m^2, 0.79 W in red; the History's UnshotEnergy in the same watts.
 
 usage: TestCoverPatches.py DATA_DIR"""
 import sys
@@ -128,6 +131,25 @@ if not stages <= named or any(text.startswith("vtk") for text in texts):
 else:
     print("progress texts:", sorted(texts))
 errors.clear()
+
+# Units: the Cornell box is in mm; the powers are watts.
+propagation.Update()
+fd = propagation.GetOutput().GetFieldData()
+unit, metres = fd.GetAbstractArray("SceneUnit"), fd.GetArray("SceneUnitMetres")
+emitted = fd.GetArray("EnergyBalance").GetComponent(0, 0)
+lamp_area_m2 = 0.130 * 0.105  # the Cornell light, 130 x 105 mm
+expected = 3.141592653589793 * 18.387 * lamp_area_m2
+history = propagation.GetOutputDataObject(1)
+unshot = history.GetColumnByName("UnshotEnergy").GetValue(0) if history.GetNumberOfRows() else -1
+if unit is None or unit.GetValue(0) != "mm" or metres is None or metres.GetValue(0) != 0.001:
+    failures.append("the illumination lacks SceneUnit 'mm' and SceneUnitMetres 0.001")
+elif abs(emitted / expected - 1) > 1e-3 or \
+        not 0 < unshot <= sum(fd.GetArray("EnergyBalance").GetTuple3(0)):
+    # UnshotEnergy sums the three bands; after the first shot it is below the total emitted.
+    failures.append(f"EnergyBalance emitted {emitted} W (expected pi Le A = {expected} W), "
+                    f"first unshot {unshot} W")
+else:
+    print(f"Cornell box in mm: emitted {emitted:.4f} W in red (pi Le A = {expected:.4f} W)")
 
 # A solution with nothing upstream: the Patches must be given.
 propagation.Update()
