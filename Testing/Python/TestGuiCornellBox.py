@@ -13,7 +13,8 @@ Defaults: the scene opened as File > Open does, the filters applied as the Filte
 (Patches left empty: ParaView would not ask for them) lists the scene's cameras in its
 CameraName domain, starts at the first ("main") and renders at its size (512 x 512) without any
 property set, shown in a render view as a Slice coloured by RGB; the Illumination Field carries
-DisplayRGB (bytes, the active scalars) whose Exposure of +1 stop doubles the linear value.
+DisplayRGB (bytes, the active scalars) whose Exposure of +1 stop doubles the linear value; the
+patches coloured by SplitReason get a categorical map with the criteria's names.
 
 usage: pvbatch TestGuiCornellBox.py PLUGIN DATA_DIR OUTPUT_DIR"""
 import os
@@ -21,8 +22,10 @@ import sys
 import tempfile
 
 from paraview import servermanager
-from paraview.simple import (CreateView, Delete, FindSource, GetLayout, GetViews, LoadPlugin,
-                             LoadState, OpenDataFile, OutputPort, Render, SaveScreenshot, Show)
+from paraview.modules.vtkRemotingServerManager import vtkSMSettings
+from paraview.simple import (ColorBy, CreateView, Delete, FindSource, GetColorTransferFunction,
+                             GetLayout, GetViews, LoadPlugin, LoadState, OpenDataFile,
+                             OutputPort, Render, SaveScreenshot, Show)
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOImage import vtkPNGReader
 
@@ -32,6 +35,14 @@ os.makedirs(output, exist_ok=True)
 LoadPlugin(plugin, remote=False, ns=globals())
 os.chdir(tempfile.mkdtemp())  # not the repository's root: the stored relative name alone fails
 failures = []
+
+# The plug-in's colour-map defaults, as ParaView's vtkSMTransferFunctionManager reads them for
+# a new lookup table of an array named SplitReason (before any state brings its own).
+fresh = servermanager.ProxyManager().SMProxyManager.NewProxy("lookup_tables", "PVLookupTable")
+vtkSMSettings.GetInstance().GetProxySettings(".array_lookup_tables.SplitReason", fresh)
+if fresh.GetProperty("IndexedLookup").GetElement(0) != 1 or \
+        fresh.GetProperty("Annotations").GetNumberOfElements() != 10:
+    failures.append("the settings give SplitReason no categorical map with 5 named values")
 
 
 def srgb_to_linear(byte):
@@ -178,6 +189,23 @@ else:
     if not ratios or min(ratios) < 1.9 or max(ratios) > 2.1:
         failures.append(f"Illumination Field: +1 stop multiplies the linear value by "
                         f"{min(ratios, default=0):.3f}..{max(ratios, default=0):.3f}, not 2")
+
+# SplitReason: coloured by it, the patches get a categorical map with the criteria's names (the
+# plug-in's array defaults, paraview_plugin/SphericalCoverColourDefaults.h, as the state
+# stores them too); Level stays a continuous map.
+patches_view = CreateView("RenderView")
+patches_display = Show(OutputPort(subdivision, 0), patches_view)
+ColorBy(patches_display, ("CELLS", "SplitReason"))
+split = GetColorTransferFunction("SplitReason")
+names = list(split.Annotations)
+if split.InterpretValuesAsCategories != 1 or names[0::2] != ["0", "1", "2", "3", "4"] or \
+        names[1::2] != ["none", "self-shadowing", "hemispherical containment",
+                        "spherical shape", "characterisability"] or \
+        len(split.IndexedColors) != 15:
+    failures.append(f"SplitReason: categorical {split.InterpretValuesAsCategories}, "
+                    f"annotations {names}")
+if GetColorTransferFunction("Level").InterpretValuesAsCategories != 0:
+    failures.append("Level: a categorical map, expected a continuous one")
 
 # Views deleted before pvbatch exits: tearing down a view at interpreter exit crashes in X.
 for view in GetViews():
