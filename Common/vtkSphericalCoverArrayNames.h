@@ -34,6 +34,12 @@ constexpr const char* CameraParameters = "CameraParameters";
 /// 4 named components: theta_bins, phi_bins, max_level, tolerance.
 constexpr const char* SceneSettings = "SceneSettings";
 constexpr const char* SourceFile = "SourceFile";
+/// The scene's length unit (its file's "unit", Data/scenes/FORMAT.md): one string, the unit's
+/// name ("mm", "m", ...), and SceneUnitMetres, one double, its length in metres. Lengths and
+/// areas are in this unit; the powers the stages report (EnergyBalance, UnshotEnergy) are
+/// converted to watts with it.
+constexpr const char* SceneUnit = "SceneUnit";
+constexpr const char* SceneUnitMetres = "SceneUnitMetres";
 /// One string: the scene's fingerprint (sphcover::Fingerprint), carried to every stage's output
 /// so that a saved solution can tell the scene it was solved from.
 constexpr const char* SceneFingerprint = "SceneFingerprint";
@@ -118,6 +124,9 @@ constexpr const char* Radiance = "Radiance";
 /// OpenEXR's channel `Z` with +infinity there, vtkOpenEXRReader reads it back as this array.
 constexpr const char* Depth = "Depth";
 constexpr const char* RGB = "RGB";
+/// vtkIlluminationField's point data for display: the radiance exposed and sRGB-encoded, bytes
+/// shown as they are (Map Scalars off), as the image's RGB.
+constexpr const char* DisplayRGB = "DisplayRGB";
 }
 
 #endif

@@ -260,6 +260,14 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   sourceFile->SetValue(0, scene.SourceFile);
   fd->AddArray(sourceFile);
 
+  // Passed on by every stage: vtkLightPropagationFilter converts its powers to watts with it.
+  auto unit = vtkNamedArrays::String(names::SceneUnit, 1);
+  unit->SetValue(0, scene.Unit.Name);
+  fd->AddArray(unit);
+  auto metres = vtkNamedArrays::Double(names::SceneUnitMetres, 1, 1);
+  metres->SetValue(0, scene.Unit.Metres);
+  fd->AddArray(metres);
+
   // Passed on by every stage, so that a solution written to a file names the scene it was
   // solved from (sphcover render --solution refuses another one).
   auto fingerprint = vtkNamedArrays::String(names::SceneFingerprint, 1);

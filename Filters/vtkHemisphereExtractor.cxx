@@ -250,6 +250,8 @@ void BuildHemisphereMesh(const sphcover::HemisphereGrid& grid,
 
 vtkHemisphereExtractor::vtkHemisphereExtractor()
 {
+  // ParaView's status bar labels progress with this text, not the class name.
+  this->SetProgressText("Hemisphere Extractor");
   this->SetNumberOfInputPorts(1);
   this->SetNumberOfOutputPorts(2);
 }

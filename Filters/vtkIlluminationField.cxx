@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkIlluminationField.h"
 
+#include "vtkCoverPatches.h"
 #include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
 
 #include "render/BuriedPoints.h"
@@ -22,17 +24,46 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <exception>
 
 namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
+/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as a byte; the
+/// encoding of vtkRadianceImageFilter's RGB, so the field and the image show the same colours.
+unsigned char EncodeSRGB(double linear)
+{
+  const double c = std::clamp(linear, 0.0, 1.0);
+  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+  return static_cast<unsigned char>(std::lround(255.0 * encoded));
+}
+
+/// DisplayRGB: the radiance exposed by `scale` and sRGB-encoded, for display without a colour
+/// map (ParaView's Map Scalars off).
+vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkFloatArray* radiance, double scale)
+{
+  auto rgb = vtkSmartPointer<vtkUnsignedCharArray>::New();
+  rgb->SetName(vtkSphericalCoverArrayNames::DisplayRGB);
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(radiance->GetNumberOfTuples());
+  const float* in = radiance->GetPointer(0);
+  unsigned char* out = rgb->GetPointer(0);
+  for (vtkIdType k = 0; k < 3 * radiance->GetNumberOfTuples(); ++k)
+  {
+    out[k] = EncodeSRGB(scale * in[k]);
+  }
+  return rgb;
+}
+
 /// The field's point arrays: position, Radiance, Normals and SurfaceId, (n + 1)^2 points per
 /// patch.
 struct FieldPoints
@@ -111,6 +142,7 @@ bool SampleField(vtkIlluminationField* self,
     // Each patch writes its own block of points: no shared state, any thread count.
     const sphcover::ParallelFor parallelFor = vtkSMPParallelFor::Make();
     const size_t batch = std::max<size_t>(1, patches.size() / 10);
+    vtkStageProgress progress(self, "Illumination Field: interpolating", 0.0, 0.9);
     for (size_t first = 0; first < patches.size(); first += batch)
     {
       const size_t last = std::min(patches.size(), first + batch);
@@ -122,8 +154,7 @@ bool SampleField(vtkIlluminationField* self,
             SamplePatch(patches[k], k, n, lit, field);
           }
         });
-      self->UpdateProgress(0.9 * static_cast<double>(last) / static_cast<double>(patches.size()));
-      if (self->GetAbortExecute())
+      if (!progress(static_cast<double>(last) / static_cast<double>(patches.size())))
       {
         vtkWarningWithObjectMacro(self, "Illumination field aborted.");
         return false;
@@ -138,8 +169,9 @@ bool SampleField(vtkIlluminationField* self,
   return true;
 }
 
-/// The output: the field's points, n x n quads per patch with their PatchId.
-void WriteField(FieldPoints& field, vtkIdType patchCount, int n, vtkPolyData* output)
+/// The output: the field's points, n x n quads per patch with their PatchId; DisplayRGB (the
+/// radiance times `scale`) the active scalars.
+void WriteField(FieldPoints& field, vtkIdType patchCount, int n, double scale, vtkPolyData* output)
 {
   const vtkIdType perPatch = static_cast<vtkIdType>(n + 1) * (n + 1);
   vtkNew<vtkCellArray> quads;
@@ -168,6 +200,7 @@ void WriteField(FieldPoints& field, vtkIdType patchCount, int n, vtkPolyData* ou
   output->GetPointData()->AddArray(field.Radiance);
   output->GetPointData()->SetNormals(field.Normals);
   output->GetPointData()->AddArray(field.SurfaceId);
+  output->GetPointData()->SetScalars(DisplayColours(field.Radiance, scale));
   output->GetCellData()->AddArray(patchId);
 }
 }
@@ -176,6 +209,8 @@ vtkStandardNewMacro(vtkIlluminationField);
 
 vtkIlluminationField::vtkIlluminationField()
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Illumination Field");
   this->SetNumberOfInputPorts(2);
 }
 
@@ -184,6 +219,11 @@ vtkIlluminationField::~vtkIlluminationField() = default;
 int vtkIlluminationField::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkPolyData" : "vtkDataSet");
+  if (port == 1)
+  {
+    // Unconnected: the patches upstream of the illumination (vtkCoverPatches.h).
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
   return 1;
 }
 
@@ -192,13 +232,14 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   vtkInformationVector* outputVector)
 {
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
-  vtkDataSet* patchesInput = vtkDataSet::GetData(inputVector[1], 0);
+  vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   if (!illumination || !patchesInput)
   {
     vtkErrorMacro(<< "Cannot build the illumination field: connect the illumination "
-                     "(vtkLightPropagationFilter's output 0) to port 0 and the patches "
-                     "(vtkIntervalSubdivisionFilter's output 0) to port 1.");
+                     "(vtkLightPropagationFilter's output 0) to port 0 and, unless a Spherical "
+                     "Cover is upstream of it, the patches (vtkIntervalSubdivisionFilter's "
+                     "output 0) to port 1 (Patches).");
     return 0;
   }
   vtkIlluminationAdapter::Illumination lit;
@@ -251,7 +292,7 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   {
     return 0;
   }
-  WriteField(field, patchCount, n, output);
+  WriteField(field, patchCount, n, std::exp2(this->Exposure), output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -260,4 +301,5 @@ void vtkIlluminationField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
+  os << indent << "Exposure: " << this->Exposure << " stops\n";
 }

@@ -6,16 +6,20 @@
  * result of the method (paper §2.5, §5.3) shown without ray casting a new image for every view.
  *
  * Inputs as vtkRadianceImageFilter: port 0 the illumination (vtkLightPropagationFilter's first
- * output), port 1 the patches (vtkIntervalSubdivisionFilter's first output). Every patch is
- * tessellated into Resolution x Resolution quads on the exact Bezier patch; every vertex gets
- * the brightness of paper §5.3.2 at its (surface, u, v): the bilinear interpolation of the
- * exitant radiance of the characteristic points around it, extrapolated near the edges (§3.4
+ * output), port 1 the patches (vtkIntervalSubdivisionFilter's first output; optional: left
+ * unconnected, the input of the vtkSphericalCoverFilter upstream of port 0, vtkCoverPatches.h).
+ * Every patch is tessellated into Resolution x Resolution quads on the exact Bezier patch; every
+ * vertex gets the brightness of paper §5.3.2 at its (surface, u, v): the bilinear interpolation of
+ * the exitant radiance of the characteristic points around it, extrapolated near the edges (§3.4
  * Fig. 6), clamped at zero.
  *
  * Output (vtkPolyData): quads with point data `Radiance` (float RGB, W m^-2 sr^-1), `Normals`
- * (front side) and `SurfaceId`, and cell data `PatchId`. Colour by `Radiance` (magnitude or a
- * band) or, for the true colours, map it to RGB with a calculator. Non-diffuse surfaces show
- * their emission plus diffuse part (the view-dependent part of §5.3.1 needs the eye).
+ * (front side), `SurfaceId` and, as the active scalars, `DisplayRGB` (unsigned char RGB: the
+ * radiance times 2^Exposure, clamped to [0, 1] and sRGB-encoded, as vtkRadianceImageFilter's
+ * `RGB`), and cell data `PatchId`. Show `DisplayRGB` with Map Scalars off and lighting off
+ * (the colours are the light already) to see the true colours; colour by `Radiance` for
+ * values. Non-diffuse surfaces show their emission plus diffuse part (the view-dependent part
+ * of §5.3.1 needs the eye).
  *
  * @warning Patches are tessellated in parallel (vtkSMPTools); the output does not depend on
  * the number of threads.
@@ -42,6 +46,16 @@ public:
   vtkGetMacro(Resolution, int);
   ///@}
 
+  ///@{
+  /**
+   * Exposure of `DisplayRGB` in stops: the radiance is scaled by 2^Exposure before the sRGB
+   * encoding, so radiance 2^-Exposure shows as white. -20 to 20. Default is 0 (radiance 1 is
+   * white, as the Radiance Image's default Exposure factor 1).
+   */
+  vtkSetClampMacro(Exposure, double, -20.0, 20.0);
+  vtkGetMacro(Exposure, double);
+  ///@}
+
 protected:
   vtkIlluminationField();
   ~vtkIlluminationField() override;
@@ -50,6 +64,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Resolution = 8;
+  double Exposure = 0.0;
 
 private:
   vtkIlluminationField(const vtkIlluminationField&) = delete;

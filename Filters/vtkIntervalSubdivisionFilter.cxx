@@ -6,6 +6,7 @@
 #include "vtkScenePieces.h"
 #include "vtkSceneSettingsArray.h"
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
 
@@ -194,6 +195,8 @@ vtkStandardNewMacro(vtkIntervalSubdivisionFilter);
 
 vtkIntervalSubdivisionFilter::vtkIntervalSubdivisionFilter()
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Interval Subdivision");
   this->SetNumberOfOutputPorts(2);
 }
 
@@ -264,13 +267,9 @@ int vtkIntervalSubdivisionFilter::RequestData(vtkInformation*,
   try
   {
     sphcover::IntervalSubdivision subdivision(scene, settings);
+    vtkStageProgress progress(this, "Interval Subdivision: subdividing", 0.0, 0.95);
     const bool completed = subdivision.Run(
-      [this](double fraction)
-      {
-        this->UpdateProgress(0.95 * fraction);
-        return !this->GetAbortExecute();
-      },
-      vtkSMPParallelFor::Make());
+      [&progress](double fraction) { return progress(fraction); }, vtkSMPParallelFor::Make());
     if (!completed)
     {
       vtkWarningMacro("Subdivision aborted.");

@@ -6,6 +6,7 @@
 #include "vtkScenePieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
+#include "vtkStageProgress.h"
 
 #include "cover/HemisphereGrid.h"
 #include "cover/SphericalCover.h"
@@ -26,6 +27,7 @@
 
 #include <glm/geometric.hpp>
 
+#include <cmath>
 #include <exception>
 #include <sstream>
 #include <string>
@@ -217,12 +219,12 @@ bool Propagate(vtkLightPropagationFilter* self,
   // first 5% of the progress.
   if (self->GetBalanceExchanges())
   {
+    vtkStageProgress progress(self, "Light Propagation: balancing", 0.0, 0.05);
     const sphcover::ExchangeBalance balance(cover,
       {},
-      [self, &aborted](double fraction)
+      [&progress, &aborted](double fraction)
       {
-        self->UpdateProgress(0.05 * fraction);
-        aborted = self->GetAbortExecute() != 0;
+        aborted = !progress(fraction);
         return !aborted;
       });
     if (aborted)
@@ -232,11 +234,11 @@ bool Propagate(vtkLightPropagationFilter* self,
     }
     propagation.SetExchangeFactors(balance.EntryFactors());
   }
+  vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
   propagation.Run(settings,
-    [self, &aborted](double fraction)
+    [&progress, &aborted](double fraction)
     {
-      self->UpdateProgress(0.05 + 0.9 * fraction);
-      aborted = self->GetAbortExecute() != 0;
+      aborted = !progress(fraction);
       return !aborted;
     });
   if (aborted)
@@ -247,10 +249,36 @@ bool Propagate(vtkLightPropagationFilter* self,
   return true;
 }
 
+/// Square metres per squared scene unit, from the input's SceneUnitMetres (1 without it: a scene
+/// in metres, or a dataset from elsewhere): the propagation's powers are radiance times
+/// solid angle times area in the scene's unit, so this factor makes them watts. False, with
+/// the problem, when the array is there but not one finite length > 0.
+bool SquareMetresPerUnit(vtkFieldData* fd, double& factor, std::string& problem)
+{
+  factor = 1.0;
+  vtkDataArray* metres = fd ? fd->GetArray(names::SceneUnitMetres) : nullptr;
+  if (!metres)
+  {
+    return true;
+  }
+  const double value = metres->GetNumberOfTuples() == 1 && metres->GetNumberOfComponents() == 1
+    ? metres->GetComponent(0, 0)
+    : -1.0;
+  if (!(value > 0.0 && std::isfinite(value)))
+  {
+    problem = "the field data SceneUnitMetres is not one finite length in metres > 0";
+    return false;
+  }
+  factor = value * value;
+  return true;
+}
+
 /// Output 0's own arrays: per point Irradiance, Radiosity and Brightness; in field data the
-/// regions' IncidentRadiance, the EnergyBalance and the PropagationStatistics.
+/// regions' IncidentRadiance, the EnergyBalance (in watts: the powers times `watts`, the square
+/// metres of a squared scene unit) and the PropagationStatistics.
 void WriteIllumination(const sphcover::LightPropagation& propagation,
   int shots,
+  double watts,
   vtkPolyData* output)
 {
   const vtkIdType count = output->GetNumberOfPoints();
@@ -280,8 +308,10 @@ void WriteIllumination(const sphcover::LightPropagation& propagation,
   output->GetFieldData()->AddArray(regions);
   const sphcover::EnergyBalance energy = propagation.Energy();
   auto balance = vtkNamedArrays::Double(names::EnergyBalance, 3, 2);
-  balance->SetTuple(0, &energy.Emitted[0]);
-  balance->SetTuple(1, &energy.Absorbed[0]);
+  const glm::dvec3 emitted = watts * energy.Emitted;
+  const glm::dvec3 absorbed = watts * energy.Absorbed;
+  balance->SetTuple(0, &emitted[0]);
+  balance->SetTuple(1, &absorbed[0]);
   output->GetFieldData()->AddArray(balance);
   // No time here: a saved solution is the same file for the same input (the seconds per shot
   // are in the History, output 1, which is not part of a solution).
@@ -291,8 +321,11 @@ void WriteIllumination(const sphcover::LightPropagation& propagation,
   output->GetFieldData()->AddArray(statistics);
 }
 
-/// Output 1: one row per shot (shooter, relative change, unshot energy, seconds).
-void WriteShotHistory(const std::vector<sphcover::ShotRecord>& shots, vtkTable* history)
+/// Output 1: one row per shot (shooter, relative change, unshot energy in watts: the propagation's
+/// times `watts`, seconds).
+void WriteShotHistory(const std::vector<sphcover::ShotRecord>& shots,
+  double watts,
+  vtkTable* history)
 {
   const vtkIdType rows = static_cast<vtkIdType>(shots.size());
   auto shot = vtkNamedArrays::Int(names::Shot, 1, rows);
@@ -306,7 +339,7 @@ void WriteShotHistory(const std::vector<sphcover::ShotRecord>& shots, vtkTable* 
     shot->SetValue(k, static_cast<int>(record.Shot));
     shooter->SetValue(k, static_cast<int>(record.Shooter));
     change->SetValue(k, record.RelativeChange);
-    unshot->SetValue(k, record.UnshotEnergy);
+    unshot->SetValue(k, watts * record.UnshotEnergy);
     seconds->SetValue(k, record.Seconds);
   }
   history->Initialize();
@@ -333,6 +366,8 @@ std::string vtkLightPropagationFilter::AddSolutionFigures(vtkPolyData* illuminat
 
 vtkLightPropagationFilter::vtkLightPropagationFilter()
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Light Propagation");
   this->SetNumberOfOutputPorts(2);
 }
 
@@ -395,6 +430,13 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     return 0;
   }
 
+  double watts = 1.0;
+  std::string unitProblem;
+  if (!SquareMetresPerUnit(input->GetFieldData(), watts, unitProblem))
+  {
+    vtkErrorMacro(<< "Cannot propagate light: " << unitProblem);
+    return 0;
+  }
   try
   {
     sphcover::LightPropagation propagation(cover, materials);
@@ -405,7 +447,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     this->Shots = static_cast<int>(propagation.History().size());
 
     output->ShallowCopy(input);
-    WriteIllumination(propagation, this->Shots, output);
+    WriteIllumination(propagation, this->Shots, watts, output);
     if (named)
     {
       const std::string figuresProblem = StoreFigures(cover, output);
@@ -416,7 +458,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
         return 0;
       }
     }
-    WriteShotHistory(propagation.History(), history);
+    WriteShotHistory(propagation.History(), watts, history);
   }
   catch (const std::exception& e)
   {

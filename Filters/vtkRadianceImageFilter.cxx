@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkRadianceImageFilter.h"
 
+#include "vtkCoverPatches.h"
 #include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSceneCameras.h"
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
 
 #include "render/CharacteristicPointInterpolator.h"
@@ -171,15 +173,12 @@ bool RenderImage(vtkRadianceImageFilter* self,
       // radiance E of the cover (paper §5.3.1).
       renderer.SetDirectionalIllumination(std::move(*lit.Directional));
     }
+    vtkStageProgress progress(self, "Radiance Image: rendering", 0.0, 0.95);
     const bool completed = renderer.Render(camera,
       settings,
       image,
       vtkSMPParallelFor::Make(),
-      [self](double fraction)
-      {
-        self->UpdateProgress(0.95 * fraction);
-        return !self->GetAbortExecute();
-      });
+      [&progress](double fraction) { return progress(fraction); });
     if (!completed)
     {
       vtkWarningWithObjectMacro(self, "Rendering aborted.");
@@ -233,15 +232,26 @@ void WriteImage(const sphcover::RenderedImage& image, double exposure, vtkImageD
 }
 
 vtkRadianceImageFilter::vtkRadianceImageFilter()
+  : CameraNames(vtkStringArray::New())
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Radiance Image");
   this->SetNumberOfInputPorts(2);
 }
 
-vtkRadianceImageFilter::~vtkRadianceImageFilter() = default;
+vtkRadianceImageFilter::~vtkRadianceImageFilter()
+{
+  this->CameraNames->Delete();
+}
 
 int vtkRadianceImageFilter::FillInputPortInformation(int port, vtkInformation* info)
 {
   info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), port == 0 ? "vtkPolyData" : "vtkDataSet");
+  if (port == 1)
+  {
+    // Unconnected: the patches upstream of the illumination (vtkCoverPatches.h).
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
   return 1;
 }
 
@@ -269,6 +279,18 @@ int vtkRadianceImageFilter::RequestInformation(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
 {
+  // The cameras the scene announces, for ParaView's CameraName drop-down.
+  this->CameraNames->Initialize();
+  for (int port = 0; port < 2 && this->CameraNames->GetNumberOfValues() == 0; ++port)
+  {
+    vtkInformation* info = inputVector[port]->GetInformationObject(0);
+    vtkDataObject* cameras = info ? info->Get(vtkSceneCameras::SCENE_CAMERAS()) : nullptr;
+    for (const std::string& name :
+      vtkSceneCameras::Names(cameras ? cameras->GetFieldData() : nullptr))
+    {
+      this->CameraNames->InsertNextValue(name);
+    }
+  }
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   int width = 0;
   int height = 0;
@@ -287,13 +309,13 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   vtkInformationVector* outputVector)
 {
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
-  vtkDataSet* patchesInput = vtkDataSet::GetData(inputVector[1], 0);
+  vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   if (!illumination || !patchesInput)
   {
     vtkErrorMacro(<< "Cannot render: connect the illumination (vtkLightPropagationFilter's "
-                     "output 0) to port 0 and the patches (vtkIntervalSubdivisionFilter's output "
-                     "0) to port 1.");
+                     "output 0) to port 0 and, unless a Spherical Cover is upstream of it, the "
+                     "patches (vtkIntervalSubdivisionFilter's output 0) to port 1 (Patches).");
     return 0;
   }
   vtkIlluminationAdapter::Illumination lit;

@@ -12,7 +12,10 @@
  *    arrays, `Normals` and `Tangents` (the hemisphere frames) and, in field data, the cover and
  *    `IncidentRadiance` (3 per entry), all of which the propagation's output carries.
  *  - port 1, the patches: vtkIntervalSubdivisionFilter's first output (exact Bezier
- *    sub-patches with `SurfaceId` and `UVRange`), whose tessellation is ray cast.
+ *    sub-patches with `SurfaceId` and `UVRange`), whose tessellation is ray cast. Optional:
+ *    left unconnected, the patches are the input of the vtkSphericalCoverFilter upstream of
+ *    port 0, the patches the solution was built from (vtkCoverPatches.h: ParaView then creates
+ *    the filter without asking for a second input).
  * Two ports because the illumination holds the points, not the patches' geometry; the patches
  * are what the cover was built from, so a saved solution (patches + illumination) renders new
  * views without any other stage (the walk-through case).
@@ -53,6 +56,8 @@
 
 #include <string> // for the camera name
 
+class vtkStringArray;
+
 class SPHERICALCOVERFILTERS_EXPORT vtkRadianceImageFilter : public vtkImageAlgorithm
 {
 public:
@@ -72,6 +77,13 @@ public:
   vtkSetStdStringFromCharMacro(CameraName);
   vtkGetCharFromStdStringMacro(CameraName);
   ///@}
+
+  /**
+   * The names of the scene's cameras, in the scene's order, as the inputs' pipeline information
+   * announced them at the last RequestInformation (empty without a scene camera). ParaView's
+   * CameraName drop-down lists them (an information property feeding a StringListDomain).
+   */
+  vtkStringArray* GetCameraNames() { return this->CameraNames; }
 
   ///@{
   /**
@@ -162,6 +174,7 @@ protected:
   double Exposure = 1.0;
   double MemoryLimit = 1024.0;
   double MaximumSamples = 1073741824.0;
+  vtkStringArray* CameraNames;
 
 private:
   vtkRadianceImageFilter(const vtkRadianceImageFilter&) = delete;

@@ -7,6 +7,7 @@
 #include "vtkSceneSettingsArray.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
+#include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
 #include "vtkSurfaceGridBuilder.h"
 
@@ -196,13 +197,9 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
     std::vector<int> groups;
     ProbeExtentsOf(patches, extents, groups);
     refinement.SetProbeExtents(std::move(extents), std::move(groups));
+    vtkStageProgress progress(self, "Spherical Cover: refining", 0.0, refinementShare);
     const bool completed = refinement.Run(
-      [self, refinementShare](double fraction)
-      {
-        self->UpdateProgress(refinementShare * fraction);
-        return !self->GetAbortExecute();
-      },
-      vtkSMPParallelFor::Make());
+      [&progress](double fraction) { return progress(fraction); }, vtkSMPParallelFor::Make());
     if (!completed)
     {
       vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
@@ -263,6 +260,7 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
     direct.SelfExclusionFraction = options.FillOptions.SelfExclusionFraction;
     direct.BackFacesOcclude = options.FillOptions.BackFacesOcclude;
     direct.BounceRaysPerSide = self->GetDirectBounceRays();
+    vtkStageProgress progress(self, "Spherical Cover: direct light", 0.9, 0.98);
     const bool completed = sphcover::ComputeDirectIrradiance(patches,
       caster,
       lamps,
@@ -271,11 +269,7 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
       direct,
       nodes,
       vtkSMPParallelFor::Make(),
-      [self](double fraction)
-      {
-        self->UpdateProgress(0.9 + 0.08 * fraction);
-        return !self->GetAbortExecute();
-      });
+      [&progress](double fraction) { return progress(fraction); });
     if (!completed)
     {
       vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
@@ -306,14 +300,11 @@ bool BuildCover(vtkSphericalCoverFilter* self,
     {
       return false;
     }
+    vtkStageProgress progress(self, "Spherical Cover: cover", coverStart, 0.9);
     const bool completed = cover.Build(patches,
       options,
       vtkSMPParallelFor::Make(),
-      [self, coverStart](double fraction)
-      {
-        self->UpdateProgress(coverStart + (0.9 - coverStart) * fraction);
-        return !self->GetAbortExecute();
-      });
+      [&progress](double fraction) { return progress(fraction); });
     if (!completed)
     {
       vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
@@ -464,6 +455,8 @@ vtkStandardNewMacro(vtkSphericalCoverFilter);
 
 vtkSphericalCoverFilter::vtkSphericalCoverFilter()
 {
+  // ParaView's status bar labels progress with this text (vtkStageProgress.h).
+  this->SetProgressText("Spherical Cover");
   this->SetNumberOfOutputPorts(2);
 }
 

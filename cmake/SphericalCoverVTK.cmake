@@ -81,9 +81,11 @@ paraview_plugin_build(
   PLUGINS ${sphcover_plugins}
   RUNTIME_DESTINATION "${CMAKE_INSTALL_BINDIR}"
   LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
-  LIBRARY_SUBDIRECTORY "paraview-plugins"
-  # Debian's ParaView has no Qt Help: the plug-in's XML documentation cannot be compiled.
-  DISABLE_XML_DOCUMENTATION ON)
+  LIBRARY_SUBDIRECTORY "paraview-plugins")
+# The plug-in's XML documentation (every proxy's and property's <Documentation>) is compiled
+# into a Qt help file that the plug-in carries, so the GUI's "?" shows the filter's own page:
+# paraview_add_plugin's XML_DOCUMENTATION (on by default) runs xmlpatterns
+# (qtxmlpatterns5-dev-tools) and qhelpgenerator (Qt5Help from qttools5-dev; scripts/setup.sh).
 set(SPHCOVER_PLUGIN_PATH "${CMAKE_BINARY_DIR}/${CMAKE_INSTALL_LIBDIR}/paraview-plugins/SphericalCover/SphericalCover.so")
 
 add_subdirectory(Apps/sphcover)

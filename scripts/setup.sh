@@ -14,9 +14,12 @@ jobs="${SPHCOVER_JOBS:-$(nproc)}"
 # ParaView 5.11 bundles its own VTK 9.2; we build against it (libvtk9-dev would conflict with
 # python3-paraview). ParaView's VTK CMake config also needs the -dev packages on the second line.
 # clang and its runtimes build the fuzz harnesses (Testing/Fuzz) that scripts/test.sh runs.
+# qttools5-dev (Qt5Help, qhelpgenerator) and qtxmlpatterns5-dev-tools (xmlpatterns) compile the
+# plug-in's XML documentation into the help that ParaView's "?" shows.
 packages=(
   g++ cmake ninja-build pkg-config
   paraview paraview-dev python3-paraview python3-dev
+  qttools5-dev qtxmlpatterns5-dev-tools
   libglew-dev libdouble-conversion-dev mpi-default-dev libx11-dev zlib1g-dev
   libglm-dev nlohmann-json3-dev libcli11-dev libopenexr-dev libembree-dev
   libgtest-dev libgmp-dev libeigen3-dev

@@ -84,6 +84,15 @@ nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
     }
     report["form_factors"]["matrix"].push_back(row);
   }
+  // The scene's length unit: areas are in its square, powers already in watts
+  // (vtkLightPropagationFilter converts them with SceneUnitMetres).
+  auto* unitName = vtkStringArray::SafeDownCast(fd->GetAbstractArray(names::SceneUnit));
+  vtkDataArray* unitMetres = fd->GetArray(names::SceneUnitMetres);
+  report["unit"] = { { "name",
+                       unitName && unitName->GetNumberOfValues() == 1 ? unitName->GetValue(0)
+                                                                      : std::string("m") },
+    { "metres",
+      unitMetres && unitMetres->GetNumberOfTuples() == 1 ? unitMetres->GetComponent(0, 0) : 1.0 } };
   report["energy"] = { { "emitted_w", triple(balance, 0) },
     { "absorbed_w", triple(balance, 1) },
     { "relative_imbalance", statistics->GetComponent(0, 2) } };

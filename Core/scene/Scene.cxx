@@ -114,6 +114,48 @@ void Scene::Bounds(glm::dvec3& lower, glm::dvec3& upper) const
   }
 }
 
+namespace
+{
+/// The units a scene may declare, with their lengths in metres (exact: the inch is 0.0254 m).
+struct NamedUnit
+{
+  const char* Name;
+  double Metres;
+};
+constexpr NamedUnit KnownUnits[] = { { "mm", 0.001 },
+  { "cm", 0.01 },
+  { "dm", 0.1 },
+  { "m", 1.0 },
+  { "km", 1000.0 },
+  { "in", 0.0254 },
+  { "ft", 0.3048 },
+  { "yd", 0.9144 } };
+}
+
+bool FindLengthUnit(const std::string& name, LengthUnit& unit)
+{
+  for (const NamedUnit& known : KnownUnits)
+  {
+    if (name == known.Name)
+    {
+      unit.Name = known.Name;
+      unit.Metres = known.Metres;
+      return true;
+    }
+  }
+  return false;
+}
+
+std::string LengthUnitNames()
+{
+  std::string names;
+  for (const NamedUnit& known : KnownUnits)
+  {
+    names += (names.empty() ? "" : ", ") + std::string(known.Name);
+  }
+  return names;
+}
+
 int Scene::FindMaterial(const std::string& name) const
 {
   for (size_t m = 0; m < this->Materials.size(); ++m)

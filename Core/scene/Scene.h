@@ -47,6 +47,23 @@ struct SceneSettings
   double MinPatchSize = 0.0;
 };
 
+/// The scene's length unit (the file's "unit", Data/scenes/FORMAT.md): lengths and areas are in
+/// it, radiance and irradiance do not depend on it, and powers (W) do through the area, so the
+/// reports convert them with Metres (a Cornell box in mm emits 1e-6 of what the same numbers in
+/// metres would).
+struct LengthUnit
+{
+  std::string Name = "m";
+  /// The unit's length in metres.
+  double Metres = 1.0;
+};
+
+/// The unit called `name` (mm, cm, dm, m, km, in, ft, yd); false when there is none.
+bool FindLengthUnit(const std::string& name, LengthUnit& unit);
+
+/// The names FindLengthUnit knows, for messages: "mm, cm, dm, m, km, in, ft, yd".
+std::string LengthUnitNames();
+
 /// One parametric surface S_i (paper §4.3): a single Bezier patch over [0,1]^2. A scene entry
 /// that loads a .bpt file or a mesh yields several surfaces sharing the entry's name.
 struct Surface
@@ -80,6 +97,7 @@ struct Scene
   std::vector<Surface> Surfaces;
   std::vector<Camera> Cameras;
   SceneSettings Settings;
+  LengthUnit Unit;
 
   /// Axis-aligned box of all control points (it encloses the surfaces: convex hull property).
   void Bounds(glm::dvec3& lower, glm::dvec3& upper) const;

@@ -547,13 +547,22 @@ Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
 Scene SceneParser::Parse(const Json& root)
 {
   this->ExpectObject(root, "");
-  this->CheckKeys(root, "", { "version", "materials", "surfaces", "cameras", "settings" });
+  this->CheckKeys(root, "", { "version", "unit", "materials", "surfaces", "cameras", "settings" });
   Scene scene;
   scene.SourceFile = this->Source;
   const long long version = this->Integer(this->Require(root, "", "version"), "/version");
   if (version != 1)
   {
     this->Fail("/version", "unsupported version " + std::to_string(version) + " (expected 1)");
+  }
+  if (root.contains("unit"))
+  {
+    const std::string unit = this->String(root["unit"], "/unit");
+    if (!FindLengthUnit(unit, scene.Unit))
+    {
+      this->Fail("/unit",
+        "unknown length unit " + Quote(unit) + " (expected one of " + LengthUnitNames() + ")");
+    }
   }
   const Json& materials = this->Require(root, "", "materials");
   this->ExpectObject(materials, "/materials");

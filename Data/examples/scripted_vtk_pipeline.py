@@ -182,7 +182,11 @@ print(f"{arguments.scene}: {reader.GetOutput().GetNumberOfCells()} surfaces, {pa
       f"{arguments.phi_bins} hemisphere grid; camera {camera!r}, "
       f"{arguments.size[0]} x {arguments.size[1]} pixels, {arguments.spp} samples per pixel")
 print()
-print(f"{'surface':<20} {'area (units^2)':>14}   mean radiosity R, G, B (W m^-2 sr^-1)")
+# Areas are in the scene's unit (its file's "unit", carried as the field data SceneUnit); the
+# powers below are already watts.
+unit = lit.GetFieldData().GetAbstractArray("SceneUnit")
+area_title = f"area ({unit.GetValue(0) if unit else 'm'}^2)"
+print(f"{'surface':<20} {area_title:>14}   mean radiosity R, G, B (W m^-2 sr^-1)")
 for sid in sorted(set(surface.tolist())):
     mine = surface == sid
     mean = (radiosity[mine] * area[mine, None]).sum(axis=0) / area[mine].sum()

@@ -254,6 +254,23 @@ TEST(SceneLoader, ReadsSettingsAndCameras)
   EXPECT_EQ(scene.Materials[0].Specular, glm::dvec3(0.9));
 }
 
+TEST(SceneLoader, ReadsTheLengthUnit)
+{
+  const std::string scene = R"({"version": 1, UNIT "materials": {"m": {"type": "diffuse",
+    "reflectance": [0.5, 0.5, 0.5]}}, "surfaces": [{"name": "q", "type": "bilinear",
+    "material": "m", "points": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]]}]})";
+  auto with = [&scene](const std::string& unit)
+  { return Parse(std::string(scene).replace(scene.find("UNIT"), 4, unit)); };
+  EXPECT_EQ(with("").Unit.Name, "m"); // metres without a unit
+  EXPECT_EQ(with("").Unit.Metres, 1.0);
+  EXPECT_EQ(with(R"("unit": "mm",)").Unit.Metres, 0.001);
+  EXPECT_EQ(with(R"("unit": "in",)").Unit.Metres, 0.0254);
+  EXPECT_EQ(with(R"("unit": "ft",)").Unit.Name, "ft");
+  EXPECT_EQ(with(R"("unit": "ft",)").Unit.Metres, 0.3048);
+  // The Cornell box is measured in millimetres (its walls are 556 x 548.8 x 559.2).
+  EXPECT_EQ(LoadSceneFile(SPHCOVER_DATA_DIR "/scenes/cornell_box.scene").Unit.Name, "mm");
+}
+
 TEST(SceneLoader, ShippedScenesResolveRelativePaths)
 {
   // teapot_room.scene refers to ../models/teapot.bpt relative to its own folder.

@@ -3,7 +3,8 @@ form factors, energy, counts, timings): Howell's closed forms C-11 (parallel opp
 rectangles) and C-14 (perpendicular rectangles with a common edge) within 0.5% at the scenes'
 default settings, and C-41 (coaxial parallel disks, two configurations), dimensions read from
 the scenes, not assumed; reciprocity; the white furnace;
-the energy balance of a closed non-uniform scene (the closed Cornell box, coarser) and of a
+the energy balance of a closed non-uniform scene (the closed Cornell box, coarser; its report
+in real watts from its unit, mm: the lamp's pi Le A, 0.79 W in red) and of a
 closed scene of all four reflectance kinds (within the directional shots' 1%); the
 solution file read back by VTK; and a clean failure."""
 import glob
@@ -200,6 +201,22 @@ closed = solve(f"{data}/scenes/cornell_box_closed.scene", "--set", "theta_bins=1
                "--set", "max_level=3")
 if closed:
     check_energy("closed Cornell box", closed, 1e-3)
+    # Its unit is the millimetre ("unit": "mm"): areas in mm^2, powers in watts. The lamp emits
+    # pi Le A: 18.387 W m^-2 sr^-1 over 130 x 105 mm = 0.788 W in red, not 788,485 "W" as
+    # when mm^2 were taken for m^2.
+    lamp = next((s for s in closed["surfaces"] if s["name"] == "light"), None)
+    unit = closed.get("unit", {})
+    if unit != {"name": "mm", "metres": 0.001} or lamp is None:
+        failures.append(f"closed Cornell box: unit {unit}, lamp {lamp}")
+    else:
+        emitted = math.pi * 18.387 * lamp["area"] * 1e-6
+        if abs(closed["energy"]["emitted_w"][0] / emitted - 1) > 1e-3 or \
+                not 0.78 < closed["energy"]["emitted_w"][0] < 0.80:
+            failures.append(f"closed Cornell box: emitted {closed['energy']['emitted_w'][0]} W, "
+                            f"expected pi Le A = {emitted} W (area {lamp['area']} mm^2)")
+        else:
+            print(f"closed Cornell box: the lamp ({lamp['area']} mm^2) emits "
+                  f"{closed['energy']['emitted_w'][0]:.4f} W in red")
 
 # A closed scene of all four reflectance kinds (mirror, phong, tabulated, diffuse) around an
 # occluding cube. It solves (its tabulated material is first used after others that sort after it:

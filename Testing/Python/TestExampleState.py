@@ -2,18 +2,21 @@
 pipeline: loaded (with the plug-in) from another folder with the Data folder as the data
 directory, as the GUI's "Search files under specified directory" does, it has the reader,
 Interval Subdivision, Spherical Cover, Light Propagation, Radiance Image (fed by Light
-Propagation and by the subdivision's patches) and Hemisphere Extractor connected in that order,
-the reader finds the scene, the pipeline updates to lit characteristic points (one per patch,
-with Radiosity; the cover's refinement may split a patch into several), a hemisphere mesh and a 256 x 256 image through the scene's camera whose
-brightest pixel is the lamp (its emission, W m^-2 sr^-1, at least), and a render view shows
-the lit points.
+Propagation and by the subdivision's patches), Illumination Field and Hemisphere Extractor
+connected in that order, the reader finds the scene, the pipeline updates to lit characteristic
+points (one per patch, with Radiosity; the cover's refinement may split a patch into several), a
+hemisphere mesh and a 256 x 256 image through the scene's camera whose brightest pixel is the
+lamp (its emission, W m^-2 sr^-1, at least), and its two render views (the scene and the image)
+show the Illumination Field and the image. ParaView.GuiCornellBox loads it with the state's own
+folder as the data directory and compares its views with baselines.
 
 usage: pvbatch TestExampleState.py PLUGIN DATA_DIR"""
 import os
 import sys
 import tempfile
 
-from paraview.simple import Delete, FindSource, GetRenderViews, GetDisplayProperties, LoadPlugin
+from paraview import servermanager
+from paraview.simple import Delete, FindSource, GetRenderViews, LoadPlugin
 from paraview.simple import LoadState
 
 plugin, data = sys.argv[1:3]
@@ -26,7 +29,7 @@ state = os.path.join(data, "examples", "cornell_box.pvsm")
 LoadState(state, data_directory=data)
 
 STAGES = ["cornell_box.scene", "Interval Subdivision", "Spherical Cover", "Light Propagation",
-          "Radiance Image", "Hemisphere Extractor"]
+          "Radiance Image", "Illumination Field", "Hemisphere Extractor"]
 proxies = {name: FindSource(name) for name in STAGES}
 for name, proxy in proxies.items():
     if proxy is None:
@@ -40,6 +43,7 @@ if not failures:
                        "Spherical Cover": "Interval Subdivision",
                        "Light Propagation": "Spherical Cover",
                        "Radiance Image": "Light Propagation",
+                       "Illumination Field": "Light Propagation",
                        "Hemisphere Extractor": "Spherical Cover"}
     for name, upstream in expected_inputs.items():
         if proxies[name].Input.SMProxy != proxies[upstream].SMProxy:
@@ -82,10 +86,13 @@ if not failures:
         else:
             print(f"Radiance Image: 256 x 256, brightest radiance {brightest}")
     views = GetRenderViews()
-    if len(views) != 1:
-        failures.append(f"{len(views)} render views, expected 1")
-    elif not GetDisplayProperties(propagation, views[0]).Visibility:
-        failures.append("the render view does not show the lit points")
+    # servermanager.GetRepresentation, unlike GetDisplayProperties, creates none.
+    shown = sorted(name for view in views for name in ("Illumination Field", "Radiance Image")
+                   if servermanager.GetRepresentation(proxies[name], view) and
+                   servermanager.GetRepresentation(proxies[name], view).Visibility)
+    if len(views) != 2 or shown != ["Illumination Field", "Radiance Image"]:
+        failures.append(f"{len(views)} render views showing {shown}, expected 2 showing the "
+                        "Illumination Field and the Radiance Image")
 
 for view in GetRenderViews():
     Delete(view)

@@ -88,7 +88,10 @@ def check_properties(group, name, element):
     vtk_object = proxy.GetClientSideObject()
     native = getattr(sphericalcover, element.get("class"))()
     for prop in element:
-        if not prop.tag.endswith("VectorProperty") or prop.get("command") is None:
+        if not prop.tag.endswith("VectorProperty") or prop.get("command") is None or \
+                prop.get("information_only") == "1":
+            # Information properties (the Radiance Image's CameraNamesInfo) are read, not set:
+            # ParaView.GuiCornellBox checks the domain they feed.
             continue
         label = f"{name}.{prop.get('name')}"
         sm = proxy.SMProxy.GetProperty(prop.get("name"))
@@ -314,7 +317,8 @@ def check_illumination_field():
     field = globals()["IlluminationField"](Input=OutputPort(propagation, 0),
                                            Patches=OutputPort(subdivision, 0))
     lit = check_output("IlluminationField", output(field), "vtkPolyData",
-                       point={"Radiance": 3, "Normals": 3, "SurfaceId": 1}, cell={"PatchId": 1})
+                       point={"Radiance": 3, "Normals": 3, "SurfaceId": 1, "DisplayRGB": 3},
+                       cell={"PatchId": 1})
     if lit and lit.GetNumberOfCells() < output(subdivision, 0).GetNumberOfCells():
         failures.append("IlluminationField: fewer quads than patches")
     Delete(field)

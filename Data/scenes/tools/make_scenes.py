@@ -108,7 +108,8 @@ def cornell_box():
             if label == "bottom":  # lies on the floor: omitted
                 continue
             surfaces.append(bilinear_surface(block + "_" + label, q, "white"))
-    return {"version": 1, "materials": CORNELL_MATERIALS, "surfaces": surfaces,
+    # The Cornell data are in millimetres: reported powers are converted to watts with it.
+    return {"version": 1, "unit": "mm", "materials": CORNELL_MATERIALS, "surfaces": surfaces,
             "cameras": [CORNELL_CAMERA], "settings": dict(DEFAULT_SETTINGS)}
 
 
@@ -139,7 +140,8 @@ def cornell_box_meshes():
         if tr:
             s["transform"] = tr
         surfaces.append(s)
-    return {"version": 1, "materials": CORNELL_MATERIALS, "surfaces": surfaces,
+    # The Cornell data are in millimetres: reported powers are converted to watts with it.
+    return {"version": 1, "unit": "mm", "materials": CORNELL_MATERIALS, "surfaces": surfaces,
             "cameras": [CORNELL_CAMERA], "settings": dict(DEFAULT_SETTINGS)}
 
 
