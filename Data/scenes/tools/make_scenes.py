@@ -109,8 +109,11 @@ def cornell_box():
                 continue
             surfaces.append(bilinear_surface(block + "_" + label, q, "white"))
     # The Cornell data are in millimetres: reported powers are converted to watts with it.
+    # min_patch_size: the blocks' faces get points by their size, not as many as a wall
+    # (Documentation/notes/time-to-accuracy.md, 2026-12-02).
+    settings = dict(DEFAULT_SETTINGS, min_patch_size=0.05)
     return {"version": 1, "unit": "mm", "materials": CORNELL_MATERIALS, "surfaces": surfaces,
-            "cameras": [CORNELL_CAMERA], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [CORNELL_CAMERA], "settings": settings}
 
 
 def cornell_box_closed():
@@ -121,6 +124,7 @@ def cornell_box_closed():
     floor, ceiling = scene["surfaces"][0]["points"], scene["surfaces"][1]["points"]
     front = [floor[1], floor[0], ceiling[0], ceiling[3]]  # the four corners at z = 0
     scene["surfaces"].append(bilinear_surface("front_wall", front, "white"))
+    scene["settings"] = dict(DEFAULT_SETTINGS)
     scene["cameras"] = [{"name": "inside", "position": [278, 273, 20], "focal_point": [278, 273, 559.2],
                          "view_up": [0, 1, 0], "view_angle": 80.0, "width": 512, "height": 512}]
     return scene
