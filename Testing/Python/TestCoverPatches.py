@@ -21,40 +21,20 @@ plain VTK, on the Cornell box at a coarse setting.
 usage: TestCoverPatches.py DATA_DIR"""
 import sys
 
-from sphericalcover import (vtkIlluminationField, vtkIntervalSubdivisionFilter,
-                            vtkLightPropagationFilter, vtkPatchSceneReader, vtkRadianceImageFilter,
-                            vtkSphericalCoverFilter)
-from vtkmodules.util.misc import calldata_type
+from sphericalcover import vtkIlluminationField, vtkRadianceImageFilter
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkCommonCore import VTK_STRING, vtkCommand
+from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPolyData
 from vtkmodules.vtkCommonExecutionModel import vtkTrivialProducer
 
+from coarse_cornell_pipeline import ErrorCollector, coarse_cornell_pipeline  # noqa: E402
+
 data = sys.argv[1]
 failures = []
-errors = []
-
-
-def observe(algorithm):
-    """Collects the algorithm's error messages (vtkErrorMacro invokes ErrorEvent with the text)."""
-    @calldata_type(VTK_STRING)
-    def on_error(caller, event, message):
-        errors.append(f"{caller.GetClassName()}: {message}")
-    algorithm.AddObserver(vtkCommand.ErrorEvent, on_error)
-    return algorithm
-
-
-reader = observe(vtkPatchSceneReader())
-reader.SetFileName(f"{data}/scenes/cornell_box.scene")
-subdivision = observe(vtkIntervalSubdivisionFilter())
-subdivision.SetInputConnection(reader.GetOutputPort())
-subdivision.SetMaxLevel(1)
-cover = observe(vtkSphericalCoverFilter())
-cover.SetInputConnection(subdivision.GetOutputPort(0))
-cover.SetThetaBins(8)
-cover.SetPhiBins(32)
-propagation = observe(vtkLightPropagationFilter())
-propagation.SetInputConnection(cover.GetOutputPort(0))
+collector = ErrorCollector()
+errors = collector.messages
+observe = collector.observe
+reader, subdivision, cover, propagation = coarse_cornell_pipeline(data, collector)
 texts = set()
 
 
