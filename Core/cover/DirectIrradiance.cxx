@@ -56,6 +56,14 @@ glm::dvec3 RayOrigin(const Patch& patch, double s, double t, glm::dvec3& normal)
   return patch.Geometry.Evaluate(si, ti) + normal * (inward * patch.Geometry.Size());
 }
 
+/// A node's rays: their origin, the surface's normal there and their filter.
+struct NodeRays
+{
+  NodeFilter Filter;
+  glm::dvec3 Origin;
+  glm::dvec3 Normal;
+};
+
 /// One lamp piece: its patch, its emission and its quadrature's least side.
 struct LampPiece
 {
@@ -213,20 +221,31 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     }
   }
 
+  // Where a distinct node's rays start and what stops them (RayOrigin, NodeFilter).
+  auto raysOf = [&](std::size_t node)
+  {
+    const Patch& patch = patches[firstPatch[node]];
+    NodeRays rays;
+    rays.Filter = { &surfaceOfPatch,
+      patch.SurfaceIndex,
+      static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
+      options.BackFacesOcclude };
+    rays.Origin = RayOrigin(patch,
+      static_cast<double>(firstIndex[node] % n) / (n - 1),
+      static_cast<double>(firstIndex[node] / n) / (n - 1),
+      rays.Normal);
+    return rays;
+  };
+
   std::vector<glm::dvec3> irradianceOfNode(firstPatch.size(), glm::dvec3(0.0));
   auto computeNode = [&](std::size_t node)
   {
     const std::size_t p = firstPatch[node];
     const Patch& patch = patches[p];
-    const NodeFilter nodeFilter{ &surfaceOfPatch,
-      patch.SurfaceIndex,
-      static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
-      options.BackFacesOcclude };
-    const RayFilter filter{ AcceptForNode, &nodeFilter };
-    const double s = static_cast<double>(firstIndex[node] % n) / (n - 1);
-    const double t = static_cast<double>(firstIndex[node] / n) / (n - 1);
-    glm::dvec3 normal;
-    const glm::dvec3 origin = RayOrigin(patch, s, t, normal);
+    const NodeRays rays = raysOf(node);
+    const RayFilter filter{ AcceptForNode, &rays.Filter };
+    const glm::dvec3& origin = rays.Origin;
+    const glm::dvec3& normal = rays.Normal;
     glm::dvec3 irradiance(0.0);
     for (const LampPiece& piece : pieces)
     {
@@ -283,17 +302,10 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     std::vector<glm::dvec3> bounced(count, glm::dvec3(0.0));
     auto gatherNode = [&](std::size_t node)
     {
-      const Patch& patch = patches[firstPatch[node]];
-      const NodeFilter nodeFilter{ &surfaceOfPatch,
-        patch.SurfaceIndex,
-        static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
-        options.BackFacesOcclude };
-      const RayFilter filter{ AcceptForNode, &nodeFilter };
-      glm::dvec3 normal;
-      const glm::dvec3 origin = RayOrigin(patch,
-        static_cast<double>(firstIndex[node] % n) / (n - 1),
-        static_cast<double>(firstIndex[node] / n) / (n - 1),
-        normal);
+      const NodeRays rays = raysOf(node);
+      const RayFilter filter{ AcceptForNode, &rays.Filter };
+      const glm::dvec3& origin = rays.Origin;
+      const glm::dvec3& normal = rays.Normal;
       // Any tangent frame: the strata are the same in every one.
       const glm::dvec3 helper =
         std::fabs(normal.x) < 0.6 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
