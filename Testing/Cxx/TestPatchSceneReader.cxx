@@ -49,6 +49,7 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
     { names::Specular, 3 },
     { names::PhongExponent, 1 },
     { names::TwoSided, 1 },
+    { names::Transmittance, 3 },
     { names::HigherOrderDegrees, 3 } };
   for (const auto& array : cellArrays)
   {
@@ -64,6 +65,8 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
          names::MaterialNames,
          names::MaterialTypeNames,
          names::MaterialFiles,
+         names::MaterialTextures,
+         names::MaterialTextureEncodings,
          names::CameraNames,
          names::SourceFile })
   {
@@ -98,7 +101,10 @@ void CheckRoundTrip(vtkUnstructuredGrid* grid, const std::string& file)
     const sphcover::Material& mb = back.Materials[static_cast<size_t>(b.MaterialIndex)];
     Check(ma.Name == mb.Name && ma.Type == mb.Type && ma.Diffuse == mb.Diffuse &&
         ma.Specular == mb.Specular && ma.Emission == mb.Emission &&
-        ma.PhongExponent == mb.PhongExponent && ma.TableFile == mb.TableFile,
+        ma.PhongExponent == mb.PhongExponent && ma.TableFile == mb.TableFile &&
+        ma.Transmittance == mb.Transmittance && ma.TextureFile == mb.TextureFile &&
+        ma.TextureFileEncoding == mb.TextureFileEncoding &&
+        (ma.DiffuseTexture != nullptr) == (mb.DiffuseTexture != nullptr),
       file + ": material of surface " + std::to_string(s));
     Check(original.SurfaceNames[static_cast<size_t>(a.NameIndex)] ==
         back.SurfaceNames[static_cast<size_t>(b.NameIndex)],
