@@ -22,7 +22,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
-from scenegeom import dumps  # noqa: E402
+from scenegeom import dumps, png_chunk, png_file  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 BAD = os.path.join(ROOT, "Testing", "Data", "bad")
@@ -526,23 +526,6 @@ def support_files():
         f.write((header + "0,0,0,0.2,0.2,0.2\n90,0,0,0.2,0.2,0.2\n0,90,0,0.2,0.2,0.2\n").encode())
     with open(os.path.join(SUPPORT, "bad_header.brdf.csv"), "wb") as f:
         f.write("# the header misspelt\ntheta_in,theta_out,dphi,r,g,b\n0,0,0,0.2,0.2,0.2\n".encode())
-
-
-def png_chunk(kind, data):
-    import struct
-    import zlib
-    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
-
-
-def png_file(width, height, bit_depth, colour_type, rows, extra=b""):
-    """A PNG of the given rows (bytes without the filter byte; filter 0 added), written by hand
-    (plain python3): signature, IHDR, optional chunks, one IDAT, IEND."""
-    import struct
-    import zlib
-    ihdr = struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
-    raw = b"".join(b"\x00" + r for r in rows)
-    return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr) + extra +
-            png_chunk(b"IDAT", zlib.compress(raw, 9)) + png_chunk(b"IEND", b""))
 
 
 def texture_support_files():
