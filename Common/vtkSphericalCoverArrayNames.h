@@ -21,6 +21,11 @@ constexpr const char* Diffuse = "Diffuse";
 constexpr const char* Specular = "Specular";
 constexpr const char* PhongExponent = "PhongExponent";
 constexpr const char* TwoSided = "TwoSided";
+/// Reader output, point data, 2 components: the texture coordinates (u, v) of each control point
+/// in its surface's parameter square, the active TCoords: a Bezier cell interpolates them to the
+/// exact (u, v) (the Bernstein basis reproduces linear functions), so a texture shown on the
+/// reader's output in ParaView lies where the solution's does (Data/scenes/FORMAT.md, "texture").
+constexpr const char* TextureCoordinates = "TextureCoordinates";
 /// 3 components: the material's transmittance (a thin pane, Data/scenes/FORMAT.md; 0: opaque).
 constexpr const char* Transmittance = "Transmittance";
 constexpr const char* HigherOrderDegrees = "HigherOrderDegrees";

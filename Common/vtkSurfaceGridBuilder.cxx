@@ -170,6 +170,40 @@ void vtkSurfaceGridBuilder::AddMaterialArrays(const sphcover::Scene& scene,
   cd->AddArray(transmittance);
 }
 
+void vtkSurfaceGridBuilder::AddTextureCoordinates(
+  const std::vector<const sphcover::BezierPatch*>& patches,
+  vtkUnstructuredGrid* output)
+{
+  // The points as BuildCells lays them out: each cell its own, a triangle's P00, P10, P11.
+  auto tcoords = vtkNamedArrays::Double(names::TextureCoordinates, 2, output->GetNumberOfPoints());
+  vtkIdType nextPoint = 0;
+  for (const sphcover::BezierPatch* patch : patches)
+  {
+    if (IsTriangle(*patch))
+    {
+      const double corners[3][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 } };
+      for (int k = 0; k < 3; ++k)
+      {
+        tcoords->SetTypedTuple(nextPoint + k, corners[k]);
+      }
+      nextPoint += 3;
+      continue;
+    }
+    const int m = patch->DegreeU();
+    const int n = patch->DegreeV();
+    for (int j = 0; j <= n; ++j)
+    {
+      for (int i = 0; i <= m; ++i)
+      {
+        const double uv[2] = { static_cast<double>(i) / m, static_cast<double>(j) / n };
+        tcoords->SetTypedTuple(nextPoint + VTKPointIndex(i, j, m, n), uv);
+      }
+    }
+    nextPoint += static_cast<vtkIdType>((m + 1) * (n + 1));
+  }
+  output->GetPointData()->SetTCoords(tcoords);
+}
+
 void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
 {
   output->Initialize();
@@ -187,6 +221,7 @@ void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredG
     surfaceId->SetValue(static_cast<vtkIdType>(s), static_cast<int>(s));
   }
   output->GetCellData()->AddArray(surfaceId);
+  AddTextureCoordinates(patches, output);
   AddMaterialArrays(scene, surfaceOfCell, output);
   AddFieldData(scene, output);
 }
