@@ -12,7 +12,8 @@ turned, flipped or read in the wrong encoding fails.
 its one material: every surface's mean exitant radiance, in the propagation (the texture's means
 over the patches) and in the render (the texture at each visible point), is Le / (1 - rho c)
 within 0.5 %, and the box absorbs what it emits; with a checkered texture (no closed form) the box
-still absorbs what it emits."""
+still absorbs what it emits. And the Illumination Field (vtkIlluminationField) of the floor is
+textured as the render is."""
 import json
 import math
 import os
@@ -124,6 +125,45 @@ print(f"{compared} floor pixels: textured = untextured x texture within {100 * w
 ratio = with_texture.sum(axis=0) / without_texture.sum(axis=0)
 if not (ratio.min() < 0.9):
     failures.append(f"the texture does not darken the floor (band ratios {ratio})")
+
+# The Illumination Field (ParaView's walk-through geometry) is textured as the render is: at every
+# field point of the floor, the textured Radiance is the untextured one times the texture there.
+from sphericalcover import (vtkIlluminationField, vtkIntervalSubdivisionFilter,  # noqa: E402
+                            vtkLightPropagationFilter, vtkPatchSceneReader, vtkSphericalCoverFilter)
+
+
+def field_of(name):
+    reader = vtkPatchSceneReader()
+    reader.SetFileName(os.path.join(folder, name + ".scene"))
+    subdivision = vtkIntervalSubdivisionFilter()
+    subdivision.SetInputConnection(reader.GetOutputPort())
+    cover = vtkSphericalCoverFilter()
+    cover.SetInputConnection(subdivision.GetOutputPort(0))
+    propagation = vtkLightPropagationFilter()
+    propagation.SetInputConnection(cover.GetOutputPort(0))
+    field = vtkIlluminationField()
+    field.SetInputConnection(0, propagation.GetOutputPort(0))
+    field.Update()
+    output = field.GetOutput()
+    return (vtk_to_numpy(output.GetPoints().GetData()).astype(float),
+            vtk_to_numpy(output.GetPointData().GetArray("Radiance")).astype(float),
+            vtk_to_numpy(output.GetPointData().GetArray("SurfaceId")))
+
+
+points, field_textured, surface_ids = field_of("textured")
+plain_points, field_plain, _ = field_of("plain")
+if points.shape != plain_points.shape or numpy.abs(points - plain_points).max() > 0:
+    failures.append("the illumination fields of the textured and plain floors have other points")
+else:
+    floor = numpy.nonzero((surface_ids == 0) & (field_plain.min(axis=1) > 0))[0]
+    worst_field = 0.0
+    for p in floor:
+        expected = field_plain[p] * texture_at(points[p][0], 1.0 - points[p][2])
+        worst_field = max(worst_field, numpy.abs(field_textured[p] / expected - 1).max())
+    print(f"illumination field: {len(floor)} floor points textured within {100 * worst_field:.4f} %")
+    if len(floor) < 100 or worst_field > 0.01:
+        failures.append(f"illumination field: {len(floor)} floor points, textured within "
+                        f"{100 * worst_field:.2f} % (more than 1 %)")
 
 # 2. The textured white furnace.
 def write_grey_png(path, size, value_of):
