@@ -371,6 +371,37 @@ def ramp_texture():
     return png_file(n, n, 8, 2, rows)
 
 
+def tiles_texture():
+    """textures/tiles.png, 8 x 8 sRGB tiles of two greys (codes 235 and 120) with a reddish
+    tile in the corner u, v < 1/8: a floor with sharp edges for the Cycles comparison."""
+    n = 8
+    rows = []
+    for row in range(n):
+        j = n - 1 - row
+        line = bytearray()
+        for i in range(n):
+            if i == 0 and j == 0:
+                line += bytes([235, 120, 120])
+            else:
+                line += bytes([235] * 3 if (i + j) % 2 == 0 else [120] * 3)
+        rows.append(bytes(line))
+    return png_file(n, n, 8, 2, rows)
+
+
+def cornell_box_textured():
+    # The Cornell box with a tiled floor (paper §5.4): compared with Cycles
+    # (Data/reference/README.md, "Textures"), the texture changes the light the floor sends to
+    # the walls and the blocks as well as the floor's own look.
+    scene = cornell_box()
+    scene["materials"]["tiles"] = {"type": "diffuse",
+                                   "reflectance": list(CORNELL_MATERIALS["white"]["reflectance"]),
+                                   "texture": "textures/tiles.png"}
+    for surface in scene["surfaces"]:
+        if surface["name"] == "floor":
+            surface["material"] = "tiles"
+    return scene
+
+
 def textured_floor():
     # A textured floor (u along +x, v along -z) under a lamp that reflects nothing: the floor
     # receives the lamp's light only, the same with or without its texture, so its render is the
@@ -404,6 +435,7 @@ ALL = {
     "howell_perpendicular.scene": howell_perpendicular,
     "howell_disks.scene": howell_disks,
     "textured_floor.scene": textured_floor,
+    "cornell_box_textured.scene": cornell_box_textured,
 }
 
 
@@ -414,6 +446,8 @@ def main():
     os.makedirs(TEXTURES, exist_ok=True)
     with open(os.path.join(TEXTURES, "ramp.png"), "wb") as f:
         f.write(ramp_texture())
+    with open(os.path.join(TEXTURES, "tiles.png"), "wb") as f:
+        f.write(tiles_texture())
     for name, make in ALL.items():
         write_scene(os.path.join(SCENES, name), make())
         print("wrote", os.path.join(SCENES, name))
