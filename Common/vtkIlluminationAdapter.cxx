@@ -141,8 +141,8 @@ bool vtkIlluminationAdapter::ReadTextures(vtkPolyData* points,
   std::string& error)
 {
   illumination.Textures.clear();
-  auto* files = vtkStringArray::SafeDownCast(
-    points->GetFieldData()->GetAbstractArray(names::MaterialTextures));
+  auto* files =
+    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::MaterialTextures));
   bool textured = false;
   for (vtkIdType m = 0; files && m < files->GetNumberOfValues() && !textured; ++m)
   {
@@ -179,7 +179,8 @@ bool vtkIlluminationAdapter::ReadTextures(vtkPolyData* points,
     illumination.ExitantRadiance[k] = material.Emission + material.Diffuse / sphcover::Pi * e;
     const size_t s = static_cast<size_t>(surface);
     illumination.Textures.resize(std::max(illumination.Textures.size(), s + 1));
-    illumination.Textures[s] = sphcover::SurfaceTexture{ material.DiffuseTexture, material.Emission };
+    illumination.Textures[s] =
+      sphcover::SurfaceTexture{ material.DiffuseTexture, material.Emission };
   }
   return true;
 }
@@ -203,7 +204,8 @@ bool vtkIlluminationAdapter::ApplyTextureMeans(vtkPolyData* points,
     }
     double r[4];
     uvRange->GetTuple(static_cast<vtkIdType>(k), r);
-    materials[k] = sphcover::MaterialOverPatch(materials[k], sphcover::UVRect{ r[0], r[1], r[2], r[3] });
+    materials[k] =
+      sphcover::MaterialOverPatch(materials[k], sphcover::UVRect{ r[0], r[1], r[2], r[3] });
   }
   return true;
 }

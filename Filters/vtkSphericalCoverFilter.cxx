@@ -248,8 +248,7 @@ std::vector<glm::dvec3> DiffuseOf(const sphcover::Scene& scene,
     const size_t material = static_cast<size_t>(scene.Surfaces[cell].MaterialIndex);
     if (material < scene.Materials.size())
     {
-      values[k] =
-        sphcover::MaterialOverPatch(scene.Materials[material], patches[k].Domain).Diffuse;
+      values[k] = sphcover::MaterialOverPatch(scene.Materials[material], patches[k].Domain).Diffuse;
     }
   }
   return values;
@@ -578,12 +577,8 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   }
   sphcover::DirectIrradianceNodes direct;
   if (this->DirectIrradianceNodes > 0 &&
-    !ComputeDirectIrradiance(this,
-      patches,
-      emission,
-      options,
-      DiffuseOf(scene, patches, cellOfPatch),
-      direct))
+    !ComputeDirectIrradiance(
+      this, patches, emission, options, DiffuseOf(scene, patches, cellOfPatch), direct))
   {
     return 0;
   }

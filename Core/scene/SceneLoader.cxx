@@ -193,11 +193,11 @@ Material SceneParser::ParseMaterial(const std::string& name,
   }
   // Transmittance (a thin pane) and texture (over the diffuse part) extend the types that can
   // carry them (paper §5.4; FORMAT.md "materials").
-  const std::initializer_list<const char*> paneAndTexture = { "transmittance",
-    "texture",
-    "texture_encoding" };
-  const auto keys = [&](std::initializer_list<const char*> own,
-                      std::initializer_list<const char*> extensions)
+  const std::initializer_list<const char*> paneAndTexture = {
+    "transmittance", "texture", "texture_encoding"
+  };
+  const auto keys =
+    [&](std::initializer_list<const char*> own, std::initializer_list<const char*> extensions)
   {
     std::vector<const char*> allowed(own);
     allowed.insert(allowed.end(), extensions.begin(), extensions.end());
@@ -257,12 +257,13 @@ Material SceneParser::ParseMaterial(const std::string& name,
   }
   if (j.contains("transmittance"))
   {
-    material.Transmittance = this->Bands(j["transmittance"], Child(pointer, "transmittance"), 0.0, 1.0);
+    material.Transmittance =
+      this->Bands(j["transmittance"], Child(pointer, "transmittance"), 0.0, 1.0);
     // Energy conservation: what a pane reflects and what it lets through come from the same
     // light (paper §5.4).
     const glm::dvec3 reflected = material.Diffuse + material.Specular;
-    const char* what = type == "phong" ? "diffuse + specular + transmittance"
-                                       : "reflectance + transmittance";
+    const char* what =
+      type == "phong" ? "diffuse + specular + transmittance" : "reflectance + transmittance";
     for (int k = 0; k < 3; ++k)
     {
       if (reflected[k] + material.Transmittance[k] > 1.0)
@@ -285,8 +286,8 @@ Material SceneParser::ParseMaterial(const std::string& name,
       }
       else if (encoding != "srgb")
       {
-        this->Fail(encodingAt,
-          "unknown texture encoding " + Quote(encoding) + " (expected srgb or linear)");
+        this->Fail(
+          encodingAt, "unknown texture encoding " + Quote(encoding) + " (expected srgb or linear)");
       }
     }
     // Read now, so that a bad image is reported with the scene (file and problem).

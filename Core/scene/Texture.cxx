@@ -140,8 +140,7 @@ std::string ColourTypeName(int colorType)
 Texture Texture::Load(const std::string& path, TextureEncoding encoding)
 {
   const std::string bytes = ReadInputFile(path);
-  if (bytes.size() < 8 ||
-    png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) != 0)
+  if (bytes.size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(bytes.data()), 0, 8) != 0)
   {
     throw InputError(path, "", "not a PNG file");
   }
@@ -228,9 +227,8 @@ Texture Texture::Load(const std::string& path, TextureEncoding encoding)
           bytesPerSample == 2 ? (std::size_t(sample[0]) << 8) | sample[1] : sample[0];
         value[c] = decode[code];
       }
-      texels[std::size_t(j) * width + i] = channels == 3
-        ? glm::vec3(value[0], value[1], value[2])
-        : glm::vec3(value[0]);
+      texels[std::size_t(j) * width + i] =
+        channels == 3 ? glm::vec3(value[0], value[1], value[2]) : glm::vec3(value[0]);
     }
   }
   return Texture(width, height, std::move(texels));
@@ -249,8 +247,8 @@ Texture::Texture(int width, int height, std::vector<glm::vec3> texels)
   }
   if (this->Texels.size() != std::size_t(width) * height)
   {
-    throw std::invalid_argument("Texture: " + std::to_string(this->Texels.size()) +
-      " texels for " + std::to_string(width) + " x " + std::to_string(height));
+    throw std::invalid_argument("Texture: " + std::to_string(this->Texels.size()) + " texels for " +
+      std::to_string(width) + " x " + std::to_string(height));
   }
   for (const glm::vec3& t : this->Texels)
   {
@@ -311,11 +309,13 @@ glm::dvec3 Texture::Integral(double x, double y) const
   if (fx > 0.0 && i < this->W)
   {
     // Column i, rows [0, j): the table's difference of columns i + 1 and i.
-    sum += fx * (this->Sums[std::size_t(j) * stride + i + 1] - this->Sums[std::size_t(j) * stride + i]);
+    sum +=
+      fx * (this->Sums[std::size_t(j) * stride + i + 1] - this->Sums[std::size_t(j) * stride + i]);
   }
   if (fy > 0.0 && j < this->H)
   {
-    sum += fy * (this->Sums[(std::size_t(j) + 1) * stride + i] - this->Sums[std::size_t(j) * stride + i]);
+    sum += fy *
+      (this->Sums[(std::size_t(j) + 1) * stride + i] - this->Sums[std::size_t(j) * stride + i]);
   }
   if (fx > 0.0 && fy > 0.0 && i < this->W && j < this->H)
   {
@@ -354,8 +354,8 @@ glm::dvec3 Texture::Mean(const UVRect& rect) const
   };
   widen(u0, u1, this->W);
   widen(v0, v1, this->H);
-  const glm::dvec3 sum =
-    this->Integral(u1, v1) - this->Integral(u0, v1) - this->Integral(u1, v0) + this->Integral(u0, v0);
+  const glm::dvec3 sum = this->Integral(u1, v1) - this->Integral(u0, v1) - this->Integral(u1, v0) +
+    this->Integral(u0, v0);
   return glm::clamp(sum / ((u1 - u0) * (v1 - v0)), 0.0, 1.0);
 }
 

@@ -109,8 +109,10 @@ TEST(Texture, RectangleMeanIsTheExactIntegral)
   }
   // Inside one texel the mean is that texel; a rectangle of zero width is the limit (here
   // inside texel (3, 2) too).
-  EXPECT_NEAR(texture.Mean(UVRect{ 3.2 / w, 3.7 / w, 2.1 / h, 2.9 / h }).y, texture.Texel(3, 2).y, 1e-6);
-  EXPECT_NEAR(texture.Mean(UVRect{ 3.5 / w, 3.5 / w, 2.5 / h, 2.5 / h }).z, texture.Texel(3, 2).z, 1e-6);
+  EXPECT_NEAR(
+    texture.Mean(UVRect{ 3.2 / w, 3.7 / w, 2.1 / h, 2.9 / h }).y, texture.Texel(3, 2).y, 1e-6);
+  EXPECT_NEAR(
+    texture.Mean(UVRect{ 3.5 / w, 3.5 / w, 2.5 / h, 2.5 / h }).z, texture.Texel(3, 2).z, 1e-6);
   glm::dvec3 all(0.0);
   for (const glm::vec3& t : texels)
   {

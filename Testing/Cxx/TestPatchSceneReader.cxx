@@ -106,7 +106,8 @@ void CheckTextureCoordinates(vtkUnstructuredGrid* grid, const std::string& file)
     {
       double uv[2];
       tcoords->GetTuple(ids[k], uv);
-      Check(uv[0] >= 0 && uv[0] <= 1 && uv[1] >= 0 && uv[1] <= 1, file + ": a (u, v) outside [0, 1]");
+      Check(
+        uv[0] >= 0 && uv[0] <= 1 && uv[1] >= 0 && uv[1] <= 1, file + ": a (u, v) outside [0, 1]");
       const bool corner = (uv[0] == 0 || uv[0] == 1) && (uv[1] == 0 || uv[1] == 1);
       if (corner)
       {
