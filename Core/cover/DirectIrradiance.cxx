@@ -311,14 +311,27 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
         std::fabs(normal.x) < 0.6 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
       const glm::dvec3 tangent = glm::normalize(glm::cross(helper, normal));
       const glm::dvec3 bitangent = glm::cross(normal, tangent);
+      // The rays share their origin and neighbours in phi are near: packets of them.
       glm::dvec3 sum(0.0);
-      for (const glm::dvec3& d : local)
+      glm::dvec3 directions[RayCaster::PacketSize];
+      TriangleHit hits[RayCaster::PacketSize];
+      bool found[RayCaster::PacketSize];
+      for (std::size_t first = 0; first < local.size(); first += RayCaster::PacketSize)
       {
-        const glm::dvec3 direction = d.x * tangent + d.y * bitangent + d.z * normal;
-        TriangleHit hit;
-        if (caster.Intersect(origin, direction, 0.0f, filter, false, hit) && hit.FrontSide)
+        const int packet = static_cast<int>(
+          std::min<std::size_t>(RayCaster::PacketSize, local.size() - first));
+        for (int k = 0; k < packet; ++k)
         {
-          sum += diffuse[hit.Patch] * direct.At(hit.Patch, hit.U, hit.V);
+          const glm::dvec3& d = local[first + static_cast<std::size_t>(k)];
+          directions[k] = d.x * tangent + d.y * bitangent + d.z * normal;
+        }
+        caster.IntersectPacket(origin, directions, packet, 0.0f, filter, hits, found);
+        for (int k = 0; k < packet; ++k)
+        {
+          if (found[k] && hits[k].FrontSide)
+          {
+            sum += diffuse[hits[k].Patch] * direct.At(hits[k].Patch, hits[k].U, hits[k].V);
+          }
         }
       }
       bounced[node] = sum / static_cast<double>(local.size());

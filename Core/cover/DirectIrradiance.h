@@ -29,7 +29,9 @@
  *    interpolated from y's patch's nodes (rho: `diffuse`, the patches' diffuse reflectance; a
  *    mirror or the back of a two-sided surface sends nothing here, the propagation counts it).
  * The rest of the light (the lamp's own light reflected again, later bounces, what mirrors
- * send) is the propagation's. A node on the border of patches of one surface is computed once
+ * send) is the propagation's. The propagation's points hold their own, coarser version of the
+ * nodes' light (LightPropagation::LampIrradiance); a renderer takes that off the points'
+ * values and adds the nodes', so that only the smooth rest is interpolated. A node on the border of patches of one surface is computed once
  * (by its (surface, u, v)) and shared by them.
  *
  * Rays start a hair inside the patch and off its front (RayOrigin in the source), so that at

@@ -277,8 +277,15 @@ glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) co
 
 DirectLight::DirectLight(DirectIrradianceNodes nodes,
   const std::vector<glm::dvec3>& diffuse,
-  std::size_t points)
+  std::size_t points,
+  const std::vector<glm::dvec3>& coverIrradiance)
 {
+  if (!coverIrradiance.empty() && coverIrradiance.size() != points)
+  {
+    throw std::invalid_argument("the cover's lamp irradiance of " +
+      std::to_string(coverIrradiance.size()) + " points for " + std::to_string(points) +
+      " characteristic points");
+  }
   const std::size_t perPoint =
     3 * static_cast<std::size_t>(nodes.NodesPerSide) * static_cast<std::size_t>(nodes.NodesPerSide);
   if (diffuse.size() != points || nodes.Values.size() != perPoint * points)
@@ -294,6 +301,19 @@ DirectLight::DirectLight(DirectIrradianceNodes nodes,
     this->Factor[p] = diffuse[p] / Pi;
   }
   this->Nodes = std::move(nodes);
+  if (!coverIrradiance.empty())
+  {
+    this->CoverPart.resize(points);
+    for (std::size_t p = 0; p < points; ++p)
+    {
+      this->CoverPart[p] = this->Factor[p] * coverIrradiance[p];
+    }
+  }
+}
+
+glm::dvec3 DirectLight::PointPart(std::size_t point) const
+{
+  return this->CoverPart.empty() ? this->AtPoint(point) : this->CoverPart[point];
 }
 
 glm::dvec3 DirectLight::AtPoint(std::size_t point) const
@@ -328,7 +348,7 @@ std::vector<glm::dvec3> DirectLight::Rest(std::vector<glm::dvec3> exitantRadianc
   {
     for (std::size_t p = 0; p < exitantRadiance.size(); ++p)
     {
-      exitantRadiance[p] -= this->AtPoint(p);
+      exitantRadiance[p] -= this->PointPart(p);
     }
   }
   return exitantRadiance;
@@ -345,7 +365,7 @@ void RadianceRenderer::SetDirectLight(DirectLight direct)
   // The rest is taken of the points' own I (an earlier direct light given back first).
   for (std::size_t p = 0; p < this->Exitant.size() && !this->Direct.Empty(); ++p)
   {
-    this->Exitant[p] += this->Direct.AtPoint(p);
+    this->Exitant[p] += this->Direct.PointPart(p);
   }
   this->Exitant = direct.Rest(std::move(this->Exitant));
   this->Direct = std::move(direct);
