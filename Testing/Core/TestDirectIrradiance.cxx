@@ -328,14 +328,29 @@ TEST(DirectIrradiance, NoBrightEmitterNoNodesAndBadSizesRefused)
   EXPECT_TRUE(nodes.Empty());
 }
 
-TEST(DirectIrradiance, RendererKeepsThePointsAndAddsTheNodesBetween)
+namespace
+{
+/// The floor of LampOverFloor (its first 9 patches) and the nodes of its direct light.
+std::vector<Patch> LitFloor()
 {
   const std::vector<Patch> all = LampOverFloor(false);
-  const std::vector<Patch> floor(all.begin(), all.begin() + 9);
-  const DirectIrradianceNodes lit = Compute(all);
+  return std::vector<Patch>(all.begin(), all.begin() + 9);
+}
+
+DirectIrradianceNodes LitFloorNodes()
+{
+  const DirectIrradianceNodes lit = Compute(LampOverFloor(false));
   DirectIrradianceNodes nodes;
   nodes.NodesPerSide = lit.NodesPerSide;
   nodes.Values.assign(lit.Values.begin(), lit.Values.begin() + 9 * 9 * 3);
+  return nodes;
+}
+}
+
+TEST(DirectIrradiance, RendererKeepsThePointsAndAddsTheNodesBetween)
+{
+  const std::vector<Patch> floor = LitFloor();
+  const DirectIrradianceNodes nodes = LitFloorNodes();
   // Every floor point's I: its reflected direct light plus an even rest of 0.1.
   const glm::dvec3 rho(0.5, 0.6, 0.7);
   std::vector<glm::dvec3> exitant;
@@ -376,12 +391,8 @@ TEST(DirectIrradiance, RendererReplacesTheCoversVersionOfTheNodesLightAtThePoint
   // value at the centre, as a coarse cover might see it) plus an even rest of 0.1: given that
   // version (CoverLampIrradiance), the render is the rest plus the nodes' light everywhere, at
   // the points too.
-  const std::vector<Patch> all = LampOverFloor(false);
-  const std::vector<Patch> floor(all.begin(), all.begin() + 9);
-  const DirectIrradianceNodes lit = Compute(all);
-  DirectIrradianceNodes nodes;
-  nodes.NodesPerSide = lit.NodesPerSide;
-  nodes.Values.assign(lit.Values.begin(), lit.Values.begin() + 9 * 9 * 3);
+  const std::vector<Patch> floor = LitFloor();
+  const DirectIrradianceNodes nodes = LitFloorNodes();
   const glm::dvec3 rho(0.5, 0.6, 0.7);
   std::vector<glm::dvec3> exitant;
   std::vector<glm::dvec3> coverIrradiance;
