@@ -4,6 +4,7 @@
 #include "render/BuriedPoints.h"
 
 #include "math/Constants.h"
+#include "math/PatternShift.h"
 #include "math/RadicalInverse.h"
 
 #include "cover/HemisphereGrid.h"
@@ -66,15 +67,6 @@ void SampleOffsets(int samples, std::vector<double>& offsetX, std::vector<double
   }
 }
 
-/// SplitMix64's finaliser: a well-mixed 64-bit value of x.
-uint64_t Mix(uint64_t x)
-{
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
 /// The shift of a pixel's sample pattern (a Cranley-Patterson rotation, in [0,1)^2, from the
 /// pixel's index alone). With one pattern for every pixel, an edge across a row of pixels cuts
 /// every pixel's pattern at the same place, and the error of its coverage (up to one sample in
@@ -84,10 +76,7 @@ uint64_t Mix(uint64_t x)
 /// stratum (the shift is modulo 1).
 void PixelShift(std::size_t pixel, double& shiftX, double& shiftY)
 {
-  const uint64_t a = Mix(static_cast<uint64_t>(pixel));
-  const uint64_t b = Mix(a);
-  shiftX = static_cast<double>(a >> 11) * 0x1.0p-53;
-  shiftY = static_cast<double>(b >> 11) * 0x1.0p-53;
+  PatternShift(static_cast<uint64_t>(pixel), shiftX, shiftY);
 }
 
 /// x modulo 1 for x in [0, 2).
