@@ -128,11 +128,36 @@ bool vtkIlluminationAdapter::ReadDirectIrradiance(vtkPolyData* points,
     }
     diffuse->GetTuple(static_cast<vtkIdType>(i), &reflectance[static_cast<size_t>(i)][0]);
   }
+  // The cover's version of the nodes' light (vtkLightPropagationFilter), when the points have it.
+  std::vector<glm::dvec3> coverPart;
+  vtkDataArray* cover = pd->GetArray(names::CoverLampIrradiance);
+  if (cover)
+  {
+    if (cover->GetNumberOfComponents() != 3)
+    {
+      error = "the point array CoverLampIrradiance has " +
+        std::to_string(cover->GetNumberOfComponents()) + " components, not 3";
+      return false;
+    }
+    coverPart.resize(static_cast<size_t>(count));
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      glm::dvec3& value = coverPart[static_cast<size_t>(i)];
+      cover->GetTuple(i, &value[0]);
+      if (!(std::isfinite(value.x) && std::isfinite(value.y) && std::isfinite(value.z)) ||
+        value.x < 0.0 || value.y < 0.0 || value.z < 0.0)
+      {
+        error = "CoverLampIrradiance of point " + std::to_string(i) +
+          " is negative or not a finite number";
+        return false;
+      }
+    }
+  }
   sphcover::DirectIrradianceNodes direct;
   direct.NodesPerSide = side;
   direct.Values = std::move(values);
-  illumination.Direct =
-    sphcover::DirectLight(std::move(direct), reflectance, static_cast<std::size_t>(count));
+  illumination.Direct = sphcover::DirectLight(
+    std::move(direct), reflectance, static_cast<std::size_t>(count), coverPart);
   return true;
 }
 

@@ -91,6 +91,9 @@ constexpr const char* CoverMeasures = "CoverMeasures";
 /// of every point's patch, node (i, j) band b at component (j n + i) 3 + b (Core's
 /// DirectIrradiance.h).
 constexpr const char* DirectIrradiance = "DirectIrradiance";
+/// Field data, 1 value: the first bounce's rays per side the nodes of DirectIrradiance were
+/// gathered with (0: they hold the direct light only).
+constexpr const char* DirectBounceRays = "DirectBounceRays";
 constexpr const char* Receiver = "Receiver";
 constexpr const char* Source = "Source";
 constexpr const char* Theta = "Theta";
@@ -107,6 +110,10 @@ constexpr const char* ProjectedSolidAngle = "ProjectedSolidAngle";
 // convergence history.
 constexpr const char* Irradiance = "Irradiance";
 constexpr const char* Radiosity = "Radiosity";
+/// Point data, 3 components, with DirectIrradiance: the part of Irradiance the nodes hold (the
+/// lamps' direct light and, with DirectBounceRays > 0, its first bounce) as the cover's regions
+/// carry it (LightPropagation::LampIrradiance); a renderer that adds the nodes takes it off.
+constexpr const char* CoverLampIrradiance = "CoverLampIrradiance";
 constexpr const char* Brightness = "Brightness";
 constexpr const char* IncidentRadiance = "IncidentRadiance";
 /// 2 tuples of 3 bands: emitted and absorbed power, W.

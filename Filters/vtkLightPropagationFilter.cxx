@@ -10,6 +10,7 @@
 
 #include "cover/HemisphereGrid.h"
 #include "cover/SphericalCover.h"
+#include "cover/BrightEmitters.h"
 #include "propagation/ExchangeBalance.h"
 #include "propagation/LightPropagation.h"
 #include "propagation/SolutionFigures.h"
@@ -324,6 +325,47 @@ void WriteIllumination(const sphcover::LightPropagation& propagation,
   output->GetFieldData()->AddArray(statistics);
 }
 
+/// With the nodes of vtkSphericalCoverFilter's DirectIrradiance on the points, the part of the
+/// points' Irradiance that the nodes hold, as the cover carries it (CoverLampIrradiance): the
+/// lamps are the bright emitters among the points, as the cover filter chose them.
+void WriteCoverLampIrradiance(const sphcover::LightPropagation& propagation,
+  const sphcover::SphericalCover& cover,
+  const std::vector<sphcover::Material>& materials,
+  vtkPolyData* output)
+{
+  vtkDataArray* surfaceId = output->GetPointData()->GetArray(names::SurfaceId);
+  if (!output->GetPointData()->GetArray(names::DirectIrradiance) || !surfaceId)
+  {
+    return;
+  }
+  vtkDataArray* bounceRays = output->GetFieldData()->GetArray(names::DirectBounceRays);
+  const bool firstBounce = bounceRays && bounceRays->GetNumberOfTuples() == 1 &&
+    bounceRays->GetComponent(0, 0) > 0.0;
+  const std::size_t count = cover.PatchCount();
+  std::vector<int> surfaces(count);
+  std::vector<double> areas(count);
+  std::vector<glm::dvec3> emission(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    surfaces[i] = static_cast<int>(surfaceId->GetComponent(static_cast<vtkIdType>(i), 0));
+    areas[i] = cover.PatchArea(i);
+    emission[i] = materials[i].Emission;
+  }
+  const std::vector<bool> lampSurface = sphcover::BrightEmitters(surfaces, areas, emission);
+  std::vector<bool> lampPatch(count, false);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    lampPatch[i] = surfaces[i] >= 0 && lampSurface[static_cast<std::size_t>(surfaces[i])];
+  }
+  const std::vector<glm::dvec3> lamp = propagation.LampIrradiance(lampPatch, firstBounce);
+  auto array = vtkNamedArrays::Double(names::CoverLampIrradiance, 3, static_cast<vtkIdType>(count));
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    array->SetTuple(static_cast<vtkIdType>(i), &lamp[i][0]);
+  }
+  output->GetPointData()->AddArray(array);
+}
+
 /// Output 1: one row per shot (shooter, relative change, unshot energy in watts: the propagation's
 /// times `watts`, seconds).
 void WriteShotHistory(const std::vector<sphcover::ShotRecord>& shots,
@@ -460,6 +502,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
 
     output->ShallowCopy(input);
     WriteIllumination(propagation, this->Shots, watts, output);
+    WriteCoverLampIrradiance(propagation, cover, materials, output);
     if (named)
     {
       const std::string figuresProblem = StoreFigures(cover, output);

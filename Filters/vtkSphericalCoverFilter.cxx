@@ -591,6 +591,9 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
       names::DirectIrradiance, components, static_cast<vtkIdType>(patches.size()));
     std::copy(direct.Values.begin(), direct.Values.end(), array->GetPointer(0));
     pointsOut->GetPointData()->AddArray(array);
+    auto bounce = vtkNamedArrays::New<vtkIntArray>(names::DirectBounceRays, 1, 1);
+    bounce->SetValue(0, this->DirectBounceRays);
+    pointsOut->GetFieldData()->AddArray(bounce);
   }
   WriteStrips(cover, patches.size(), stripsOut);
   this->UpdateProgress(1.0);

@@ -32,6 +32,14 @@ std::vector<bool> BrightEmitters(const std::vector<Patch>& patches,
   const std::vector<glm::dvec3>& emission,
   double contrast = 2.0);
 
+/// The same from each patch's surface index (negative: none), area and emitted radiance, for a
+/// stage that holds them as arrays (the propagation's points). Throws std::invalid_argument
+/// when the sizes differ.
+std::vector<bool> BrightEmitters(const std::vector<int>& surfaceOfPatch,
+  const std::vector<double>& area,
+  const std::vector<glm::dvec3>& emission,
+  double contrast = 2.0);
+
 } // namespace sphcover
 
 #endif

@@ -4,6 +4,7 @@
 #include "cover/RayCastFill.h"
 #include "geometry/RayCaster.h"
 #include "math/Constants.h"
+#include "math/PatternShift.h"
 #include "subdivision/Patch.h"
 
 #include <glm/geometric.hpp>
@@ -287,21 +288,34 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     // meeting a front side y whose Lambertian radiance rho(y) / pi E_direct(y) comes from the
     // direct light just computed at y's patch's nodes; E = pi x their mean.
     const int g = options.BounceRaysPerSide;
-    std::vector<glm::dvec3> local(static_cast<std::size_t>(g) * static_cast<std::size_t>(g));
-    for (int a = 0; a < g; ++a)
+    // The directions of g x g strata of (sin^2 theta, phi) in a node's frame, one per stratum
+    // at the place that the node's shift (a Cranley-Patterson rotation hashed from the node's
+    // index) gives. With one pattern for every node, neighbouring nodes err alike and the
+    // errors make patch-sized blotches; shifted, they vary from node to node and average out
+    // over an area.
+    auto strataOf = [g](std::size_t node, std::vector<glm::dvec3>& local)
     {
-      for (int b = 0; b < g; ++b)
+      double shiftTheta = 0.0;
+      double shiftPhi = 0.0;
+      PatternShift(static_cast<uint64_t>(node), shiftTheta, shiftPhi);
+      local.resize(static_cast<std::size_t>(g) * static_cast<std::size_t>(g));
+      for (int a = 0; a < g; ++a)
       {
-        // The midpoints of g x g strata of (sin^2 theta, phi), in the node's frame.
-        const double sin2 = (a + 0.5) / g;
-        const double phi = 2.0 * Pi * (b + 0.5) / g;
-        local[static_cast<std::size_t>(a * g + b)] = glm::dvec3(
-          std::sqrt(sin2) * std::cos(phi), std::sqrt(sin2) * std::sin(phi), std::sqrt(1.0 - sin2));
+        for (int b = 0; b < g; ++b)
+        {
+          const double sin2 = (a + shiftTheta) / g;
+          const double phi = 2.0 * Pi * (b + shiftPhi) / g;
+          local[static_cast<std::size_t>(a * g + b)] = glm::dvec3(std::sqrt(sin2) * std::cos(phi),
+            std::sqrt(sin2) * std::sin(phi),
+            std::sqrt(1.0 - sin2));
+        }
       }
-    }
+    };
     std::vector<glm::dvec3> bounced(count, glm::dvec3(0.0));
     auto gatherNode = [&](std::size_t node)
     {
+      thread_local std::vector<glm::dvec3> local;
+      strataOf(node, local);
       const NodeRays rays = raysOf(node);
       const RayFilter filter{ AcceptForNode, &rays.Filter };
       const glm::dvec3& origin = rays.Origin;
@@ -311,14 +325,27 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
         std::fabs(normal.x) < 0.6 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
       const glm::dvec3 tangent = glm::normalize(glm::cross(helper, normal));
       const glm::dvec3 bitangent = glm::cross(normal, tangent);
+      // The rays share their origin and neighbours in phi are near: packets of them.
       glm::dvec3 sum(0.0);
-      for (const glm::dvec3& d : local)
+      glm::dvec3 directions[RayCaster::PacketSize];
+      TriangleHit hits[RayCaster::PacketSize];
+      bool found[RayCaster::PacketSize];
+      for (std::size_t first = 0; first < local.size(); first += RayCaster::PacketSize)
       {
-        const glm::dvec3 direction = d.x * tangent + d.y * bitangent + d.z * normal;
-        TriangleHit hit;
-        if (caster.Intersect(origin, direction, 0.0f, filter, false, hit) && hit.FrontSide)
+        const int packet = static_cast<int>(
+          std::min<std::size_t>(RayCaster::PacketSize, local.size() - first));
+        for (int k = 0; k < packet; ++k)
         {
-          sum += diffuse[hit.Patch] * direct.At(hit.Patch, hit.U, hit.V);
+          const glm::dvec3& d = local[first + static_cast<std::size_t>(k)];
+          directions[k] = d.x * tangent + d.y * bitangent + d.z * normal;
+        }
+        caster.IntersectPacket(origin, directions, packet, 0.0f, filter, hits, found);
+        for (int k = 0; k < packet; ++k)
+        {
+          if (found[k] && hits[k].FrontSide)
+          {
+            sum += diffuse[hits[k].Patch] * direct.At(hits[k].Patch, hits[k].U, hits[k].V);
+          }
         }
       }
       bounced[node] = sum / static_cast<double>(local.size());

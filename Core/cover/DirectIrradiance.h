@@ -23,13 +23,16 @@
  *  - E_direct: the sum over lamp pieces L of other surfaces of Emission(L) x the projected
  *    solid angle of L's visible front side from the node (VisibleProjectedSolidAngle: the
  *    midpoint rule over L's (u, v), one shadow ray per quadrature node);
- *  - E_bounce (BounceRaysPerSide g > 0): pi x the mean, over g x g cosine-weighted rays (the
- *    midpoints of strata of sin^2 theta and phi, the same pattern at every node), of the
+ *  - E_bounce (BounceRaysPerSide g > 0): pi x the mean, over g x g cosine-weighted rays (one
+ *    in each stratum of sin^2 theta and phi, all at the place within their strata that a
+ *    shift hashed from the node's index gives, math/PatternShift.h), of the
  *    Lambertian radiance rho(y) / pi E_direct(y) of the front side y each ray meets, E_direct(y)
  *    interpolated from y's patch's nodes (rho: `diffuse`, the patches' diffuse reflectance; a
  *    mirror or the back of a two-sided surface sends nothing here, the propagation counts it).
  * The rest of the light (the lamp's own light reflected again, later bounces, what mirrors
- * send) is the propagation's. A node on the border of patches of one surface is computed once
+ * send) is the propagation's. The propagation's points hold their own, coarser version of the
+ * nodes' light (LightPropagation::LampIrradiance); a renderer takes that off the points'
+ * values and adds the nodes', so that only the smooth rest is interpolated. A node on the border of patches of one surface is computed once
  * (by its (surface, u, v)) and shared by them.
  *
  * Rays start a hair inside the patch and off its front (RayOrigin in the source), so that at

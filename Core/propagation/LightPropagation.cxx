@@ -490,6 +490,40 @@ glm::dvec3 LightPropagation::ExitantRadianceToward(std::size_t patch,
                : this->ExitantRadiance(patch);
 }
 
+std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>& lampPatch,
+  bool firstBounce) const
+{
+  const std::size_t count = this->PatchCount();
+  if (lampPatch.size() != count)
+  {
+    throw std::invalid_argument("LightPropagation::LampIrradiance: " +
+      std::to_string(lampPatch.size()) + " lamp flags for " + std::to_string(count) + " patches");
+  }
+  // Column j holds every receiver of patch j's light: one sweep per generation.
+  std::vector<glm::dvec3> direct(count, glm::dvec3(0.0));
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    if (!lampPatch[j])
+    {
+      continue;
+    }
+    for (std::size_t k = this->Cover.ColumnBegin(j); k < this->Cover.ColumnEnd(j); ++k)
+    {
+      direct[this->Cover.ColumnAt(k).Receiver] += this->ColumnMeasure[k] * this->Le[j];
+    }
+  }
+  std::vector<glm::dvec3> lamp = direct;
+  for (std::size_t j = 0; firstBounce && j < count; ++j)
+  {
+    const glm::dvec3 reflected = this->Rho[j] / Pi * direct[j];
+    for (std::size_t k = this->Cover.ColumnBegin(j); k < this->Cover.ColumnEnd(j); ++k)
+    {
+      lamp[this->Cover.ColumnAt(k).Receiver] += this->ColumnMeasure[k] * reflected;
+    }
+  }
+  return lamp;
+}
+
 EnergyBalance LightPropagation::Energy() const
 {
   EnergyBalance balance;

@@ -263,6 +263,18 @@ public:
   /// Emitted power summed over the bands, W.
   double EmittedPower() const { return this->TotalEmitted; }
   EnergyBalance Energy() const;
+  /**
+   * The lamps' light at every point as the cover's regions carry it, per band (W m^-2): the
+   * direct irradiance E_d,i = sum over the entries e = (i, j) of lamp patches j of m_e Le_j,
+   * plus, with `firstBounce`, its first Lambertian reflection sum_e m_e k_d,j / pi E_d,j
+   * (m_e = f_e Omega_e, the measure the propagation counts the region with). This is the part
+   * of Irradiance() that DirectIrradianceNodes computes finer, on the patches' nodes: a
+   * renderer that adds the nodes takes this off the points' values, so that the cover's
+   * coarser version of the same light is not counted twice. `lampPatch`: per patch whether it
+   * is a lamp. Throws std::invalid_argument when its size is not PatchCount().
+   */
+  std::vector<glm::dvec3> LampIrradiance(const std::vector<bool>& lampPatch,
+    bool firstBounce) const;
   const std::vector<ShotRecord>& History() const { return this->Shots; }
   /// The Lambertian reflectance k_d of patch i (rho for diffuse, the diffuse part of phong, 0
   /// for mirror and tabulated).

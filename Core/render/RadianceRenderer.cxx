@@ -4,6 +4,7 @@
 #include "render/BuriedPoints.h"
 
 #include "math/Constants.h"
+#include "math/PatternShift.h"
 #include "math/RadicalInverse.h"
 
 #include "cover/HemisphereGrid.h"
@@ -66,15 +67,6 @@ void SampleOffsets(int samples, std::vector<double>& offsetX, std::vector<double
   }
 }
 
-/// SplitMix64's finaliser: a well-mixed 64-bit value of x.
-uint64_t Mix(uint64_t x)
-{
-  x += 0x9E3779B97F4A7C15ull;
-  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
-  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
-  return x ^ (x >> 31);
-}
-
 /// The shift of a pixel's sample pattern (a Cranley-Patterson rotation, in [0,1)^2, from the
 /// pixel's index alone). With one pattern for every pixel, an edge across a row of pixels cuts
 /// every pixel's pattern at the same place, and the error of its coverage (up to one sample in
@@ -84,10 +76,7 @@ uint64_t Mix(uint64_t x)
 /// stratum (the shift is modulo 1).
 void PixelShift(std::size_t pixel, double& shiftX, double& shiftY)
 {
-  const uint64_t a = Mix(static_cast<uint64_t>(pixel));
-  const uint64_t b = Mix(a);
-  shiftX = static_cast<double>(a >> 11) * 0x1.0p-53;
-  shiftY = static_cast<double>(b >> 11) * 0x1.0p-53;
+  PatternShift(static_cast<uint64_t>(pixel), shiftX, shiftY);
 }
 
 /// x modulo 1 for x in [0, 2).
@@ -317,8 +306,15 @@ glm::dvec3 RadianceRenderer::Textured(int surface,
 
 DirectLight::DirectLight(DirectIrradianceNodes nodes,
   const std::vector<glm::dvec3>& diffuse,
-  std::size_t points)
+  std::size_t points,
+  const std::vector<glm::dvec3>& coverIrradiance)
 {
+  if (!coverIrradiance.empty() && coverIrradiance.size() != points)
+  {
+    throw std::invalid_argument("the cover's lamp irradiance of " +
+      std::to_string(coverIrradiance.size()) + " points for " + std::to_string(points) +
+      " characteristic points");
+  }
   const std::size_t perPoint =
     3 * static_cast<std::size_t>(nodes.NodesPerSide) * static_cast<std::size_t>(nodes.NodesPerSide);
   if (diffuse.size() != points || nodes.Values.size() != perPoint * points)
@@ -334,6 +330,19 @@ DirectLight::DirectLight(DirectIrradianceNodes nodes,
     this->Factor[p] = diffuse[p] / Pi;
   }
   this->Nodes = std::move(nodes);
+  if (!coverIrradiance.empty())
+  {
+    this->CoverPart.resize(points);
+    for (std::size_t p = 0; p < points; ++p)
+    {
+      this->CoverPart[p] = this->Factor[p] * coverIrradiance[p];
+    }
+  }
+}
+
+glm::dvec3 DirectLight::PointPart(std::size_t point) const
+{
+  return this->CoverPart.empty() ? this->AtPoint(point) : this->CoverPart[point];
 }
 
 glm::dvec3 DirectLight::AtPoint(std::size_t point) const
@@ -368,7 +377,7 @@ std::vector<glm::dvec3> DirectLight::Rest(std::vector<glm::dvec3> exitantRadianc
   {
     for (std::size_t p = 0; p < exitantRadiance.size(); ++p)
     {
-      exitantRadiance[p] -= this->AtPoint(p);
+      exitantRadiance[p] -= this->PointPart(p);
     }
   }
   return exitantRadiance;
@@ -385,7 +394,7 @@ void RadianceRenderer::SetDirectLight(DirectLight direct)
   // The rest is taken of the points' own I (an earlier direct light given back first).
   for (std::size_t p = 0; p < this->Exitant.size() && !this->Direct.Empty(); ++p)
   {
-    this->Exitant[p] += this->Direct.AtPoint(p);
+    this->Exitant[p] += this->Direct.PointPart(p);
   }
   this->Exitant = direct.Rest(std::move(this->Exitant));
   this->Direct = std::move(direct);

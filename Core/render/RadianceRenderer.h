@@ -143,10 +143,16 @@ struct DirectLight
   /// rho / pi of every point.
   std::vector<glm::dvec3> Factor;
 
-  /// Throws std::invalid_argument when the sizes differ from `points`.
+  /// rho / pi times the same light as the cover carries it at every point
+  /// (LightPropagation::LampIrradiance), or empty.
+  std::vector<glm::dvec3> CoverPart;
+
+  /// Throws std::invalid_argument when the sizes differ from `points` (`coverIrradiance`: 0 or
+  /// `points`).
   DirectLight(DirectIrradianceNodes nodes,
     const std::vector<glm::dvec3>& diffuse,
-    std::size_t points);
+    std::size_t points,
+    const std::vector<glm::dvec3>& coverIrradiance = {});
   DirectLight() = default;
   bool Empty() const { return this->Nodes.Empty(); }
   /// rho / pi E_direct at the point's own centre, the characteristic point.
@@ -157,7 +163,12 @@ struct DirectLight
     int surface,
     double u,
     double v) const;
-  /// The rest that §5.3.2 interpolates between the points: I - AtPoint, per point.
+  /// What the points' I holds of the nodes' light: CoverPart when given, else AtPoint (at a
+  /// point the render is then I itself).
+  glm::dvec3 PointPart(std::size_t point) const;
+  /// The rest that §5.3.2 interpolates between the points: I - PointPart, per point. With
+  /// CoverPart, the cover's coarser version of the nodes' light is replaced by the nodes' at
+  /// the points too.
   std::vector<glm::dvec3> Rest(std::vector<glm::dvec3> exitantRadiance) const;
 };
 

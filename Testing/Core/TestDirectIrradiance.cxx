@@ -328,14 +328,29 @@ TEST(DirectIrradiance, NoBrightEmitterNoNodesAndBadSizesRefused)
   EXPECT_TRUE(nodes.Empty());
 }
 
-TEST(DirectIrradiance, RendererKeepsThePointsAndAddsTheNodesBetween)
+namespace
+{
+/// The floor of LampOverFloor (its first 9 patches) and the nodes of its direct light.
+std::vector<Patch> LitFloor()
 {
   const std::vector<Patch> all = LampOverFloor(false);
-  const std::vector<Patch> floor(all.begin(), all.begin() + 9);
-  const DirectIrradianceNodes lit = Compute(all);
+  return std::vector<Patch>(all.begin(), all.begin() + 9);
+}
+
+DirectIrradianceNodes LitFloorNodes()
+{
+  const DirectIrradianceNodes lit = Compute(LampOverFloor(false));
   DirectIrradianceNodes nodes;
   nodes.NodesPerSide = lit.NodesPerSide;
   nodes.Values.assign(lit.Values.begin(), lit.Values.begin() + 9 * 9 * 3);
+  return nodes;
+}
+}
+
+TEST(DirectIrradiance, RendererKeepsThePointsAndAddsTheNodesBetween)
+{
+  const std::vector<Patch> floor = LitFloor();
+  const DirectIrradianceNodes nodes = LitFloorNodes();
   // Every floor point's I: its reflected direct light plus an even rest of 0.1.
   const glm::dvec3 rho(0.5, 0.6, 0.7);
   std::vector<glm::dvec3> exitant;
@@ -368,4 +383,46 @@ TEST(DirectIrradiance, RendererKeepsThePointsAndAddsTheNodesBetween)
   }
   EXPECT_THROW(
     DirectLight(nodes, std::vector<glm::dvec3>(2, rho), floor.size()), std::invalid_argument);
+}
+
+TEST(DirectIrradiance, RendererReplacesTheCoversVersionOfTheNodesLightAtThePoints)
+{
+  // The points' I holds the cover's version of the nodes' light (here 90 % of the nodes' own
+  // value at the centre, as a coarse cover might see it) plus an even rest of 0.1: given that
+  // version (CoverLampIrradiance), the render is the rest plus the nodes' light everywhere, at
+  // the points too.
+  const std::vector<Patch> floor = LitFloor();
+  const DirectIrradianceNodes nodes = LitFloorNodes();
+  const glm::dvec3 rho(0.5, 0.6, 0.7);
+  std::vector<glm::dvec3> exitant;
+  std::vector<glm::dvec3> coverIrradiance;
+  for (std::size_t p = 0; p < floor.size(); ++p)
+  {
+    coverIrradiance.push_back(0.9 * nodes.At(p, 0.5, 0.5));
+    exitant.push_back(rho / Pi * coverIrradiance.back() + glm::dvec3(0.1));
+  }
+  RadianceRenderer renderer(floor, CharacteristicPointInterpolator::OfPatches(floor), exitant);
+  renderer.SetDirectLight(DirectLight(
+    nodes, std::vector<glm::dvec3>(floor.size(), rho), floor.size(), coverIrradiance));
+  for (std::size_t p = 0; p < floor.size(); ++p)
+  {
+    const glm::dvec3 atPoint =
+      renderer.SurfaceRadiance(0, floor[p].Domain.CenterU(), floor[p].Domain.CenterV());
+    for (int band = 0; band < 3; ++band)
+    {
+      EXPECT_NEAR(atPoint[band], 0.1 + rho[band] / Pi * nodes.At(p, 0.5, 0.5)[band], 1e-9)
+        << "point " << p;
+    }
+  }
+  const glm::dvec3 inside = renderer.SurfaceRadiance(0, 0.4, 0.1);
+  for (int band = 0; band < 3; ++band)
+  {
+    EXPECT_NEAR(
+      inside[band], 0.1 + rho[band] / Pi * nodes.At(1, 0.4 * 3.0 - 1.0, 0.1 * 3.0)[band], 1e-9);
+  }
+  EXPECT_THROW(DirectLight(nodes,
+                 std::vector<glm::dvec3>(floor.size(), rho),
+                 floor.size(),
+                 std::vector<glm::dvec3>(2, rho)),
+    std::invalid_argument);
 }

@@ -289,6 +289,42 @@ TEST(LightPropagation, HowellParallelRectanglesWithOneLamp)
   }
 }
 
+TEST(LightPropagation, LampIrradianceIsTheFirstTwoGenerationsOfTheLampsLight)
+{
+  // Lamp A (rho = 0) facing white B, nothing else: B receives only A's direct light, and A only
+  // B's first reflection of it (A reflects nothing, B does not see itself). So the converged
+  // Irradiance of progressive shooting is, at every patch, the lamps' direct light plus its
+  // first bounce, which LampIrradiance sums in two sweeps over the columns instead.
+  CoveredScene setup("howell_parallel.scene", 4);
+  const int lamp = setup.Environment.FindMaterial("lamp");
+  ASSERT_GE(lamp, 0);
+  LightPropagation propagation(setup.Cover, setup.Materials);
+  PropagationSettings settings;
+  settings.ConvergenceTolerance = 1e-14;
+  ASSERT_TRUE(propagation.Run(settings));
+  std::vector<bool> lampPatch;
+  for (const Patch& patch : setup.Patches)
+  {
+    lampPatch.push_back(setup.Environment.Surfaces[patch.SurfaceIndex].MaterialIndex == lamp);
+  }
+  const std::vector<glm::dvec3> direct = propagation.LampIrradiance(lampPatch, false);
+  const std::vector<glm::dvec3> twoGenerations = propagation.LampIrradiance(lampPatch, true);
+  ASSERT_EQ(direct.size(), setup.Patches.size());
+  double lampReceived = 0.0;
+  for (std::size_t i = 0; i < setup.Patches.size(); ++i)
+  {
+    const glm::dvec3 e = propagation.Irradiance(i);
+    lampReceived += lampPatch[i] ? e.x : 0.0;
+    for (int b = 0; b < 3; ++b)
+    {
+      EXPECT_NEAR(twoGenerations[i][b], e[b], 1e-9 * (1.0 + e[b])) << "patch " << i;
+      EXPECT_NEAR(direct[i][b], lampPatch[i] ? 0.0 : e[b], 1e-9 * (1.0 + e[b])) << "patch " << i;
+    }
+  }
+  EXPECT_GT(lampReceived, 0.0);
+  EXPECT_THROW(propagation.LampIrradiance(std::vector<bool>(2, true), true), std::invalid_argument);
+}
+
 TEST(LightPropagation, AShotCostsOneColumn)
 {
   // §5.2: a diffuse shot evaluates the shooter's radiance once and updates one entry per

@@ -257,7 +257,9 @@ int TestPatchSceneReader(int, char*[])
     reader->Update();
     const sphcover::SceneSettings current =
       vtkSceneSettingsArray::Read(reader->GetOutput()->GetFieldData());
-    Check(current.MinPatchSize == 0.05 && current.MaxLevel == 5, "min_patch_size reads back");
+    Check(current.MinPatchSize == 0.05 && current.MaxLevel == 4 && current.ThetaBins == 16 &&
+        current.PhiBins == 64,
+      "min_patch_size reads back");
     vtkNew<vtkDoubleArray> older;
     older->SetName(vtkSphericalCoverArrayNames::SceneSettings);
     older->SetNumberOfComponents(4);

@@ -3,8 +3,8 @@ pipeline (reader, subdivision, spherical cover, light propagation, vtkRadianceIm
 agrees block-wise with the Blender Cycles path tracing of Data/reference/cornell_box_cycles.exr
 (512 x 512, 2048 spp, block noise 0.17 %), read with vtkOpenEXRReader.
 
-At the scene's settings (32 x 128 hemisphere grid, max_level 5, tolerance 0.02; the solve
-takes ~30 s on an idle 2-core machine), rendered at 128 x 128 with 64 stratified samples per
+At the scene's settings (16 x 64 hemisphere grid, max_level 4, tolerance 0.02; the solve
+takes ~8 s on an idle 2-core machine), rendered at 128 x 128 with 64 stratified samples per
 pixel: its 4 x 4-pixel blocks cover the same regions as the reference's 16 x 16 blocks (block
 means are area integrals: a 128 x 128 render with 1024 spp and a 512 x 512 one with 64 spp
 differ by a block-RMS of 0.0026, against 0.082 to Cycles).
@@ -25,11 +25,16 @@ Core/cover/DirectIrradiance.h) e = 0.0137, and the issue-16 metric
 and a 64 x 64 grid, here 8-px and 2-px blocks) 0.95 % and 1.76 % (the direct light alone at
 the nodes: 1.12 % and 2.03 %; no nodes: 1.7 % and 3.0 %).
 
+2026-12-03 (session 11): the cover's own version of that light is taken off the points'
+values (vtkLightPropagationFilter's CoverLampIrradiance), so the nodes replace it at the points
+too, and the scene's settings became a 16 x 64 grid at max_level 4: 0.83 % and 1.83 % (the
+same settings without the replacement: 3.97 % and 6.29 %).
+
 Asserted, with margins for changes of the method that are not regressions (~0.02 on the
 block errors):
   - e < 0.06 and every e_c < 0.07;
-  - the luminance block errors of the 16 x 16 and 64 x 64 grids below 1.05 % and 1.95 % (the
-    direct light and its first bounce from the nodes; without the bounce 1.12 % and 2.03 %);
+  - the luminance block errors of the 16 x 16 and 64 x 64 grids below 0.95 % and 1.95 % (the
+    direct light and its first bounce from the nodes, the cover's version of it taken off);
   - each image mean within 1 % of the reference's (the balance off misses it by half of that
     at coarser settings: -4.6 % at max_level 2 and a 16 x 64 grid).
 Checked by hand: halving the emission (means -50 %), swapping the R and B bands of the red
@@ -59,7 +64,7 @@ print(compare_sphcover.error_map_text(result))
 luminance = time_to_accuracy.errors_against(image, reference)
 print("luminance block errors (issue 16's metric): "
       + ", ".join(f"{grid} x {grid} blocks {100 * value:.2f} %" for grid, value in luminance.items()))
-for grid, limit in ((16, 0.0105), (64, 0.0195)):
+for grid, limit in ((16, 0.0095), (64, 0.0195)):
     if not luminance[grid] < limit:
         failures.append(f"luminance block error on {grid} x {grid} blocks "
                         f"{100 * luminance[grid]:.2f} % >= {100 * limit:.2f} %")
