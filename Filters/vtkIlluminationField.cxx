@@ -4,6 +4,7 @@
 #include "vtkCoverPatches.h"
 #include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
+#include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -38,15 +39,6 @@ namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
-/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as a byte; the
-/// encoding of vtkRadianceImageFilter's RGB, so the field and the image show the same colours.
-unsigned char EncodeSRGB(double linear)
-{
-  const double c = std::clamp(linear, 0.0, 1.0);
-  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(255.0 * encoded));
-}
-
 /// DisplayRGB: the radiance exposed by `scale` and sRGB-encoded, for display without a colour
 /// map (ParaView's Map Scalars off).
 vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkFloatArray* radiance, double scale)
@@ -59,7 +51,9 @@ vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkFloatArray* radiance, do
   unsigned char* out = rgb->GetPointer(0);
   for (vtkIdType k = 0; k < 3 * radiance->GetNumberOfTuples(); ++k)
   {
-    out[k] = EncodeSRGB(scale * in[k]);
+    // The encoding of vtkRadianceImageFilter's RGB: the field and the image show the same
+    // colours.
+    out[k] = vtkSolutionRenderer::EncodeSRGB(scale * in[k]);
   }
   return rgb;
 }
