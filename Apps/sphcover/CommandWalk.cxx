@@ -106,6 +106,16 @@ std::vector<sphcover::Camera> WalkCameras(const Options& options, const SavedSol
   return sphcover::OrbitPath(start, options.Orbit, sphcover::OrbitPivot(start, lower, upper));
 }
 
+/// --size: every camera at width x height (nothing when 0).
+void ResizeCameras(int width, int height, std::vector<sphcover::Camera>& cameras)
+{
+  for (sphcover::Camera& camera : cameras)
+  {
+    camera.Width = width > 0 ? width : camera.Width;
+    camera.Height = height > 0 ? height : camera.Height;
+  }
+}
+
 /// Refuses a camera the renderer cannot render within the budgets before any frame is written,
 /// naming the camera's place in the path.
 void CheckWalkBudgets(const Options& options,
@@ -151,11 +161,18 @@ int RunWalk(const Options& options)
   CheckFrameFolder(options.Output);
   CheckOutputPath("--report", options.Report, { ".json" }, "report");
   std::vector<sphcover::Camera> cameras;
+  int width = 0;
+  int height = 0;
+  if (!options.Size.empty())
+  {
+    ParseSize(options.Size, width, height);
+  }
   if (!options.PathFile.empty())
   {
     cameras = WalkCameras(options, nullptr);
   }
   const sphcover::RenderSettings settings = RenderBudget(options);
+  ResizeCameras(width, height, cameras);
   CheckWalkBudgets(options, cameras, settings);
 
   // The solution, read once.
@@ -171,6 +188,7 @@ int RunWalk(const Options& options)
   if (options.PathFile.empty())
   {
     cameras = WalkCameras(options, &saved);
+    ResizeCameras(width, height, cameras);
     CheckWalkBudgets(options, cameras, settings);
   }
 

@@ -12,8 +12,8 @@
  *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH]
  *                   [--spp N] [--exposure E] [--solution solution.vtm] [--report report.json]
  *                   [--set k=v]
- *   sphcover walk SOLUTION (--path PATH.json | --orbit N) -o FOLDER [--exr] [--spp N]
- *                 [--exposure E] [--report report.json]
+ *   sphcover walk SOLUTION (--path PATH.json | --orbit N) -o FOLDER [--size WxH] [--exr]
+ *                 [--spp N] [--exposure E] [--report report.json]
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
  * half-written, also when interrupted (OutputFiles.h).
@@ -185,6 +185,8 @@ int main(int argc, char** argv)
     ->excludes(pathOption);
   walk->add_option("-o,--output", options.Output, "Folder of the frames (created if missing)")
     ->required();
+  walk->add_option(
+    "--size", options.Size, "Frame size WIDTHxHEIGHT of every camera (default: each camera's)");
   walk->add_flag("--exr", options.Exr, "Also write frame_NNNN.exr (HDR Radiance and depth)");
   walk->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
     ->check(CLI::Range(1, 4096));

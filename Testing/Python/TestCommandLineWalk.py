@@ -132,12 +132,12 @@ else:
             not any(line.startswith("ms per frame: ") for line in lines):
         failures.append(f"walk does not print the milliseconds per frame: {result.stdout!r}")
 
-# --orbit: its first camera is the scene's first, at its size (512 x 512 for the Cornell box).
+# --orbit: its first camera is the scene's first (--size as render's).
 orbit = os.path.join(folder, "orbit")
 report = os.path.join(folder, "orbit.json")
 result = run("walk", cornell_solution, "--orbit", "3", "-o", orbit, "--spp", "1", "--quiet",
-             "--report", report)
-rendered = run("render", cornell, "--solution", cornell_solution, "--spp", "1",
+             "--report", report, "--size", "96x64")
+rendered = run("render", cornell, "--solution", cornell_solution, "--spp", "1", "--size", "96x64",
                "-o", os.path.join(folder, "render_orbit.png"), "--quiet")
 if result.returncode != 0 or rendered.returncode != 0:
     failures.append(f"walk --orbit or render failed: {result.stderr.strip()} "
@@ -151,8 +151,8 @@ else:
     frames_report = json.load(open(report))["frames"]
     if len(frames_report) != 3 or not all(f["render_ms"] > 0 for f in frames_report):
         failures.append(f"the report's frames: {frames_report}")
-    if png(os.path.join(orbit, "frame_0001.png")).shape != (512, 512, 3):
-        failures.append("an orbit frame is not the scene camera's size")
+    if png(os.path.join(orbit, "frame_0001.png")).shape != (64, 96, 3):
+        failures.append("an orbit frame is not of --size")
 
 # --- 2. A mirror shows the image source where it projects, and it moves with the camera ------
 # A mirror in the plane y = 0 (k_s 0.9) and a small lamp at y = 1 facing it: the lamp's
@@ -334,6 +334,7 @@ bad_commands = {
     "no such solution": (["--path", path], "nothing.vtm"),
     "file as folder": (["--path", path], "file.txt"),
     "exposure": (["--path", path, "--exposure", "0"], "--exposure"),
+    "size": (["--path", path, "--size", "64"], "--size"),
 }
 for name, (arguments, named) in bad_commands.items():
     solution = os.path.join(folder, "nothing.vtm") if name == "no such solution" \
