@@ -16,6 +16,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -58,14 +59,15 @@ vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkFloatArray* radiance, do
   return rgb;
 }
 
-/// The field's point arrays: position, Radiance, Normals and SurfaceId, (n + 1)^2 points per
-/// patch.
+/// The field's point arrays: position, Radiance, Normals, SurfaceId and UV, (n + 1)^2 points
+/// per patch.
 struct FieldPoints
 {
   vtkNew<vtkPoints> Points;
   vtkNew<vtkFloatArray> Radiance;
   vtkNew<vtkFloatArray> Normals;
   vtkNew<vtkIntArray> SurfaceId;
+  vtkNew<vtkDoubleArray> UV;
 
   explicit FieldPoints(vtkIdType count)
   {
@@ -79,6 +81,9 @@ struct FieldPoints
     this->Normals->SetNumberOfTuples(count);
     this->SurfaceId->SetName(names::SurfaceId);
     this->SurfaceId->SetNumberOfTuples(count);
+    this->UV->SetName(names::UV);
+    this->UV->SetNumberOfComponents(2);
+    this->UV->SetNumberOfTuples(count);
   }
 };
 
@@ -119,6 +124,8 @@ void SamplePatch(const sphcover::Patch& patch,
           static_cast<float>(normal.x), static_cast<float>(normal.y), static_cast<float>(normal.z) }
           .data());
       field.SurfaceId->SetValue(id, patch.SurfaceIndex);
+      field.UV->SetTypedComponent(id, 0, u);
+      field.UV->SetTypedComponent(id, 1, v);
     }
   }
 }
@@ -194,6 +201,7 @@ void WriteField(FieldPoints& field, vtkIdType patchCount, int n, double scale, v
   output->GetPointData()->AddArray(field.Radiance);
   output->GetPointData()->SetNormals(field.Normals);
   output->GetPointData()->AddArray(field.SurfaceId);
+  output->GetPointData()->AddArray(field.UV);
   output->GetPointData()->SetScalars(DisplayColours(field.Radiance, scale));
   output->GetCellData()->AddArray(patchId);
 }
