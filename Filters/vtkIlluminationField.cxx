@@ -4,6 +4,7 @@
 #include "vtkCoverPatches.h"
 #include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
+#include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkStageProgress.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -15,6 +16,7 @@
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
+#include <vtkDoubleArray.h>
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -38,15 +40,6 @@ namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
-/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as a byte; the
-/// encoding of vtkRadianceImageFilter's RGB, so the field and the image show the same colours.
-unsigned char EncodeSRGB(double linear)
-{
-  const double c = std::clamp(linear, 0.0, 1.0);
-  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(255.0 * encoded));
-}
-
 /// DisplayRGB: the radiance exposed by `scale` and sRGB-encoded, for display without a colour
 /// map (ParaView's Map Scalars off).
 vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkFloatArray* radiance, double scale)
@@ -59,19 +52,22 @@ vtkSmartPointer<vtkUnsignedCharArray> DisplayColours(vtkFloatArray* radiance, do
   unsigned char* out = rgb->GetPointer(0);
   for (vtkIdType k = 0; k < 3 * radiance->GetNumberOfTuples(); ++k)
   {
-    out[k] = EncodeSRGB(scale * in[k]);
+    // The encoding of vtkRadianceImageFilter's RGB: the field and the image show the same
+    // colours.
+    out[k] = vtkSolutionRenderer::EncodeSRGB(scale * in[k]);
   }
   return rgb;
 }
 
-/// The field's point arrays: position, Radiance, Normals and SurfaceId, (n + 1)^2 points per
-/// patch.
+/// The field's point arrays: position, Radiance, Normals, SurfaceId and UV, (n + 1)^2 points
+/// per patch.
 struct FieldPoints
 {
   vtkNew<vtkPoints> Points;
   vtkNew<vtkFloatArray> Radiance;
   vtkNew<vtkFloatArray> Normals;
   vtkNew<vtkIntArray> SurfaceId;
+  vtkNew<vtkDoubleArray> UV;
 
   explicit FieldPoints(vtkIdType count)
   {
@@ -85,6 +81,9 @@ struct FieldPoints
     this->Normals->SetNumberOfTuples(count);
     this->SurfaceId->SetName(names::SurfaceId);
     this->SurfaceId->SetNumberOfTuples(count);
+    this->UV->SetName(names::UV);
+    this->UV->SetNumberOfComponents(2);
+    this->UV->SetNumberOfTuples(count);
   }
 };
 
@@ -130,6 +129,8 @@ void SamplePatch(const sphcover::Patch& patch,
           static_cast<float>(normal.x), static_cast<float>(normal.y), static_cast<float>(normal.z) }
           .data());
       field.SurfaceId->SetValue(id, patch.SurfaceIndex);
+      field.UV->SetTypedComponent(id, 0, u);
+      field.UV->SetTypedComponent(id, 1, v);
     }
   }
 }
@@ -205,6 +206,7 @@ void WriteField(FieldPoints& field, vtkIdType patchCount, int n, double scale, v
   output->GetPointData()->AddArray(field.Radiance);
   output->GetPointData()->SetNormals(field.Normals);
   output->GetPointData()->AddArray(field.SurfaceId);
+  output->GetPointData()->AddArray(field.UV);
   output->GetPointData()->SetScalars(DisplayColours(field.Radiance, scale));
   output->GetCellData()->AddArray(patchId);
 }

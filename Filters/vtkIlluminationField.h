@@ -14,7 +14,8 @@
  * Fig. 6), clamped at zero.
  *
  * Output (vtkPolyData): quads with point data `Radiance` (float RGB, W m^-2 sr^-1), `Normals`
- * (front side), `SurfaceId` and, as the active scalars, `DisplayRGB` (unsigned char RGB: the
+ * (front side), `SurfaceId`, `UV` (the vertex's (u, v) in its surface's parameters, where
+ * vtkViewDependentRadiance evaluates the view-dependent radiance) and, as the active scalars, `DisplayRGB` (unsigned char RGB: the
  * radiance times 2^Exposure, clamped to [0, 1] and sRGB-encoded, as vtkRadianceImageFilter's
  * `RGB`), and cell data `PatchId`. Show `DisplayRGB` with Map Scalars off and lighting off
  * (the colours are the light already) to see the true colours; colour by `Radiance` for

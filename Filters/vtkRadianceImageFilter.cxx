@@ -2,38 +2,30 @@
 #include "vtkRadianceImageFilter.h"
 
 #include "vtkCoverPatches.h"
-#include "vtkIlluminationAdapter.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSceneCameras.h"
+#include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkStageProgress.h"
-#include "vtkSurfaceGridAdapter.h"
 
-#include "render/CharacteristicPointInterpolator.h"
 #include "render/RadianceRenderer.h"
-#include "scene/Scene.h"
-#include "subdivision/Patch.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
-#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationDataObjectMetaDataKey.h>
 #include <vtkInformationVector.h>
-#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
-#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
-#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <cmath>
 #include <exception>
-#include <set>
+#include <memory>
 #include <sstream>
 
 namespace names = vtkSphericalCoverArrayNames;
@@ -42,14 +34,6 @@ vtkStandardNewMacro(vtkRadianceImageFilter);
 
 namespace
 {
-/// The sRGB transfer function (IEC 61966-2-1) of a linear value in [0, 1], as a byte.
-unsigned char EncodeSRGB(double linear)
-{
-  const double c = std::clamp(linear, 0.0, 1.0);
-  const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-  return static_cast<unsigned char>(std::lround(255.0 * encoded));
-}
-
 /// The camera `name` (or the first) of the scene as the inputs' pipeline information carries
 /// it, known before any data exists (vtkPatchSceneReader); false when they carry none.
 bool FindCameraInformation(vtkInformationVector** inputVector,
@@ -128,56 +112,16 @@ sphcover::RenderSettings RenderSettingsOf(vtkRadianceImageFilter* self)
   return settings;
 }
 
-/// The radiance image of the patches lit by `lit` seen by `camera` (paper §5.3), reporting
-/// progress up to 0.95; false, with a warning or the error reported, when the inputs do not
-/// belong to one solution, the rendering was aborted or failed.
+/// The radiance image of `camera` (paper §5.3), reporting progress up to 0.95; false, with a
+/// warning or the error reported, when the rendering was aborted or failed.
 bool RenderImage(vtkRadianceImageFilter* self,
-  std::vector<sphcover::Patch> patches,
-  vtkIlluminationAdapter::Illumination& lit,
+  const sphcover::RadianceRenderer& renderer,
   const sphcover::Camera& camera,
   const sphcover::RenderSettings& settings,
   sphcover::RenderedImage& image)
 {
   try
   {
-    // Every patch's surface must hold characteristic points, or the two inputs do not belong
-    // to one solution.
-    std::set<int> missing;
-    for (const sphcover::Patch& patch : patches)
-    {
-      if (!lit.Interpolator.HasPoints(patch.SurfaceIndex))
-      {
-        missing.insert(patch.SurfaceIndex);
-      }
-    }
-    if (!missing.empty())
-    {
-      vtkErrorWithObjectMacro(self,
-        << "Cannot render: surface " << *missing.begin()
-        << " of the patches has no characteristic point in the illumination; the "
-           "two inputs do not come from one solution.");
-      return false;
-    }
-    sphcover::RadianceRenderer renderer(std::move(patches),
-      std::move(lit.Interpolator),
-      std::move(lit.ExitantRadiance),
-      std::move(lit.TwoSidedSurface));
-    if (!lit.Direct.Empty())
-    {
-      // The lamps' direct light from its nodes, the rest interpolated (DirectIrradiance.h).
-      renderer.SetDirectLight(std::move(lit.Direct));
-    }
-    if (!lit.Textures.empty())
-    {
-      // Textured surfaces: the texture at each visible point (paper §5.4).
-      renderer.SetSurfaceTextures(std::move(lit.Textures));
-    }
-    if (lit.Directional)
-    {
-      // Non-diffuse surfaces: the BRDF toward the eye applied to the interpolated incident
-      // radiance E of the cover (paper §5.3.1).
-      renderer.SetDirectionalIllumination(std::move(*lit.Directional));
-    }
     vtkStageProgress progress(self, "Radiance Image: rendering", 0.0, 0.95);
     const bool completed = renderer.Render(camera,
       settings,
@@ -196,43 +140,6 @@ bool RenderImage(vtkRadianceImageFilter* self,
     return false;
   }
   return true;
-}
-
-/// The output image: per pixel Radiance, Depth and SurfaceId, and as its scalars the RGB bytes
-/// of the exposed radiance, sRGB-encoded.
-void WriteImage(const sphcover::RenderedImage& image, double exposure, vtkImageData* output)
-{
-  const vtkIdType pixels = static_cast<vtkIdType>(image.Width) * image.Height;
-  output->Initialize();
-  output->SetExtent(0, image.Width - 1, 0, image.Height - 1, 0, 0);
-  output->SetSpacing(1.0, 1.0, 1.0);
-  output->SetOrigin(0.0, 0.0, 0.0);
-  vtkNew<vtkFloatArray> radiance;
-  radiance->SetName(names::Radiance);
-  radiance->SetNumberOfComponents(3);
-  radiance->SetNumberOfTuples(pixels);
-  std::copy(image.Radiance.begin(), image.Radiance.end(), radiance->GetPointer(0));
-  vtkNew<vtkFloatArray> depth;
-  depth->SetName(names::Depth);
-  depth->SetNumberOfTuples(pixels);
-  std::copy(image.Depth.begin(), image.Depth.end(), depth->GetPointer(0));
-  vtkNew<vtkIntArray> surface;
-  surface->SetName(names::SurfaceId);
-  surface->SetNumberOfTuples(pixels);
-  std::copy(image.SurfaceId.begin(), image.SurfaceId.end(), surface->GetPointer(0));
-  vtkNew<vtkUnsignedCharArray> rgb;
-  rgb->SetName(names::RGB);
-  rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(pixels);
-  unsigned char* bytes = rgb->GetPointer(0);
-  for (size_t k = 0; k < image.Radiance.size(); ++k)
-  {
-    bytes[k] = EncodeSRGB(exposure * image.Radiance[k]);
-  }
-  output->GetPointData()->AddArray(radiance);
-  output->GetPointData()->AddArray(depth);
-  output->GetPointData()->AddArray(surface);
-  output->GetPointData()->SetScalars(rgb);
 }
 }
 
@@ -323,19 +230,21 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
                      "patches (vtkIntervalSubdivisionFilter's output 0) to port 1 (Patches).");
     return 0;
   }
-  vtkIlluminationAdapter::Illumination lit;
+  // The solution's renderer (vtkSolutionRenderer: the same as a walk-through's, frame for
+  // frame), then the one view.
+  std::unique_ptr<sphcover::RadianceRenderer> renderer;
   std::string problem;
-  if (!vtkIlluminationAdapter::Read(illumination, lit, problem))
+  try
+  {
+    renderer = vtkSolutionRenderer::New(illumination, patchesInput, problem);
+  }
+  catch (const std::exception& e)
+  {
+    problem = e.what();
+  }
+  if (!renderer)
   {
     vtkErrorMacro(<< "Cannot render: " << problem << ".");
-    return 0;
-  }
-
-  sphcover::Scene scene;
-  std::vector<sphcover::Patch> patches;
-  if (!vtkSurfaceGridAdapter::ToPatches(patchesInput, scene, patches, problem))
-  {
-    vtkErrorMacro(<< "Cannot render: the patches on port 1 cannot be used: " << problem);
     return 0;
   }
 
@@ -376,11 +285,11 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   }
 
   sphcover::RenderedImage image;
-  if (!RenderImage(this, std::move(patches), lit, camera, settings, image))
+  if (!RenderImage(this, *renderer, camera, settings, image))
   {
     return 0;
   }
-  WriteImage(image, this->Exposure, output);
+  vtkSolutionRenderer::ToImageData(image, this->Exposure, output);
   this->UpdateProgress(1.0);
   return 1;
 }

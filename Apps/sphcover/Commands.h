@@ -23,6 +23,9 @@ int RunSolve(const Options& options);
 
 /// sphcover render: the whole pipeline (or a saved solution) and the image of paper §5.3.
 int RunRender(const Options& options);
+
+/// sphcover walk: a saved solution's images of paper §5.3 through every camera of a path.
+int RunWalk(const Options& options);
 }
 
 #endif

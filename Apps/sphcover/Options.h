@@ -30,6 +30,11 @@ struct Options
   std::string Camera;
   std::string Size;
   std::string SolutionFile;
+  /// sphcover walk: the camera path file (--path), or the number of cameras of an orbit
+  /// (--orbit, 0: none), and whether EXR frames are added (--exr).
+  std::string PathFile;
+  int Orbit = 0;
+  bool Exr = false;
   int SamplesPerPixel = 4;
   double Exposure = 1.0;
   int Threads = 0;

@@ -34,9 +34,20 @@ ProgressBar::ProgressBar(vtkAlgorithm* algorithm, const std::string& stage, bool
   this->Tag = algorithm->AddObserver(vtkCommand::ProgressEvent, this->Callback);
 }
 
+ProgressBar::ProgressBar(const std::string& stage, bool quiet)
+  : Algorithm(nullptr)
+  , Stage(stage)
+  , Quiet(quiet)
+  , Interactive(isatty(fileno(stderr)) != 0)
+{
+}
+
 ProgressBar::~ProgressBar()
 {
-  this->Algorithm->RemoveObserver(this->Tag);
+  if (this->Algorithm)
+  {
+    this->Algorithm->RemoveObserver(this->Tag);
+  }
   // A stage that stopped early (error, abort) leaves its bar unfinished: end the line so that
   // the error message starts on its own. Plain lines always end with their newline.
   if (!this->Quiet && this->Interactive && this->LastPercent >= 0 && !this->Finished)

@@ -36,9 +36,14 @@ public:
   /// Observes `algorithm`'s progress under the name `stage`; shows it unless `quiet`, as a bar
   /// when stderr is a terminal (isatty), as plain lines otherwise.
   ProgressBar(vtkAlgorithm* algorithm, const std::string& stage, bool quiet);
+  /// A stage that is no VTK algorithm (the frames of `sphcover walk`): fed by Update.
+  ProgressBar(const std::string& stage, bool quiet);
   ~ProgressBar();
   ProgressBar(const ProgressBar&) = delete;
   ProgressBar& operator=(const ProgressBar&) = delete;
+
+  /// Reports the stage's progress, a fraction in [0, 1] (what an algorithm's ProgressEvent does).
+  void Update(double fraction) { this->Show(fraction); }
 
   /// Seconds from the first progress report to the last.
   double Seconds() const;
@@ -54,6 +59,7 @@ private:
   /// "12.3 s elapsed, about 18 s left" (no estimate below 1 % or when done).
   std::string Times(double fraction, bool done) const;
 
+  /// The algorithm observed (null: fed by Update).
   vtkAlgorithm* Algorithm;
   unsigned long Tag = 0;
   vtkSmartPointer<vtkCallbackCommand> Callback;

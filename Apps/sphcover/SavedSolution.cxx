@@ -30,9 +30,11 @@ vtkStringArray* FingerprintOf(vtkDataObject* data)
 
 void SavedSolution::Read(const Options& options, ErrorCollector& errors)
 {
+  const std::string named =
+    (this->Option.empty() ? std::string() : this->Option + " ") + "'" + options.SolutionFile + "'";
   if (!std::filesystem::is_regular_file(options.SolutionFile))
   {
-    throw std::runtime_error("--solution '" + options.SolutionFile + "': no such file");
+    throw std::runtime_error(named + ": no such file");
   }
   this->Reader->SetFileName(options.SolutionFile.c_str());
   {
@@ -46,8 +48,8 @@ void SavedSolution::Read(const Options& options, ErrorCollector& errors)
   this->Illumination = two ? vtkPolyData::SafeDownCast(blocks->GetBlock(1)) : nullptr;
   if (!this->Patches || !this->Illumination)
   {
-    throw std::runtime_error("--solution '" + options.SolutionFile +
-      "': not a solution of sphcover solve -o (two blocks, the patches and the illumination)");
+    throw std::runtime_error(named +
+      ": not a solution of sphcover solve -o (two blocks, the patches and the illumination)");
   }
 }
 

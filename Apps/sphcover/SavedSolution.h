@@ -2,9 +2,9 @@
 /**
  * @file SavedSolution.h
  * @brief A solution written by `sphcover solve -o` (.vtm: block 0 the patches, block 1 the
- * illumination), read back for `render --solution`, and the check that it was solved from the
- * scene given: the scene fingerprint (sphcover::Fingerprint) that the reader puts in its field
- * data and every stage passes on must be the one the solution carries.
+ * illumination), read back for `render --solution` and `walk`, and the check that it was solved
+ * from the scene given: the scene fingerprint (sphcover::Fingerprint) that the reader puts in its
+ * field data and every stage passes on must be the one the solution carries.
  */
 #ifndef SPHCOVER_SAVEDSOLUTION_H
 #define SPHCOVER_SAVEDSOLUTION_H
@@ -28,6 +28,9 @@ struct SavedSolution
   vtkDataObject* Patches = nullptr;
   vtkPolyData* Illumination = nullptr;
   double ReadSeconds = 0.0;
+  /// The option that named the file, in messages ("--solution 'x': ..."); empty: the file alone
+  /// ("'x': ...", the positional SOLUTION of `sphcover walk`).
+  std::string Option = "--solution";
 
   /// Reads --solution (with the "read" progress bar); throws one line when it is missing or
   /// not a solution of `solve -o`.

@@ -6,9 +6,34 @@
 #include <vtkDataObject.h>
 
 #include <stdexcept>
+#include <string>
 
 namespace sphcover_cli
 {
+void ParseSize(const std::string& text, int& width, int& height)
+{
+  const size_t x = text.find('x');
+  size_t used1 = 0;
+  size_t used2 = 0;
+  try
+  {
+    if (x == std::string::npos)
+    {
+      throw std::invalid_argument(text);
+    }
+    width = std::stoi(text.substr(0, x), &used1);
+    height = std::stoi(text.substr(x + 1), &used2);
+  }
+  catch (const std::exception&)
+  {
+    used1 = 0;
+  }
+  if (used1 == 0 || used1 != x || used2 != text.size() - x - 1 || width < 1 || height < 1)
+  {
+    throw std::runtime_error("--size '" + text + "': expected WIDTHxHEIGHT, e.g. 640x480");
+  }
+}
+
 sphcover::Camera SceneCamera(vtkDataObject* surfaces,
   const std::string& name,
   const std::string& scene)

@@ -15,6 +15,10 @@ class vtkDataObject;
 
 namespace sphcover_cli
 {
+/// The image size of --size, "WxH" as two positive integers; throws one line naming --size
+/// otherwise.
+void ParseSize(const std::string& text, int& width, int& height);
+
 /// The camera named `name` (the first if empty) among `surfaces`' field data; throws one line
 /// naming `scene` and the cameras it has when there is none of that name.
 sphcover::Camera SceneCamera(vtkDataObject* surfaces,

@@ -12,6 +12,8 @@
  *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH]
  *                   [--spp N] [--exposure E] [--solution solution.vtm] [--report report.json]
  *                   [--set k=v]
+ *   sphcover walk SOLUTION (--path PATH.json | --orbit N) -o FOLDER [--size WxH] [--exr]
+ *                 [--spp N] [--exposure E] [--report report.json]
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
  * half-written, also when interrupted (OutputFiles.h).
@@ -161,6 +163,42 @@ int main(int argc, char** argv)
   render->add_option(
     "--set", options.Settings, "Override a setting of the scene file (see subdivide)");
 
+  CLI::App* walk = app.add_subcommand("walk",
+    "Walk through a saved solution: render every camera of a path (paper section 5.3) into "
+    "FOLDER/frame_0000.png, frame_0001.png, ..., reading the solution once, and print the "
+    "milliseconds per frame");
+  walk
+    ->add_option(
+      "SOLUTION", options.SolutionFile, "A solution written by `sphcover solve -o` (.vtm)")
+    ->required();
+  CLI::Option* pathOption = walk->add_option("--path",
+    options.PathFile,
+    "Camera path (.json): {\"cameras\": [...]}, each camera in the scene format's keys "
+    "(position, focal_point, view_up, view_angle, width, height; name optional)");
+  walk
+    ->add_option("--orbit",
+      options.Orbit,
+      "Instead of --path: N cameras on a circle around the scene from its first camera (about "
+      "the axis along its view up through the point of its view axis nearest the scene's "
+      "centre; the first is the camera itself)")
+    ->check(CLI::Range(1, 1000000))
+    ->excludes(pathOption);
+  walk->add_option("-o,--output", options.Output, "Folder of the frames (created if missing)")
+    ->required();
+  walk->add_option(
+    "--size", options.Size, "Frame size WIDTHxHEIGHT of every camera (default: each camera's)");
+  walk->add_flag("--exr", options.Exr, "Also write frame_NNNN.exr (HDR Radiance and depth)");
+  walk->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
+    ->check(CLI::Range(1, 4096));
+  walk->add_option(
+    "--exposure", options.Exposure, "Radiance scale before tone mapping, > 0 (default 1)");
+  walk
+    ->add_option("--max-samples",
+      options.MaxSamples,
+      "Budget of width x height x spp rays of a frame (default 2^30)")
+    ->check(CLI::Range(1.0, 1e18));
+  walk->add_option("--report", options.Report, "Report file (.json): milliseconds of each frame");
+
   try
   {
     app.parse(argc, argv);
@@ -201,6 +239,10 @@ int main(int argc, char** argv)
     else if (render->parsed())
     {
       status = sphcover_cli::RunRender(options);
+    }
+    else if (walk->parsed())
+    {
+      status = sphcover_cli::RunWalk(options);
     }
   }
   catch (const std::exception& e)

@@ -3,6 +3,7 @@
 
 #include "scene/BptReader.h"
 #include "scene/BrdfTable.h"
+#include "scene/CameraInput.h"
 #include "scene/InputError.h"
 #include "scene/InputFile.h"
 #include "scene/JsonInput.h"
@@ -24,9 +25,6 @@ namespace sphcover
 {
 namespace
 {
-
-/// Largest image side a camera may ask for; larger is surely a typo and would exhaust memory.
-constexpr int MaxImageSide = 1 << 15;
 
 /// The problem of a coordinate `value` beyond BezierPatch::MaxCoordinate (or not finite).
 std::string CoordinateTooLarge(double value)
@@ -169,7 +167,6 @@ private:
     bool inFile,
     const std::string& pointer,
     Scene& scene) const;
-  Camera ParseCamera(const Json& j, const std::string& pointer) const;
   std::vector<BezierPatch> ParsePoints(const Json& j,
     const std::string& pointer,
     int degreeU,
@@ -568,42 +565,6 @@ void SceneParser::ParseSurface(const Json& j, const std::string& pointer, Scene&
   this->AddPlacedSurface(patches, std::move(triangles), attributes, inFile, pointer, scene);
 }
 
-Camera SceneParser::ParseCamera(const Json& j, const std::string& pointer) const
-{
-  this->ExpectObject(j, pointer);
-  this->CheckKeys(
-    j, pointer, { "name", "position", "focal_point", "view_up", "view_angle", "width", "height" });
-  Camera camera;
-  camera.Name = this->String(this->Require(j, pointer, "name"), Child(pointer, "name"));
-  camera.Position =
-    this->Position(this->Require(j, pointer, "position"), Child(pointer, "position"));
-  camera.FocalPoint =
-    this->Position(this->Require(j, pointer, "focal_point"), Child(pointer, "focal_point"));
-  camera.ViewUp = this->Position(this->Require(j, pointer, "view_up"), Child(pointer, "view_up"));
-  camera.ViewAngle =
-    this->Number(this->Require(j, pointer, "view_angle"), Child(pointer, "view_angle"));
-  if (!(camera.ViewAngle > 0.0 && camera.ViewAngle < 180.0))
-  {
-    this->Fail(Child(pointer, "view_angle"), "must be in (0, 180)");
-  }
-  camera.Width = this->PositiveInteger(
-    this->Require(j, pointer, "width"), Child(pointer, "width"), MaxImageSide);
-  camera.Height = this->PositiveInteger(
-    this->Require(j, pointer, "height"), Child(pointer, "height"), MaxImageSide);
-  const glm::dvec3 direction = camera.FocalPoint - camera.Position;
-  if (glm::length(direction) == 0.0)
-  {
-    this->Fail(Child(pointer, "focal_point"), "focal_point equals position");
-  }
-  if (glm::length(glm::cross(glm::normalize(direction), camera.ViewUp)) <
-      1e-9 * glm::length(camera.ViewUp) ||
-    glm::length(camera.ViewUp) == 0.0)
-  {
-    this->Fail(Child(pointer, "view_up"), "view_up is zero or parallel to the view direction");
-  }
-  return camera;
-}
-
 Scene SceneParser::Parse(const Json& root)
 {
   this->ExpectObject(root, "");
@@ -653,7 +614,7 @@ Scene SceneParser::Parse(const Json& root)
     }
     for (size_t c = 0; c < cameras.size(); ++c)
     {
-      scene.Cameras.push_back(this->ParseCamera(cameras[c], Child("/cameras", c)));
+      scene.Cameras.push_back(ParseCamera(*this, cameras[c], Child("/cameras", c)));
     }
   }
   if (root.contains("settings"))

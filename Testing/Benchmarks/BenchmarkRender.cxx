@@ -5,7 +5,8 @@
  * casting the same primary rays with raw Embree (Documentation/Verification.md#quality-bars: speed
  * is measured by a benchmark program, never by timed tests).
  *
- *   BenchmarkRender [--threads N] [--size 512] [--spp 1] [--max-level L]
+ *   BenchmarkRender [--threads N] [--size 512 | WxH] [--spp 1] [--max-level L]
+ *                   [--walk-sizes 256x256,1024x768] [--frames 8]
  *
  * --max-level overrides the scenes' subdivision depth (the teapot room's non-diffuse
  * propagation at its own depth 5 takes many minutes).
@@ -21,6 +22,11 @@
  *    room's mirror wall and phong teapot), milliseconds (`dir_ms`), next to the render with
  *    the Lambertian part only (`render_ms`): the cost of the BRDF evaluations, O(strips of
  *    the row) per sample and neighbour (DirectionalExitantRadiance).
+ *  - the walk-through (`sphcover walk`, issue 18): at each of --walk-sizes, --frames cameras
+ *    on an orbit around the first camera (OrbitPath, as `walk --orbit`) rendered by the one
+ *    renderer with the directional part, the mean milliseconds per frame next to raw Embree's
+ *    for the same rays of the same frames, and their ratio: what a frame costs against the
+ *    limit of its primary rays alone.
  */
 #include "cover/HemisphereGrid.h"
 #include "cover/RayCastFill.h"
@@ -30,12 +36,14 @@
 #include "propagation/LightPropagation.h"
 #include "render/CharacteristicPointInterpolator.h"
 #include "render/RadianceRenderer.h"
+#include "scene/CameraPath.h"
 #include "scene/SceneLoader.h"
 #include "subdivision/IntervalSubdivision.h"
 
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -189,7 +197,77 @@ struct RawScene
   }
 };
 
-void Run(const char* name, int threads, int size, int samples, int maxLevel)
+/// "N" (N x N) or "WxH"; false when it is neither.
+bool ParseSize(const std::string& text, int& width, int& height)
+{
+  char x = 0;
+  char rest = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &width, &x, &height, &rest) == 3 && x == 'x')
+  {
+    return width > 0 && height > 0;
+  }
+  height = width = std::atoi(text.c_str());
+  return width > 0 && text.find_first_not_of("0123456789") == std::string::npos;
+}
+
+struct Size
+{
+  int Width;
+  int Height;
+};
+
+/// The walk-through's frames at each size (see the file comment), one line per size.
+void Walk(const char* name,
+  const RadianceRenderer& renderer,
+  const RawScene& raw,
+  const Camera& first,
+  const glm::dvec3& lower,
+  const glm::dvec3& upper,
+  const std::vector<Size>& sizes,
+  int frames,
+  int samples,
+  const ParallelFor& parallelFor)
+{
+  for (const Size& size : sizes)
+  {
+    Camera orbitStart = first;
+    orbitStart.Width = size.Width;
+    orbitStart.Height = size.Height;
+    RenderSettings settings;
+    settings.SamplesPerPixel = samples;
+    double walkSeconds = 0.0;
+    double rawSeconds = 0.0;
+    size_t hits = 0;
+    for (const Camera& camera : OrbitPath(orbitStart, frames, OrbitPivot(orbitStart, lower, upper)))
+    {
+      RenderedImage image;
+      auto start = Clock::now();
+      renderer.Render(camera, settings, image, parallelFor);
+      walkSeconds += SecondsSince(start);
+      start = Clock::now();
+      hits += raw.Cast(camera, samples, parallelFor);
+      rawSeconds += SecondsSince(start);
+    }
+    std::printf("%-18s walk %4dx%-4d %3d frames %9.1f ms/frame  raw Embree %8.2f ms/frame  "
+                "ratio %6.1f  (%zu rays hit)\n",
+      name,
+      size.Width,
+      size.Height,
+      frames,
+      1e3 * walkSeconds / frames,
+      1e3 * rawSeconds / frames,
+      walkSeconds / rawSeconds,
+      hits);
+  }
+}
+
+void Run(const char* name,
+  int threads,
+  Size size,
+  int samples,
+  int maxLevel,
+  const std::vector<Size>& walkSizes,
+  int frames)
 {
   const ParallelFor parallelFor = threads <= 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -247,8 +325,8 @@ void Run(const char* name, int threads, int size, int samples, int maxLevel)
   nonDiffuse.SetDirectionalIllumination(std::move(directional));
   const double directionalSetupSeconds = SecondsSince(start);
   Camera camera = scene.Cameras.at(0);
-  camera.Width = size;
-  camera.Height = size;
+  camera.Width = size.Width;
+  camera.Height = size.Height;
   RenderSettings settings;
   settings.SamplesPerPixel = samples;
   RenderedImage image;
@@ -263,7 +341,7 @@ void Run(const char* name, int threads, int size, int samples, int maxLevel)
   start = Clock::now();
   const size_t hits = raw.Cast(camera, samples, parallelFor);
   const double rawSeconds = SecondsSince(start);
-  const double rays = static_cast<double>(size) * size * samples;
+  const double rays = static_cast<double>(size.Width) * size.Height * samples;
 
   std::printf("%-18s %7zu %9zu %7.1f %7.1f %9.1f %8.1f %9.2f %8.1f %7.1f %6.2f %9.2f %8.1f\n",
     name,
@@ -285,15 +363,30 @@ void Run(const char* name, int threads, int size, int samples, int maxLevel)
       directionalSeconds,
     hits,
     rays);
+  glm::dvec3 lower;
+  glm::dvec3 upper;
+  scene.Bounds(lower, upper);
+  Walk(name,
+    nonDiffuse,
+    raw,
+    scene.Cameras.at(0),
+    lower,
+    upper,
+    walkSizes,
+    frames,
+    samples,
+    parallelFor);
 }
 }
 
 int main(int argc, char* argv[])
 {
   int threads = 1;
-  int size = 512;
+  Size size{ 512, 512 };
   int samples = 1;
   int maxLevel = -1;
+  std::vector<Size> walkSizes{ { 256, 256 }, { 1024, 768 } };
+  int frames = 8;
   for (int k = 1; k + 1 < argc; k += 2)
   {
     if (std::strcmp(argv[k], "--threads") == 0)
@@ -302,7 +395,37 @@ int main(int argc, char* argv[])
     }
     else if (std::strcmp(argv[k], "--size") == 0)
     {
-      size = std::atoi(argv[k + 1]);
+      if (!ParseSize(argv[k + 1], size.Width, size.Height))
+      {
+        std::fprintf(stderr, "--size %s: expected N or WxH\n", argv[k + 1]);
+        return 1;
+      }
+    }
+    else if (std::strcmp(argv[k], "--walk-sizes") == 0)
+    {
+      walkSizes.clear();
+      std::string list = argv[k + 1];
+      for (size_t begin = 0; begin <= list.size();)
+      {
+        const size_t end = std::min(list.find(',', begin), list.size());
+        Size walk{ 0, 0 };
+        if (!ParseSize(list.substr(begin, end - begin), walk.Width, walk.Height))
+        {
+          std::fprintf(stderr, "--walk-sizes %s: expected WxH,WxH,...\n", argv[k + 1]);
+          return 1;
+        }
+        walkSizes.push_back(walk);
+        begin = end + 1;
+      }
+    }
+    else if (std::strcmp(argv[k], "--frames") == 0)
+    {
+      frames = std::atoi(argv[k + 1]);
+      if (frames < 1)
+      {
+        std::fprintf(stderr, "--frames %s: expected a positive number\n", argv[k + 1]);
+        return 1;
+      }
     }
     else if (std::strcmp(argv[k], "--spp") == 0)
     {
@@ -313,12 +436,16 @@ int main(int argc, char* argv[])
       maxLevel = std::atoi(argv[k + 1]);
     }
   }
-  std::printf("%d thread(s), %dx%d pixels, %d sample(s) per pixel\n", threads, size, size, samples);
+  std::printf("%d thread(s), %dx%d pixels, %d sample(s) per pixel\n",
+    threads,
+    size.Width,
+    size.Height,
+    samples);
   std::printf("scene              patches triangles subdiv_s cover_s prop_ms setup_ms render_ms "
               "Mrays/s  raw_ms  ratio    dir_ms dirset_ms\n");
   for (const char* scene : { "cornell_box.scene", "teapot_room.scene" })
   {
-    Run(scene, threads, size, samples, maxLevel);
+    Run(scene, threads, size, samples, maxLevel, walkSizes, frames);
   }
   return 0;
 }
