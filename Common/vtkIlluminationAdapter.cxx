@@ -11,6 +11,8 @@
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
 
+#include "math/Constants.h"
+
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -74,7 +76,8 @@ bool vtkIlluminationAdapter::Read(vtkPolyData* points,
     error = e.what();
     return false;
   }
-  if (!vtkIlluminationAdapter::ReadDirectIrradiance(points, illumination, error))
+  if (!vtkIlluminationAdapter::ReadDirectIrradiance(points, illumination, error) ||
+    !vtkIlluminationAdapter::ReadTextures(points, illumination, error))
   {
     return false;
   }
@@ -155,6 +158,80 @@ bool vtkIlluminationAdapter::ReadDirectIrradiance(vtkPolyData* points,
   direct.Values = std::move(values);
   illumination.Direct = sphcover::DirectLight(
     std::move(direct), reflectance, static_cast<std::size_t>(count), coverPart);
+  return true;
+}
+
+bool vtkIlluminationAdapter::ReadTextures(vtkPolyData* points,
+  Illumination& illumination,
+  std::string& error)
+{
+  illumination.Textures.clear();
+  auto* files =
+    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::MaterialTextures));
+  bool textured = false;
+  for (vtkIdType m = 0; files && m < files->GetNumberOfValues() && !textured; ++m)
+  {
+    textured = !files->GetValue(m).empty();
+  }
+  if (!textured)
+  {
+    return true;
+  }
+  std::vector<sphcover::Material> materials;
+  if (!vtkIlluminationAdapter::ReadMaterials(points, materials, error))
+  {
+    return false;
+  }
+  vtkDataArray* irradiance = points->GetPointData()->GetArray(names::Irradiance);
+  if (!irradiance || irradiance->GetNumberOfComponents() != 3)
+  {
+    error = "the points have textured materials but no point array Irradiance (3 components)";
+    return false;
+  }
+  vtkDataArray* surfaceId = points->GetPointData()->GetArray(names::SurfaceId);
+  for (size_t k = 0; k < materials.size(); ++k)
+  {
+    const sphcover::Material& material = materials[k];
+    const int surface = static_cast<int>(surfaceId->GetComponent(static_cast<vtkIdType>(k), 0));
+    if (!material.DiffuseTexture || surface < 0)
+    {
+      continue;
+    }
+    // The untextured radiance, Le + k_d / pi E with the material's own k_d: the render
+    // multiplies its reflected part by the texture at each visible point (paper §5.4).
+    glm::dvec3 e;
+    irradiance->GetTuple(static_cast<vtkIdType>(k), &e[0]);
+    illumination.ExitantRadiance[k] = material.Emission + material.Diffuse / sphcover::Pi * e;
+    const size_t s = static_cast<size_t>(surface);
+    illumination.Textures.resize(std::max(illumination.Textures.size(), s + 1));
+    illumination.Textures[s] =
+      sphcover::SurfaceTexture{ material.DiffuseTexture, material.Emission };
+  }
+  return true;
+}
+
+bool vtkIlluminationAdapter::ApplyTextureMeans(vtkPolyData* points,
+  std::vector<sphcover::Material>& materials,
+  std::string& error)
+{
+  vtkDataArray* uvRange = points->GetPointData()->GetArray(names::UVRange);
+  for (size_t k = 0; k < materials.size(); ++k)
+  {
+    if (!materials[k].DiffuseTexture)
+    {
+      continue;
+    }
+    if (!uvRange || uvRange->GetNumberOfComponents() != 4)
+    {
+      error = "the points have textured materials but no point array UVRange (4 components) "
+              "that gives each point's patch";
+      return false;
+    }
+    double r[4];
+    uvRange->GetTuple(static_cast<vtkIdType>(k), r);
+    materials[k] =
+      sphcover::MaterialOverPatch(materials[k], sphcover::UVRect{ r[0], r[1], r[2], r[3] });
+  }
   return true;
 }
 

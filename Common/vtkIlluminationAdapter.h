@@ -45,6 +45,11 @@ public:
     /// (`DirectIrradiance`) and every point's diffuse reflectance (`Diffuse`); empty without
     /// `DirectIrradiance`.
     sphcover::DirectLight Direct;
+    /// Per surface index, its texture (paper §5.4; empty when no material is textured). The
+    /// ExitantRadiance of a textured surface's points is then its untextured value,
+    /// Le + k_d / pi E from `Irradiance` with the material's own k_d, as
+    /// RadianceRenderer::SetSurfaceTextures asks.
+    std::vector<sphcover::SurfaceTexture> Textures;
   };
 
   /// False with a message in `error` (one sentence naming what is missing) when the points
@@ -66,6 +71,13 @@ public:
     std::vector<sphcover::Material>& materials,
     std::string& error);
 
+  /// Gives every point of a textured material the texture's mean over its patch (`UVRange`)
+  /// times the material's diffuse reflectance (sphcover::MaterialOverPatch): the propagation's
+  /// reflectance of the point (paper §5.4). False with one sentence in `error` without UVRange.
+  static bool ApplyTextureMeans(vtkPolyData* points,
+    std::vector<sphcover::Material>& materials,
+    std::string& error);
+
   /// The hemisphere frame of every point from its position, `Normals` and `Tangents` (the
   /// cover's frames); false (and no frames) when those arrays are missing.
   static bool ReadFrames(vtkPolyData* points, std::vector<sphcover::HemisphereFrame>& frames);
@@ -76,6 +88,9 @@ private:
   static bool ReadDirectIrradiance(vtkPolyData* points,
     Illumination& illumination,
     std::string& error);
+  /// Fills Illumination::Textures and the untextured exitant radiance of textured points when
+  /// the field data names a texture (MaterialTextures); needs `Irradiance` (3) then.
+  static bool ReadTextures(vtkPolyData* points, Illumination& illumination, std::string& error);
   /// Fills Illumination::Directional when some point is non-diffuse.
   static bool ReadDirectional(vtkPolyData* points, Illumination& illumination, std::string& error);
 };

@@ -33,6 +33,9 @@ vtkMaterialArrays::vtkMaterialArrays(vtkDataSetAttributes* attributes,
   , Id(attributes->GetArray(names::MaterialId))
   , Names(StringArray(fieldData, names::MaterialNames))
   , Files(StringArray(fieldData, names::MaterialFiles))
+  , Transmittance(attributes->GetArray(names::Transmittance))
+  , Textures(StringArray(fieldData, names::MaterialTextures))
+  , TextureEncodings(StringArray(fieldData, names::MaterialTextureEncodings))
 {
 }
 
@@ -43,6 +46,11 @@ bool vtkMaterialArrays::Check(std::string& error) const
   {
     error =
       "the " + this->Element + "s lack the material arrays Diffuse and Emission (3 components)";
+    return false;
+  }
+  if (this->Transmittance && this->Transmittance->GetNumberOfComponents() != 3)
+  {
+    error = "the Transmittance array of the " + this->Element + "s must have 3 components";
     return false;
   }
   if (this->Specular && this->Specular->GetNumberOfComponents() != 3)
@@ -106,5 +114,44 @@ bool vtkMaterialArrays::Read(vtkIdType i, sphcover::Material& material, std::str
     }
     material.TableFile = this->Files->GetValue(id);
   }
+  if (this->Transmittance)
+  {
+    this->Transmittance->GetTuple(i, &material.Transmittance[0]);
+  }
+  return this->ReadTexture(id, material, error);
+}
+
+bool vtkMaterialArrays::ReadTexture(vtkIdType id,
+  sphcover::Material& material,
+  std::string& error) const
+{
+  if (!this->Textures || id < 0 || id >= this->Textures->GetNumberOfValues() ||
+    this->Textures->GetValue(id).empty())
+  {
+    return true;
+  }
+  material.TextureFile = this->Textures->GetValue(id);
+  const bool linear = this->TextureEncodings && id < this->TextureEncodings->GetNumberOfValues() &&
+    this->TextureEncodings->GetValue(id) == "linear";
+  material.TextureFileEncoding =
+    linear ? sphcover::TextureEncoding::Linear : sphcover::TextureEncoding::Srgb;
+  auto found = this->TexturesRead.find(id);
+  if (found == this->TexturesRead.end())
+  {
+    try
+    {
+      found = this->TexturesRead
+                .emplace(id,
+                  std::make_shared<const sphcover::Texture>(
+                    sphcover::Texture::Load(material.TextureFile, material.TextureFileEncoding)))
+                .first;
+    }
+    catch (const std::exception& e)
+    {
+      error = std::string("material ") + std::to_string(id) + "'s texture: " + e.what();
+      return false;
+    }
+  }
+  material.DiffuseTexture = found->second;
   return true;
 }

@@ -9,8 +9,10 @@
  *
  * Arrays of the attribute set: `Diffuse`, `Emission` (3 components, required), `MaterialType`
  * (missing: diffuse), `Specular` (3), `PhongExponent` (required for a non-diffuse material),
- * `MaterialId`; of the field data: `MaterialNames` and `MaterialFiles` (the BRDF table of a
- * tabulated material), indexed by MaterialId.
+ * `MaterialId`, `Transmittance` (3; missing: opaque); of the field data: `MaterialNames`,
+ * `MaterialFiles` (the BRDF table of a tabulated material), `MaterialTextures` and
+ * `MaterialTextureEncodings` (the texture PNG and its encoding, paper §5.4), indexed by
+ * MaterialId. A texture is read once per material and shared by its tuples.
  */
 #ifndef vtkMaterialArrays_h
 #define vtkMaterialArrays_h
@@ -21,6 +23,8 @@
 
 #include <vtkType.h> // for vtkIdType
 
+#include <map>    // for the textures read
+#include <memory> // for the textures read
 #include <string> // for the error
 
 class vtkDataArray;
@@ -44,10 +48,14 @@ public:
 
   /// The material of tuple `i` (after a successful Check). False with one sentence in `error`
   /// for an unknown MaterialType, a non-diffuse material without Specular and PhongExponent,
-  /// or a tabulated material without a table file.
+  /// a tabulated material without a table file, or a texture that cannot be read (the
+  /// texture's InputError message).
   bool Read(vtkIdType i, sphcover::Material& material, std::string& error) const;
 
 private:
+  /// The texture of material `id` from MaterialTextures, read once; true without one.
+  bool ReadTexture(vtkIdType id, sphcover::Material& material, std::string& error) const;
+
   std::string Element;
   vtkDataArray* Diffuse;
   vtkDataArray* Emission;
@@ -57,6 +65,11 @@ private:
   vtkDataArray* Id;
   vtkStringArray* Names;
   vtkStringArray* Files;
+  vtkDataArray* Transmittance;
+  vtkStringArray* Textures;
+  vtkStringArray* TextureEncodings;
+  /// The textures read so far, by MaterialId (Read is logically const: a cache).
+  mutable std::map<vtkIdType, std::shared_ptr<const sphcover::Texture>> TexturesRead;
 };
 
 #endif

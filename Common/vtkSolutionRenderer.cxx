@@ -64,6 +64,11 @@ std::unique_ptr<sphcover::RadianceRenderer> vtkSolutionRenderer::New(vtkPolyData
     // The lamps' direct light from its nodes, the rest interpolated (DirectIrradiance.h).
     renderer->SetDirectLight(std::move(lit.Direct));
   }
+  if (!lit.Textures.empty())
+  {
+    // Textured surfaces: the texture at each visible point (paper §5.4).
+    renderer->SetSurfaceTextures(std::move(lit.Textures));
+  }
   if (lit.Directional)
   {
     // Non-diffuse surfaces: the BRDF toward the eye applied to the interpolated incident

@@ -21,6 +21,13 @@ constexpr const char* Diffuse = "Diffuse";
 constexpr const char* Specular = "Specular";
 constexpr const char* PhongExponent = "PhongExponent";
 constexpr const char* TwoSided = "TwoSided";
+/// Reader output, point data, 2 components: the texture coordinates (u, v) of each control point
+/// in its surface's parameter square, the active TCoords: a Bezier cell interpolates them to the
+/// exact (u, v) (the Bernstein basis reproduces linear functions), so a texture shown on the
+/// reader's output in ParaView lies where the solution's does (Data/scenes/FORMAT.md, "texture").
+constexpr const char* TextureCoordinates = "TextureCoordinates";
+/// 3 components: the material's transmittance (a thin pane, Data/scenes/FORMAT.md; 0: opaque).
+constexpr const char* Transmittance = "Transmittance";
 constexpr const char* HigherOrderDegrees = "HigherOrderDegrees";
 
 // Reader output, field data.
@@ -28,6 +35,10 @@ constexpr const char* SurfaceNames = "SurfaceNames";
 constexpr const char* MaterialNames = "MaterialNames";
 constexpr const char* MaterialTypeNames = "MaterialTypeNames";
 constexpr const char* MaterialFiles = "MaterialFiles";
+/// Per material: the absolute path of its texture PNG ("" for none) and its encoding ("srgb",
+/// "linear"), indexed by MaterialId (Data/scenes/FORMAT.md, "texture").
+constexpr const char* MaterialTextures = "MaterialTextures";
+constexpr const char* MaterialTextureEncodings = "MaterialTextureEncodings";
 constexpr const char* CameraNames = "CameraNames";
 /// 12 components: position (3), focal point (3), view up (3), view angle, width, height.
 constexpr const char* CameraParameters = "CameraParameters";

@@ -141,6 +141,7 @@ void vtkSurfaceGridBuilder::AddMaterialArrays(const sphcover::Scene& scene,
   auto diffuse = vtkNamedArrays::Double(names::Diffuse, 3, numberOfCells);
   auto specular = vtkNamedArrays::Double(names::Specular, 3, numberOfCells);
   auto exponent = vtkNamedArrays::Double(names::PhongExponent, 1, numberOfCells);
+  auto transmittance = vtkNamedArrays::Double(names::Transmittance, 3, numberOfCells);
   for (vtkIdType c = 0; c < numberOfCells; ++c)
   {
     const sphcover::Surface& surface =
@@ -155,6 +156,7 @@ void vtkSurfaceGridBuilder::AddMaterialArrays(const sphcover::Scene& scene,
     diffuse->SetTuple(c, &material.Diffuse[0]);
     specular->SetTuple(c, &material.Specular[0]);
     exponent->SetValue(c, material.PhongExponent);
+    transmittance->SetTuple(c, &material.Transmittance[0]);
   }
   vtkCellData* cd = output->GetCellData();
   cd->AddArray(surfaceNameId);
@@ -165,6 +167,41 @@ void vtkSurfaceGridBuilder::AddMaterialArrays(const sphcover::Scene& scene,
   cd->AddArray(diffuse);
   cd->AddArray(specular);
   cd->AddArray(exponent);
+  cd->AddArray(transmittance);
+}
+
+void vtkSurfaceGridBuilder::AddTextureCoordinates(
+  const std::vector<const sphcover::BezierPatch*>& patches,
+  vtkUnstructuredGrid* output)
+{
+  // The points as BuildCells lays them out: each cell its own, a triangle's P00, P10, P11.
+  auto tcoords = vtkNamedArrays::Double(names::TextureCoordinates, 2, output->GetNumberOfPoints());
+  vtkIdType nextPoint = 0;
+  for (const sphcover::BezierPatch* patch : patches)
+  {
+    if (IsTriangle(*patch))
+    {
+      const double corners[3][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 } };
+      for (int k = 0; k < 3; ++k)
+      {
+        tcoords->SetTypedTuple(nextPoint + k, corners[k]);
+      }
+      nextPoint += 3;
+      continue;
+    }
+    const int m = patch->DegreeU();
+    const int n = patch->DegreeV();
+    for (int j = 0; j <= n; ++j)
+    {
+      for (int i = 0; i <= m; ++i)
+      {
+        const double uv[2] = { static_cast<double>(i) / m, static_cast<double>(j) / n };
+        tcoords->SetTypedTuple(nextPoint + VTKPointIndex(i, j, m, n), uv);
+      }
+    }
+    nextPoint += static_cast<vtkIdType>((m + 1) * (n + 1));
+  }
+  output->GetPointData()->SetTCoords(tcoords);
 }
 
 void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredGrid* output)
@@ -184,6 +221,7 @@ void vtkSurfaceGridBuilder::Build(const sphcover::Scene& scene, vtkUnstructuredG
     surfaceId->SetValue(static_cast<vtkIdType>(s), static_cast<int>(s));
   }
   output->GetCellData()->AddArray(surfaceId);
+  AddTextureCoordinates(patches, output);
   AddMaterialArrays(scene, surfaceOfCell, output);
   AddFieldData(scene, output);
 }
@@ -203,16 +241,23 @@ void vtkSurfaceGridBuilder::AddFieldData(const sphcover::Scene& scene, vtkUnstru
   auto materialNames = vtkNamedArrays::String(names::MaterialNames, numberOfMaterials);
   auto materialTypes = vtkNamedArrays::String(names::MaterialTypeNames, numberOfMaterials);
   auto materialFiles = vtkNamedArrays::String(names::MaterialFiles, numberOfMaterials);
+  auto textures = vtkNamedArrays::String(names::MaterialTextures, numberOfMaterials);
+  auto textureEncodings =
+    vtkNamedArrays::String(names::MaterialTextureEncodings, numberOfMaterials);
   for (vtkIdType k = 0; k < numberOfMaterials; ++k)
   {
     const sphcover::Material& material = scene.Materials[static_cast<size_t>(k)];
     materialNames->SetValue(k, material.Name);
     materialTypes->SetValue(k, sphcover::MaterialTypeName(material.Type));
     materialFiles->SetValue(k, material.TableFile);
+    textures->SetValue(k, material.TextureFile);
+    textureEncodings->SetValue(k, sphcover::TextureEncodingName(material.TextureFileEncoding));
   }
   fd->AddArray(materialNames);
   fd->AddArray(materialTypes);
   fd->AddArray(materialFiles);
+  fd->AddArray(textures);
+  fd->AddArray(textureEncodings);
 
   const vtkIdType numberOfCameras = static_cast<vtkIdType>(scene.Cameras.size());
   auto cameraNames = vtkNamedArrays::String(names::CameraNames, numberOfCameras);

@@ -28,8 +28,8 @@ class BezierPatch;
 class SPHERICALCOVERCOMMON_EXPORT vtkSurfaceGridBuilder
 {
 public:
-  /// Replaces the contents of `output` with the scene's surfaces: cells, cell data
-  /// (SurfaceId and the material arrays) and field data.
+  /// Replaces the contents of `output` with the scene's surfaces: cells, point data (the
+  /// TextureCoordinates), cell data (SurfaceId and the material arrays) and field data.
   static void Build(const sphcover::Scene& scene, vtkUnstructuredGrid* output);
 
   /// Replaces the points and cells of `output` with one cell per patch (with the
@@ -37,8 +37,14 @@ public:
   static void BuildCells(const std::vector<const sphcover::BezierPatch*>& patches,
     vtkUnstructuredGrid* output);
 
+  /// Sets the point array TextureCoordinates, the active TCoords, of cells that BuildCells made
+  /// of whole surfaces: each control point's (i / m, j / n), a triangle's corners (0, 0),
+  /// (1, 0), (1, 1) (paper §5.4: a texture over the surface's parameter square).
+  static void AddTextureCoordinates(const std::vector<const sphcover::BezierPatch*>& patches,
+    vtkUnstructuredGrid* output);
+
   /// Adds the cell arrays SurfaceNameId, MaterialId, MaterialType, TwoSided, Emission, Diffuse,
-  /// Specular and PhongExponent of the surface each cell belongs to.
+  /// Specular, PhongExponent and Transmittance of the surface each cell belongs to.
   static void AddMaterialArrays(const sphcover::Scene& scene,
     const std::vector<int>& surfaceOfCell,
     vtkUnstructuredGrid* output);

@@ -111,9 +111,14 @@ void SamplePatch(const sphcover::Patch& patch,
       const double v = patch.Domain.V0 + t * (patch.Domain.V1 - patch.Domain.V0);
       // As the render (RadianceRenderer::SurfaceRadiance): the rest interpolated, the lamps'
       // direct light from its nodes.
-      const glm::dvec3 l = sphcover::InterpolateRadiance(
-                             lit.Interpolator, lit.ExitantRadiance, patch.SurfaceIndex, u, v) +
-        lit.Direct.At(lit.Interpolator, patch.SurfaceIndex, u, v);
+      // A textured surface's texture at (u, v) (paper §5.4).
+      const glm::dvec3 l = sphcover::TexturedRadiance(lit.Textures,
+        patch.SurfaceIndex,
+        u,
+        v,
+        sphcover::InterpolateRadiance(
+          lit.Interpolator, lit.ExitantRadiance, patch.SurfaceIndex, u, v) +
+          lit.Direct.At(lit.Interpolator, patch.SurfaceIndex, u, v));
       field.Points->SetPoint(id, q.x, q.y, q.z);
       field.Radiance->SetTypedTuple(id,
         std::array<float, 3>{

@@ -21,6 +21,8 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
+
+#include <algorithm>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
@@ -166,7 +168,8 @@ std::string ReadPropagationInput(vtkPolyData* input,
     return problem;
   }
   std::string materialProblem;
-  if (!vtkIlluminationAdapter::ReadMaterials(input, materials, materialProblem))
+  if (!vtkIlluminationAdapter::ReadMaterials(input, materials, materialProblem) ||
+    !vtkIlluminationAdapter::ApplyTextureMeans(input, materials, materialProblem))
   {
     return materialProblem;
   }
@@ -470,6 +473,15 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   {
     vtkErrorMacro(<< "Cannot propagate light: " << problem);
     return 0;
+  }
+  if (std::any_of(materials.begin(),
+        materials.end(),
+        [](const sphcover::Material& material) { return material.IsTransmitter(); }))
+  {
+    // Paper §5.4's transparent surfaces are read, checked and two-sided, but the cover does not
+    // yet see through them (Documentation/notes/panes-and-textures.md): say so, once.
+    vtkWarningMacro(<< "The scene has panes (a material's transmittance): this version solves "
+                       "them as opaque two-sided surfaces; the transmitted light is absorbed.");
   }
 
   double watts = 1.0;

@@ -215,8 +215,8 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
   return true;
 }
 
-/// Each patch's emitted radiance (or diffuse reflectance), that of the input cell it was cut
-/// from.
+/// Each patch's value of a material property (its emitted radiance), that of the input cell
+/// it was cut from.
 std::vector<glm::dvec3> MaterialOf(const sphcover::Scene& scene,
   const std::vector<sphcover::Patch>& patches,
   const std::vector<vtkIdType>& cellOfPatch,
@@ -230,6 +230,25 @@ std::vector<glm::dvec3> MaterialOf(const sphcover::Scene& scene,
     if (material < scene.Materials.size())
     {
       values[k] = scene.Materials[material].*property;
+    }
+  }
+  return values;
+}
+
+/// Each patch's diffuse reflectance: its material's, times a texture's mean over the patch
+/// (sphcover::MaterialOverPatch, paper §5.4), for the first bounce of the direct light.
+std::vector<glm::dvec3> DiffuseOf(const sphcover::Scene& scene,
+  const std::vector<sphcover::Patch>& patches,
+  const std::vector<vtkIdType>& cellOfPatch)
+{
+  std::vector<glm::dvec3> values(patches.size(), glm::dvec3(0.0));
+  for (size_t k = 0; k < patches.size(); ++k)
+  {
+    const size_t cell = static_cast<size_t>(cellOfPatch[k]);
+    const size_t material = static_cast<size_t>(scene.Surfaces[cell].MaterialIndex);
+    if (material < scene.Materials.size())
+    {
+      values[k] = sphcover::MaterialOverPatch(scene.Materials[material], patches[k].Domain).Diffuse;
     }
   }
   return values;
@@ -558,12 +577,8 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   }
   sphcover::DirectIrradianceNodes direct;
   if (this->DirectIrradianceNodes > 0 &&
-    !ComputeDirectIrradiance(this,
-      patches,
-      emission,
-      options,
-      MaterialOf(scene, patches, cellOfPatch, &sphcover::Material::Diffuse),
-      direct))
+    !ComputeDirectIrradiance(
+      this, patches, emission, options, DiffuseOf(scene, patches, cellOfPatch), direct))
   {
     return 0;
   }

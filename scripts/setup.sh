@@ -16,13 +16,14 @@ jobs="${SPHCOVER_JOBS:-$(nproc)}"
 # clang and its runtimes build the fuzz harnesses (Testing/Fuzz) that scripts/test.sh runs.
 # qttools5-dev (Qt5Help, qhelpgenerator) and qtxmlpatterns5-dev-tools (xmlpatterns) compile the
 # plug-in's XML documentation into the help that ParaView's "?" shows.
+# libpng-dev decodes the materials' texture PNGs in Core (Core/scene/Texture.cxx).
 packages=(
   g++ cmake ninja-build pkg-config
   paraview paraview-dev python3-paraview python3-dev
   qttools5-dev qtxmlpatterns5-dev-tools
   libglew-dev libdouble-conversion-dev mpi-default-dev libx11-dev zlib1g-dev
   libglm-dev nlohmann-json3-dev libcli11-dev libopenexr-dev libembree-dev
-  libgtest-dev libgmp-dev libeigen3-dev
+  libgtest-dev libgmp-dev libeigen3-dev libpng-dev
   openexr
   xvfb xauth
   clang libclang-rt-14-dev

@@ -40,6 +40,15 @@ std::string Describe(const Material& m)
       s << "  table " << m.TableFile;
       break;
   }
+  if (m.IsTransmitter())
+  {
+    s << "  transmittance " << Triple(m.Transmittance);
+  }
+  if (m.DiffuseTexture)
+  {
+    s << "  texture " << m.TextureFile << " (" << m.DiffuseTexture->Width() << "x"
+      << m.DiffuseTexture->Height() << ", " << TextureEncodingName(m.TextureFileEncoding) << ")";
+  }
   if (m.IsEmitter())
   {
     s << "  emission " << Triple(m.Emission);

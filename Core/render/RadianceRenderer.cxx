@@ -260,8 +260,48 @@ glm::dvec3 InterpolateRadiance(const CharacteristicPointInterpolator& interpolat
 
 glm::dvec3 RadianceRenderer::SurfaceRadiance(int surface, double u, double v) const
 {
-  return InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v) +
-    this->Direct.At(this->Interpolator, surface, u, v);
+  return this->Textured(surface,
+    u,
+    v,
+    InterpolateRadiance(this->Interpolator, this->Exitant, surface, u, v) +
+      this->Direct.At(this->Interpolator, surface, u, v));
+}
+
+void RadianceRenderer::SetSurfaceTextures(std::vector<SurfaceTexture> textures)
+{
+  this->Textures = std::move(textures);
+}
+
+bool RadianceRenderer::IsTextured(int surface) const
+{
+  return surface >= 0 && static_cast<std::size_t>(surface) < this->Textures.size() &&
+    this->Textures[static_cast<std::size_t>(surface)].Image != nullptr;
+}
+
+glm::dvec3 TexturedRadiance(const std::vector<SurfaceTexture>& textures,
+  int surface,
+  double u,
+  double v,
+  const glm::dvec3& untextured)
+{
+  if (surface < 0 || static_cast<std::size_t>(surface) >= textures.size() ||
+    !textures[static_cast<std::size_t>(surface)].Image)
+  {
+    return untextured;
+  }
+  // The emission is uniform over the surface and not textured; the reflected rest is k_d / pi
+  // times the interpolated irradiance, which the texture multiplies at (u, v) (paper §5.4).
+  const SurfaceTexture& texture = textures[static_cast<std::size_t>(surface)];
+  const glm::dvec3 reflected = glm::max(untextured - texture.Emission, glm::dvec3(0.0));
+  return texture.Emission + texture.Image->At(u, v) * reflected;
+}
+
+glm::dvec3 RadianceRenderer::Textured(int surface,
+  double u,
+  double v,
+  const glm::dvec3& untextured) const
+{
+  return TexturedRadiance(this->Textures, surface, u, v, untextured);
 }
 
 DirectLight::DirectLight(DirectIrradianceNodes nodes,
@@ -437,16 +477,37 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   // direction in its own hemisphere frame), blended with the interpolation weights; the same
   // as the BRDF applied to the interpolated E, the BRDF being linear in E.
   glm::dvec3 radiance(0.0);
+  glm::dvec3 directional(0.0);
+  const bool textured = this->IsTextured(surface);
   for (int k = 0; k < stencil.Count; ++k)
   {
     const std::size_t point = stencil.Points[static_cast<size_t>(k)];
+    const double weight = stencil.Weights[static_cast<size_t>(k)];
     glm::dvec3 value = this->Exitant[point];
     const ReflectanceWeights* table = this->Directional ? this->Reflectances.Table(point) : nullptr;
     if (table)
     {
-      value += this->DirectionalPart(point, *table, towardEye, cache);
+      const glm::dvec3 part = this->DirectionalPart(point, *table, towardEye, cache);
+      if (textured)
+      {
+        directional += weight * part;
+      }
+      else
+      {
+        value += part;
+      }
     }
-    radiance += stencil.Weights[static_cast<size_t>(k)] * value;
+    radiance += weight * value;
+  }
+  if (textured)
+  {
+    // The texture scales the Lambertian part only (SetSurfaceTextures).
+    return this->Textured(surface,
+             u,
+             v,
+             glm::max(radiance, glm::dvec3(0.0)) +
+               this->Direct.At(this->Interpolator, surface, u, v)) +
+      glm::max(directional, glm::dvec3(0.0));
   }
   return glm::max(radiance, glm::dvec3(0.0)) + this->Direct.At(this->Interpolator, surface, u, v);
 }

@@ -18,7 +18,9 @@
  * k, I_dir,k = DirectionalExitantRadiance of point k toward the eye in k's hemisphere frame
  * (the BRDF being linear in E, the same as the BRDF applied to the interpolated E), resolved
  * to the cells of the HemisphereGrid; a two-sided surface's back side shows its Lambertian
- * part only. The samples of a row of pixels share a cache per (point, eye cell).
+ * part only. The samples of a row of pixels share a cache per (point, eye cell). On a textured
+ * surface (paper §5.4, SetSurfaceTextures) the texture at the visible point's (u, v) multiplies
+ * the Lambertian part less the emission.
  *
  * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, row 0 at the
  * bottom. SamplesPerPixel stratified, deterministic positions per pixel (Hammersley: one per
@@ -70,6 +72,24 @@ struct DirectionalIllumination
   /// The material of every point.
   std::vector<Material> Materials;
 };
+
+/// A textured surface as the render sees it (paper §5.4): its texture and its material's
+/// emission, which the texture does not scale.
+struct SurfaceTexture
+{
+  /// Null: the surface is not textured.
+  std::shared_ptr<const Texture> Image;
+  glm::dvec3 Emission = glm::dvec3(0.0);
+};
+
+/// The Lambertian radiance `untextured` at (u, v) of `surface` with its texture (if any) applied:
+/// Le + T(u, v) max(untextured - Le, 0) (RadianceRenderer::SetSurfaceTextures). Shared by the
+/// render and the illumination field.
+glm::dvec3 TexturedRadiance(const std::vector<SurfaceTexture>& textures,
+  int surface,
+  double u,
+  double v,
+  const glm::dvec3& untextured);
 
 /// Seconds one sample (a ray refined on the exact patch and interpolated) takes on one core,
 /// measured on the Cornell box (see MaximumSamples): the budget's time scale.
@@ -210,6 +230,18 @@ public:
   void SetDirectLight(DirectLight direct);
   bool HasDirectLight() const { return !this->Direct.Empty(); }
 
+  /**
+   * Textures per surface index (missing entries and null images: untextured). A textured
+   * surface's Lambertian radiance at (u, v) is Le + T(u, v) (L(u, v) - Le), L the radiance
+   * interpolated (with the direct light, if set) from the points' untextured values: pixel =
+   * texture at the hit's (u, v) times the interpolated irradiance times k_d / pi, plus the
+   * emission (paper §5.3.2 with §5.4). So the exitant radiance given for a textured surface's
+   * points, and the DirectLight's reflectance, must be those of the material's own k_d
+   * (Le + k_d / pi E), not of the texture's mean over the point's patch that the propagation
+   * used (MaterialOverPatch). The directional part of a phong surface is not textured.
+   */
+  void SetSurfaceTextures(std::vector<SurfaceTexture> textures);
+
   /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
   /// §5.3.2); zero where the surface has no characteristic points. The Lambertian part only.
   glm::dvec3 SurfaceRadiance(int surface, double u, double v) const;
@@ -260,7 +292,13 @@ private:
     const glm::dvec3& towardEye,
     DirectionalCache* cache) const;
 
+  /// The Lambertian radiance `untextured` at (u, v) of the surface with its texture applied
+  /// (SetSurfaceTextures); `untextured` itself on an untextured surface.
+  glm::dvec3 Textured(int surface, double u, double v, const glm::dvec3& untextured) const;
+  bool IsTextured(int surface) const;
+
   std::vector<Patch> Patches;
+  std::vector<SurfaceTexture> Textures;
   CharacteristicPointInterpolator Interpolator;
   std::vector<glm::dvec3> Exitant;
   std::vector<bool> TwoSided;

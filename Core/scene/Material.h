@@ -6,6 +6,8 @@
 #ifndef SPHCOVER_MATERIAL_H
 #define SPHCOVER_MATERIAL_H
 
+#include "scene/Texture.h"
+
 #include <glm/vec3.hpp>
 
 #include <memory>
@@ -51,12 +53,37 @@ struct Material
   /// The table read from TableFile when the scene was loaded (tabulated only; may be null when
   /// the material was rebuilt from VTK arrays, and then Reflectance reads TableFile).
   std::shared_ptr<const BrdfTable> Table;
+  /// Transmittance per band (paper §5.4, a thin pane): the fraction of the light arriving on
+  /// either side that leaves on the other in the same direction. Reflectance + transmittance
+  /// <= 1 per band; a material that transmits makes its surfaces two-sided.
+  glm::dvec3 Transmittance{ 0.0 };
+  /// Absolute path of the texture PNG ("" for none): multiplies the diffuse reflectance over
+  /// the surface's (u, v) (Texture.h).
+  std::string TextureFile;
+  TextureEncoding TextureFileEncoding = TextureEncoding::Srgb;
+  /// The image read from TextureFile (null without a texture).
+  std::shared_ptr<const Texture> DiffuseTexture;
+
+  bool IsTransmitter() const
+  {
+    return this->Transmittance.x > 0 || this->Transmittance.y > 0 || this->Transmittance.z > 0;
+  }
 
   bool IsEmitter() const
   {
     return this->Emission.x > 0 || this->Emission.y > 0 || this->Emission.z > 0;
   }
 };
+
+/**
+ * The material a characteristic point carries in the propagation when its patch is `rect` of
+ * its surface: a textured material's diffuse reflectance times the texture's mean over the
+ * rectangle (paper §5.4, "convolving the texture maps ... with the surface reflectance map";
+ * the subdivision's characterisability, §4.2.4, keeps the irradiance about constant over a
+ * patch, so the patch reflects about its mean reflectance times its irradiance). Without a
+ * texture, `material` itself.
+ */
+Material MaterialOverPatch(const Material& material, const UVRect& rect);
 
 } // namespace sphcover
 

@@ -26,6 +26,16 @@ const char* MaterialTypeName(MaterialType type)
   return "unknown";
 }
 
+Material MaterialOverPatch(const Material& material, const UVRect& rect)
+{
+  Material patchMaterial = material;
+  if (material.DiffuseTexture)
+  {
+    patchMaterial.Diffuse = material.Diffuse * material.DiffuseTexture->Mean(rect);
+  }
+  return patchMaterial;
+}
+
 namespace
 {
 /// FNV-1a, 64 bits: deterministic across runs and platforms of one byte order.
@@ -84,6 +94,16 @@ std::string Fingerprint(const Scene& scene)
     hash.Value(material.PhongExponent);
     hash.Vector(material.Emission);
     hash.Text(material.TableFile);
+    // Panes and textures enter only where present, so that other scenes keep their fingerprints.
+    if (material.IsTransmitter())
+    {
+      hash.Vector(material.Transmittance);
+    }
+    if (!material.TextureFile.empty())
+    {
+      hash.Text(material.TextureFile);
+      hash.Value(static_cast<int>(material.TextureFileEncoding));
+    }
   }
   hash.Value(scene.SurfaceNames.size());
   for (const std::string& name : scene.SurfaceNames)

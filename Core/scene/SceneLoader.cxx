@@ -8,6 +8,7 @@
 #include "scene/InputFile.h"
 #include "scene/JsonInput.h"
 #include "scene/SettingsOverride.h"
+#include "scene/Texture.h"
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -187,23 +188,35 @@ Material SceneParser::ParseMaterial(const std::string& name,
   {
     material.Emission = this->Emission(j["emission"], Child(pointer, "emission"));
   }
+  // Transmittance (a thin pane) and texture (over the diffuse part) extend the types that can
+  // carry them (paper §5.4; FORMAT.md "materials").
+  const std::initializer_list<const char*> paneAndTexture = {
+    "transmittance", "texture", "texture_encoding"
+  };
+  const auto keys =
+    [&](std::initializer_list<const char*> own, std::initializer_list<const char*> extensions)
+  {
+    std::vector<const char*> allowed(own);
+    allowed.insert(allowed.end(), extensions.begin(), extensions.end());
+    this->CheckKeys(j, pointer, allowed);
+  };
   if (type == "diffuse")
   {
-    this->CheckKeys(j, pointer, { "type", "reflectance", "emission" });
+    keys({ "type", "reflectance", "emission" }, paneAndTexture);
     material.Type = MaterialType::Diffuse;
     material.Diffuse =
       this->Reflectance(this->Require(j, pointer, "reflectance"), Child(pointer, "reflectance"));
   }
   else if (type == "mirror")
   {
-    this->CheckKeys(j, pointer, { "type", "reflectance", "emission" });
+    keys({ "type", "reflectance", "emission" }, { "transmittance" });
     material.Type = MaterialType::Mirror;
     material.Specular =
       this->Reflectance(this->Require(j, pointer, "reflectance"), Child(pointer, "reflectance"));
   }
   else if (type == "phong")
   {
-    this->CheckKeys(j, pointer, { "type", "diffuse", "specular", "exponent", "emission" });
+    keys({ "type", "diffuse", "specular", "exponent", "emission" }, paneAndTexture);
     material.Type = MaterialType::Phong;
     material.Diffuse =
       this->Reflectance(this->Require(j, pointer, "diffuse"), Child(pointer, "diffuse"));
@@ -238,6 +251,51 @@ Material SceneParser::ParseMaterial(const std::string& name,
   else
   {
     this->Fail(Child(pointer, "type"), "unknown material type " + Quote(type));
+  }
+  if (j.contains("transmittance"))
+  {
+    material.Transmittance =
+      this->Bands(j["transmittance"], Child(pointer, "transmittance"), 0.0, 1.0);
+    // Energy conservation: what a pane reflects and what it lets through come from the same
+    // light (paper §5.4).
+    const glm::dvec3 reflected = material.Diffuse + material.Specular;
+    const char* what =
+      type == "phong" ? "diffuse + specular + transmittance" : "reflectance + transmittance";
+    for (int k = 0; k < 3; ++k)
+    {
+      if (reflected[k] + material.Transmittance[k] > 1.0)
+      {
+        this->Fail(pointer, std::string(what) + " exceeds 1 in band " + std::to_string(k));
+      }
+    }
+  }
+  if (j.contains("texture"))
+  {
+    const std::string at = Child(pointer, "texture");
+    material.TextureFile = this->ExistingFile(j["texture"], at);
+    if (j.contains("texture_encoding"))
+    {
+      const std::string encodingAt = Child(pointer, "texture_encoding");
+      const std::string encoding = this->String(j["texture_encoding"], encodingAt);
+      if (encoding == "linear")
+      {
+        material.TextureFileEncoding = TextureEncoding::Linear;
+      }
+      else if (encoding != "srgb")
+      {
+        this->Fail(
+          encodingAt, "unknown texture encoding " + Quote(encoding) + " (expected srgb or linear)");
+      }
+    }
+    // Read now, so that a bad image is reported with the scene (file and problem).
+    const std::string file = material.TextureFile;
+    const TextureEncoding encoding = material.TextureFileEncoding;
+    material.DiffuseTexture = this->Included(
+      at, [&] { return std::make_shared<const Texture>(Texture::Load(file, encoding)); });
+  }
+  else if (j.contains("texture_encoding"))
+  {
+    this->Fail(Child(pointer, "texture_encoding"), "texture_encoding without a texture");
   }
   return material;
 }
@@ -487,7 +545,9 @@ void SceneParser::AddPlacedSurface(const std::vector<BezierPatch>& patches,
                : std::string("degenerate patch (no area)"));
     }
     Surface surface(std::move(placed), nameIndex, attributes.MaterialIndex);
-    surface.TwoSided = attributes.TwoSided;
+    // A pane sends, receives and lets light through on both sides (FORMAT.md, "transmittance").
+    surface.TwoSided = attributes.TwoSided ||
+      scene.Materials[static_cast<size_t>(attributes.MaterialIndex)].IsTransmitter();
     surface.IsTriangle = triangles[p];
     scene.Surfaces.push_back(std::move(surface));
   }

@@ -14,7 +14,13 @@ script sets up, and why (see README.md in this folder for the unit checks):
   FORMAT.md "Orientation"). A planar bilinear quad is one exact quad; twisted bilinear and
   Bezier patches are tessellated on a --tessellation x --tessellation grid in (u, v).
 - Materials: only `diffuse` (Lambertian, BRDF = reflectance / pi): Cycles' Diffuse BSDF with
-  roughness 0 (Lambert) and the reflectance as colour. `emission` becomes an Emission shader of
+  roughness 0 (Lambert) and the reflectance as colour. A `texture` (paper §5.4) multiplies that
+  colour: an Image Texture node (bilinear, "Linear"; edge texels extended, "EXTEND"; the PNG
+  decoded to linear floats first, see linear_texture) read at the mesh's UV map, which
+  holds every vertex's (u, v) in its patch (FORMAT.md: u across the image's columns from the
+  left, v up its rows from the bottom, Blender's UV convention too). A `transmittance` (a thin
+  pane) adds a Transparent BSDF of that colour, which lets rays through unbent and scaled, on
+  both sides (a pane is two-sided). `emission` becomes an Emission shader of
   strength 1 whose colour is the radiance (a Cycles emission of strength 1 shows its colour
   as the pixel value: measured, README.md). One-sided surfaces (the default) are black and
   non-emitting from behind: a Mix shader driven by Geometry > Backfacing switches to an empty
@@ -116,14 +122,16 @@ def is_planar_quad(p):
     return scenegeom.quad_nonplanarity(pts) <= 1e-9 * size
 
 
-def patch_faces(p, grid, verts, faces):
-    """Append the patch's tessellation; every face is counter-clockwise seen from the front."""
+def patch_faces(p, grid, verts, faces, uvs):
+    """Append the patch's tessellation; every face is counter-clockwise seen from the front.
+    `uvs` gets every vertex's (u, v) in the patch, for textures."""
     if is_planar_quad(p):
         grid = 1
     base = len(verts)
     for j in range(grid + 1):
         for i in range(grid + 1):
             verts.append(p.eval(i / grid, j / grid))
+            uvs.append((i / grid, j / grid))
 
     def vid(i, j):
         return base + j * (grid + 1) + i
@@ -144,10 +152,32 @@ def patch_faces(p, grid, verts, faces):
 # --------------------------------------------------------------------------- materials
 
 
-def make_material(name, mat, two_sided):
+def linear_texture(path, srgb):
+    """The PNG as a float image of linear reflectance factors. Cycles keeps an 8-bit sRGB image
+    in sRGB and decodes it after its bilinear interpolation, which darkens every blend between
+    texels (the sRGB curve is convex: an 8 x 8 checker of codes 235 and 120 renders about 10 %
+    darker); SphericalCover interpolates the decoded values (FORMAT.md), so the image is decoded
+    here, once, and handed to Cycles as linear floats ("Non-Color": used as is)."""
+    raw = bpy.data.images.load(path)
+    raw.colorspace_settings.name = "Non-Color"  # the file's codes / (2^bits - 1)
+    width, height = raw.size
+    pixels = np.array(raw.pixels[:], dtype=np.float64).reshape(height, width, 4)
+    if srgb:
+        c = pixels[..., :3]
+        pixels[..., :3] = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    image = bpy.data.images.new(os.path.basename(path) + "__linear", width, height, alpha=False,
+                                float_buffer=True)
+    image.colorspace_settings.name = "Non-Color"
+    image.pixels = pixels.ravel().tolist()
+    bpy.data.images.remove(raw)
+    return image
+
+
+def make_material(name, mat, two_sided, folder):
     if mat["type"] != "diffuse":
         fail("material '%s': type '%s' is not supported by this reference script (diffuse only)"
              % (name, mat["type"]))
+    two_sided = two_sided or any(t > 0 for t in mat.get("transmittance", [0, 0, 0]))
     m = bpy.data.materials.new(name + ("__two_sided" if two_sided else ""))
     m.use_nodes = True
     nt = m.node_tree
@@ -158,7 +188,30 @@ def make_material(name, mat, two_sided):
     diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
     diffuse.inputs["Color"].default_value = (*mat["reflectance"], 1.0)
     diffuse.inputs["Roughness"].default_value = 0.0  # Lambert, not Oren-Nayar
+    if "texture" in mat:
+        path = mat["texture"] if os.path.isabs(mat["texture"]) else os.path.join(folder, mat["texture"])
+        image = nt.nodes.new("ShaderNodeTexImage")
+        image.image = linear_texture(path, mat.get("texture_encoding") != "linear")
+        image.interpolation = "Linear"
+        image.extension = "EXTEND"
+        uv = nt.nodes.new("ShaderNodeUVMap")
+        uv.uv_map = "UVMap"
+        nt.links.new(uv.outputs["UV"], image.inputs["Vector"])
+        multiply = nt.nodes.new("ShaderNodeMixRGB")
+        multiply.blend_type = "MULTIPLY"
+        multiply.inputs["Fac"].default_value = 1.0
+        multiply.inputs["Color1"].default_value = (*mat["reflectance"], 1.0)
+        nt.links.new(image.outputs["Color"], multiply.inputs["Color2"])
+        nt.links.new(multiply.outputs["Color"], diffuse.inputs["Color"])
     front = diffuse.outputs["BSDF"]
+    transmittance = mat.get("transmittance", [0.0, 0.0, 0.0])
+    if any(t > 0 for t in transmittance):
+        transparent = nt.nodes.new("ShaderNodeBsdfTransparent")
+        transparent.inputs["Color"].default_value = (*transmittance, 1.0)
+        both = nt.nodes.new("ShaderNodeAddShader")
+        nt.links.new(front, both.inputs[0])
+        nt.links.new(transparent.outputs["BSDF"], both.inputs[1])
+        front = both.outputs["Shader"]
     emission = mat.get("emission", [0.0, 0.0, 0.0])
     if any(e > 0 for e in emission):
         em = nt.nodes.new("ShaderNodeEmission")
@@ -211,14 +264,15 @@ def build(args):
         key = (entry["material"], two_sided)
         if key not in materials:
             materials[key] = make_material(entry["material"],
-                                           scene_json["materials"][entry["material"]], two_sided)
-        verts, faces = [], []
+                                           scene_json["materials"][entry["material"]], two_sided,
+                                           os.path.dirname(os.path.abspath(args.scene)))
+        verts, faces, uvs = [], [], []
         for kk, name, p in patches:
             if kk != k:
                 continue
             if mirroring(entry.get("transform")):
                 p = reverse_u(p)
-            patch_faces(p, args.tessellation, verts, faces)
+            patch_faces(p, args.tessellation, verts, faces, uvs)
         for v in verts:
             for c in range(3):
                 lo[c] = min(lo[c], v[c])
@@ -226,6 +280,9 @@ def build(args):
         mesh = bpy.data.meshes.new(entry["name"])
         mesh.from_pydata(verts, [], faces)
         mesh.validate()
+        uv_layer = mesh.uv_layers.new(name="UVMap")
+        for loop in mesh.loops:
+            uv_layer.data[loop.index].uv = uvs[loop.vertex_index]
         mesh.materials.append(materials[key])
         for poly in mesh.polygons:
             poly.use_smooth = False  # geometric normals: Backfacing is exact

@@ -24,6 +24,7 @@
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkNew.h>
+#include <vtkPointData.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
@@ -49,6 +50,7 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
     { names::Specular, 3 },
     { names::PhongExponent, 1 },
     { names::TwoSided, 1 },
+    { names::Transmittance, 3 },
     { names::HigherOrderDegrees, 3 } };
   for (const auto& array : cellArrays)
   {
@@ -64,6 +66,8 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
          names::MaterialNames,
          names::MaterialTypeNames,
          names::MaterialFiles,
+         names::MaterialTextures,
+         names::MaterialTextureEncodings,
          names::CameraNames,
          names::SourceFile })
   {
@@ -75,6 +79,47 @@ void CheckArrays(vtkUnstructuredGrid* grid, const std::string& file)
   vtkDataArray* settings = fd->GetArray(names::SceneSettings);
   Check(settings && settings->GetNumberOfComponents() == 5 && settings->GetNumberOfTuples() == 1,
     file + ": SceneSettings");
+}
+
+/// The texture coordinates (paper §5.4): every point of a cell is the surface at its
+/// TextureCoordinates where the surface goes through its control point (the corners of every
+/// cell, and every point of a bilinear one); every value in [0, 1].
+void CheckTextureCoordinates(vtkUnstructuredGrid* grid, const std::string& file)
+{
+  vtkDataArray* tcoords = grid->GetPointData()->GetTCoords();
+  Check(tcoords && std::string(tcoords->GetName()) == names::TextureCoordinates &&
+      tcoords->GetNumberOfComponents() == 2 &&
+      tcoords->GetNumberOfTuples() == grid->GetNumberOfPoints(),
+    file + ": TextureCoordinates are the active TCoords, 2 per point");
+  if (!tcoords)
+  {
+    return;
+  }
+  const sphcover::Scene scene = vtkSceneFileLoader::Load(file);
+  for (vtkIdType c = 0; c < grid->GetNumberOfCells(); ++c)
+  {
+    vtkIdType count = 0;
+    const vtkIdType* ids = nullptr;
+    grid->GetCellPoints(c, count, ids);
+    const sphcover::BezierPatch& patch = scene.Surfaces[static_cast<size_t>(c)].Patch;
+    for (vtkIdType k = 0; k < count; ++k)
+    {
+      double uv[2];
+      tcoords->GetTuple(ids[k], uv);
+      Check(
+        uv[0] >= 0 && uv[0] <= 1 && uv[1] >= 0 && uv[1] <= 1, file + ": a (u, v) outside [0, 1]");
+      const bool corner = (uv[0] == 0 || uv[0] == 1) && (uv[1] == 0 || uv[1] == 1);
+      if (corner)
+      {
+        double p[3];
+        grid->GetPoint(ids[k], p);
+        const glm::dvec3 q = patch.Evaluate(uv[0], uv[1]);
+        Check(std::abs(p[0] - q.x) + std::abs(p[1] - q.y) + std::abs(p[2] - q.z) <=
+            1e-9 * (1 + std::abs(q.x) + std::abs(q.y) + std::abs(q.z)),
+          file + ": cell " + std::to_string(c) + "'s corner is not P at its TextureCoordinates");
+      }
+    }
+  }
 }
 
 void CheckRoundTrip(vtkUnstructuredGrid* grid, const std::string& file)
@@ -98,7 +143,10 @@ void CheckRoundTrip(vtkUnstructuredGrid* grid, const std::string& file)
     const sphcover::Material& mb = back.Materials[static_cast<size_t>(b.MaterialIndex)];
     Check(ma.Name == mb.Name && ma.Type == mb.Type && ma.Diffuse == mb.Diffuse &&
         ma.Specular == mb.Specular && ma.Emission == mb.Emission &&
-        ma.PhongExponent == mb.PhongExponent && ma.TableFile == mb.TableFile,
+        ma.PhongExponent == mb.PhongExponent && ma.TableFile == mb.TableFile &&
+        ma.Transmittance == mb.Transmittance && ma.TextureFile == mb.TextureFile &&
+        ma.TextureFileEncoding == mb.TextureFileEncoding &&
+        (ma.DiffuseTexture != nullptr) == (mb.DiffuseTexture != nullptr),
       file + ": material of surface " + std::to_string(s));
     Check(original.SurfaceNames[static_cast<size_t>(a.NameIndex)] ==
         back.SurfaceNames[static_cast<size_t>(b.NameIndex)],
@@ -121,7 +169,8 @@ int TestPatchSceneReader(int, char*[])
          "furnace_box.scene",
          "furnace_sphere.scene",
          "howell_parallel.scene",
-         "howell_perpendicular.scene" })
+         "howell_perpendicular.scene",
+         "textured_floor.scene" })
   {
     const std::string file = scenes + name;
     vtkNew<vtkPatchSceneReader> reader;
@@ -131,6 +180,7 @@ int TestPatchSceneReader(int, char*[])
     Check(grid->GetNumberOfCells() > 0, file + ": has cells");
     CheckArrays(grid, file);
     CheckRoundTrip(grid, file);
+    CheckTextureCoordinates(grid, file);
   }
 
   // Cornell box: the original geometry as quads, its bounds, the official camera.

@@ -22,7 +22,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
-from scenegeom import dumps  # noqa: E402
+from scenegeom import dumps, png_chunk, png_file  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 BAD = os.path.join(ROOT, "Testing", "Data", "bad")
@@ -134,6 +134,17 @@ def del_in(path):
 
 def semantic_cases():
     scene_case("version_2.scene", set_in(["version"], 2), "/version", "unsupported version")
+
+    def with_unit(unit):
+        # "unit" right after "version", where a scene writes it (the order of dumps' keys).
+        def f(s):
+            items = list(s.items())
+            s.clear()
+            s.update([items[0], ("unit", unit)] + items[1:])
+        return f
+    scene_case("unit_unknown.scene", with_unit("furlong"), "/unit",
+               "unknown length unit 'furlong' (expected one of mm, cm, dm, m, km, in, ft, yd)")
+    scene_case("unit_not_string.scene", with_unit(1000), "/unit", "expected a string")
 
     def rename_settings(s):
         s["setings"] = s.pop("settings")
@@ -270,6 +281,47 @@ def semantic_cases():
     scene_case("brdf_bad_header.scene", with_table("support/bad_header.brdf.csv"),
                "line 2", "expected the header 'theta_in,theta_out,delta_phi,r,g,b'")
     CASES[-1][2][0] = "bad_header.brdf.csv"
+
+    # Panes and textures (paper §5.4; FORMAT.md "materials").
+    scene_case("transmittance_negative.scene", set_in(["materials", "white", "transmittance"], [0.2, -0.1, 0.2]),
+               "/materials/white/transmittance/1", "must be in [0, 1]")
+    scene_case("transmittance_not_array.scene", set_in(["materials", "white", "transmittance"], "clear"),
+               "/materials/white/transmittance", "expected an array of 3 numbers")
+    scene_case("transmittance_sum_above_one.scene", set_in(["materials", "white", "transmittance"], [0.5, 0.6, 0.5]),
+               "/materials/white", "reflectance + transmittance exceeds 1 in band 1")
+    scene_case("transmittance_phong_sum_above_one.scene",
+               set_in(["materials", "glossy", "transmittance"], [0.2, 0.2, 0.4]),
+               "/materials/glossy", "diffuse + specular + transmittance exceeds 1 in band 2")
+
+    def textured(file, encoding=None):
+        def f(s):
+            s["materials"]["white"]["texture"] = file
+            if encoding is not None:
+                s["materials"]["white"]["texture_encoding"] = encoding
+        return f
+    scene_case("texture_missing.scene", textured("no_such_texture.png"),
+               "/materials/white/texture", "cannot open file")
+    scene_case("texture_not_string.scene", textured(7), "/materials/white/texture", "expected a string")
+    scene_case("texture_bad_encoding.scene", textured("support/grey_ramp.png", "gamma"),
+               "/materials/white/texture_encoding", "unknown texture encoding 'gamma' (expected srgb or linear)")
+    scene_case("texture_encoding_without_texture.scene",
+               set_in(["materials", "white", "texture_encoding"], "linear"),
+               "/materials/white/texture_encoding", "texture_encoding without a texture")
+    scene_case("texture_on_mirror.scene",
+               lambda s: s["materials"].update({"chrome": {"type": "mirror", "reflectance": [0.9, 0.9, 0.9],
+                                                           "texture": "support/grey_ramp.png"}}),
+               "/materials/chrome/texture", "unknown key 'texture'")
+    # Errors inside the image: the message names the PNG after the material's texture pointer.
+    for case, file, phrase in [
+            ("texture_not_png.scene", "not_png.png", "not a PNG file"),
+            ("texture_truncated.scene", "truncated.png", "corrupt PNG file"),
+            ("texture_bad_crc.scene", "bad_crc.png", "corrupt PNG file"),
+            ("texture_palette.scene", "palette.png", "expected an 8- or 16-bit grey or RGB PNG, got a palette image"),
+            ("texture_alpha.scene", "rgba.png", "expected an 8- or 16-bit grey or RGB PNG, got an RGB image with alpha"),
+            ("texture_4_bit.scene", "grey_4bit.png", "expected an 8- or 16-bit grey or RGB PNG, got 4 bits per sample"),
+            ("texture_huge.scene", "huge.png", "image too large: 100000 x 100000")]:
+        scene_case(case, textured("support/" + file), "/materials/white/texture", phrase)
+        CASES[-1][2][1] = file
 
 
 # --------------------------------------------------------------------------- .bpt
@@ -476,6 +528,34 @@ def support_files():
         f.write("# the header misspelt\ntheta_in,theta_out,dphi,r,g,b\n0,0,0,0.2,0.2,0.2\n".encode())
 
 
+def texture_support_files():
+    """The PNGs of the texture_*.scene cases (a valid grey ramp, and one broken image per case) and a
+    valid 16-bit RGB image."""
+    ramp = png_file(4, 2, 8, 0, [bytes([0, 85, 170, 255])] * 2)
+    files = {
+        "grey_ramp.png": ramp,
+        # 16-bit RGB, 2 x 2: top row red, green; bottom row blue, 32768 grey (Testing/Core/TestTexture).
+        "rgb16.png": png_file(2, 2, 16, 2, [
+            bytes([255, 255, 0, 0, 0, 0, 0, 0, 255, 255, 0, 0]),
+            bytes([0, 0, 0, 0, 255, 255, 128, 0, 128, 0, 128, 0])]),
+        "not_png.png": b"GIF89a: not a PNG at all\n",
+        "truncated.png": ramp[:len(ramp) - 20],  # ends inside the IDAT chunk
+        "palette.png": png_file(2, 1, 8, 3, [bytes([0, 0])],
+                                extra=png_chunk(b"PLTE", bytes([255, 0, 0]))),
+        "rgba.png": png_file(1, 1, 8, 6, [bytes([10, 20, 30, 255])]),
+        "grey_4bit.png": png_file(2, 1, 4, 0, [bytes([0x0f])]),
+        # A valid header of 100000 x 100000 pixels (and a scrap of data): refused from the header
+        # before any memory is taken for the pixels.
+        "huge.png": png_file(100000, 100000, 8, 2, [b""]),
+    }
+    bad_crc = bytearray(ramp)
+    bad_crc[29] ^= 0xff  # the IHDR chunk's CRC
+    files["bad_crc.png"] = bytes(bad_crc)
+    for name, data in files.items():
+        with open(os.path.join(SUPPORT, name), "wb") as f:
+            f.write(data)
+
+
 def main():
     json_syntax_cases()
     semantic_cases()
@@ -493,6 +573,7 @@ def main():
         with open(os.path.join(BAD, name), "wb") as f:
             f.write(data)
     support_files()
+    texture_support_files()
     expected = {name: subs for name, _, subs in CASES}
     with open(os.path.join(BAD, "expected.json"), "w", newline="\n") as f:
         f.write("{\n" + ",\n".join("  %s: %s" % (json.dumps(k), json.dumps(v)) for k, v in expected.items()) + "\n}\n")

@@ -14,7 +14,7 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
-from scenegeom import add, cross, dot, read_obj, sub, unit, write_scene  # noqa: E402
+from scenegeom import add, cross, dot, png_file, read_obj, sub, unit, write_scene  # noqa: E402
 
 SCENES = os.path.dirname(HERE)
 MODELS = os.path.join(os.path.dirname(SCENES), "models")
@@ -349,6 +349,83 @@ def howell_disks():
             "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
 
 
+TEXTURES = os.path.join(SCENES, "textures")
+
+
+def srgb_code(linear):
+    """The 8-bit sRGB code (IEC 61966-2-1) of a linear value in [0, 1]."""
+    c = 12.92 * linear if linear <= 0.0031308 else 1.055 * linear ** (1 / 2.4) - 0.055
+    return int(round(255 * c))
+
+
+def ramp_texture():
+    """textures/ramp.png, 16 x 16 sRGB: red grows with u (across the columns from the left), green
+    with v (up the rows from the bottom), blue constant; smooth, so that a pixel's texture is
+    about its centre's, and different along u and v, so that a transposed or flipped texture
+    shows (Python.Textures)."""
+    n = 16
+    rows = []
+    for row in range(n):  # the PNG's first row is the top: v near 1
+        j = n - 1 - row
+        line = bytearray()
+        for i in range(n):
+            line += bytes([srgb_code(0.15 + 0.8 * (i + 0.5) / n),
+                           srgb_code(0.15 + 0.8 * (j + 0.5) / n), srgb_code(0.5)])
+        rows.append(bytes(line))
+    return png_file(n, n, 8, 2, rows)
+
+
+def tiles_texture():
+    """textures/tiles.png, 8 x 8 sRGB tiles of two greys (codes 235 and 120) with a reddish
+    tile in the corner u, v < 1/8: a floor with sharp edges for the Cycles comparison."""
+    n = 8
+    rows = []
+    for row in range(n):
+        j = n - 1 - row
+        line = bytearray()
+        for i in range(n):
+            if i == 0 and j == 0:
+                line += bytes([235, 120, 120])
+            else:
+                line += bytes([235] * 3 if (i + j) % 2 == 0 else [120] * 3)
+        rows.append(bytes(line))
+    return png_file(n, n, 8, 2, rows)
+
+
+def cornell_box_textured():
+    # The Cornell box with a tiled floor (paper §5.4): compared with Cycles
+    # (Data/reference/README.md, "Textures"), the texture changes the light the floor sends to
+    # the walls and the blocks as well as the floor's own look.
+    scene = cornell_box()
+    scene["materials"]["tiles"] = {"type": "diffuse",
+                                   "reflectance": list(CORNELL_MATERIALS["white"]["reflectance"]),
+                                   "texture": "textures/tiles.png"}
+    for surface in scene["surfaces"]:
+        if surface["name"] == "floor":
+            surface["material"] = "tiles"
+    return scene
+
+
+def textured_floor():
+    # A textured floor (u along +x, v along -z) under a lamp that reflects nothing: the floor
+    # receives the lamp's light only, the same with or without its texture, so its render is the
+    # untextured one times the texture at each visible point (paper §5.4; Python.Textures).
+    materials = {
+        "tiles": {"type": "diffuse", "reflectance": [0.8, 0.8, 0.8], "texture": "textures/ramp.png"},
+        "lamp": {"type": "diffuse", "reflectance": [0, 0, 0], "emission": [5, 5, 5]},
+    }
+    surfaces = [
+        bilinear_surface("floor", [[0, 0, 1], [1, 0, 1], [1, 0, 0], [0, 0, 0]], "tiles"),
+        bilinear_surface("lamp", [[0.35, 1, 0.35], [0.65, 1, 0.35], [0.65, 1, 0.65], [0.35, 1, 0.65]],
+                         "lamp"),
+    ]
+    camera = {"name": "main", "position": [0.5, 0.8, -0.6], "focal_point": [0.5, 0, 0.5],
+              "view_up": [0, 1, 0], "view_angle": 50.0, "width": 96, "height": 72}
+    settings = {"theta_bins": 16, "phi_bins": 64, "max_level": 3, "tolerance": 0.05}
+    return {"version": 1, "materials": materials, "surfaces": surfaces, "cameras": [camera],
+            "settings": settings}
+
+
 ALL = {
     "cornell_box.scene": cornell_box,
     "cornell_box_closed.scene": cornell_box_closed,
@@ -361,6 +438,8 @@ ALL = {
     "howell_parallel.scene": howell_parallel,
     "howell_perpendicular.scene": howell_perpendicular,
     "howell_disks.scene": howell_disks,
+    "textured_floor.scene": textured_floor,
+    "cornell_box_textured.scene": cornell_box_textured,
 }
 
 
@@ -368,6 +447,11 @@ def main():
     with open(UNIT_DISK_BPT, "w") as f:
         f.write(unit_disk_bpt())
     print("wrote", UNIT_DISK_BPT)
+    os.makedirs(TEXTURES, exist_ok=True)
+    with open(os.path.join(TEXTURES, "ramp.png"), "wb") as f:
+        f.write(ramp_texture())
+    with open(os.path.join(TEXTURES, "tiles.png"), "wb") as f:
+        f.write(tiles_texture())
     for name, make in ALL.items():
         write_scene(os.path.join(SCENES, name), make())
         print("wrote", os.path.join(SCENES, name))

@@ -307,3 +307,21 @@ def write_scene(path, scene):
     json.loads(text)  # round-trip sanity check
     with open(path, "w", newline="\n") as f:
         f.write(text)
+
+
+def png_chunk(kind, data):
+    """One PNG chunk: length, type, data, CRC-32 of type and data (PNG spec, section 5.3)."""
+    import struct
+    import zlib
+    return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+
+
+def png_file(width, height, bit_depth, colour_type, rows, extra=b""):
+    """A PNG of the given rows, top row first (bytes without the filter byte; filter 0 added),
+    written by hand (plain python3): signature, IHDR, optional chunks, one IDAT, IEND."""
+    import struct
+    import zlib
+    ihdr = struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
+    raw = b"".join(b"\x00" + r for r in rows)
+    return (b"\x89PNG\r\n\x1a\n" + png_chunk(b"IHDR", ihdr) + extra +
+            png_chunk(b"IDAT", zlib.compress(raw, 9)) + png_chunk(b"IEND", b""))
