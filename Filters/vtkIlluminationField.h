@@ -15,12 +15,12 @@
  *
  * Output (vtkPolyData): quads with point data `Radiance` (float RGB, W m^-2 sr^-1), `Normals`
  * (front side), `SurfaceId`, `UV` (the vertex's (u, v) in its surface's parameters, where
- * vtkViewDependentRadiance evaluates the view-dependent radiance) and, as the active scalars, `DisplayRGB` (unsigned char RGB: the
- * radiance times 2^Exposure, clamped to [0, 1] and sRGB-encoded, as vtkRadianceImageFilter's
- * `RGB`), and cell data `PatchId`. Show `DisplayRGB` with Map Scalars off and lighting off
- * (the colours are the light already) to see the true colours; colour by `Radiance` for
- * values. Non-diffuse surfaces show their emission plus diffuse part (the view-dependent part
- * of §5.3.1 needs the eye).
+ * vtkViewDependentRadiance evaluates the view-dependent radiance) and, as the active scalars,
+ * `DisplayRGB` (unsigned char RGB: the radiance times 2^Exposure, clamped to [0, 1] and
+ * sRGB-encoded, as vtkRadianceImageFilter's `RGB`), and cell data `PatchId`. Show `DisplayRGB` with
+ * Map Scalars off and lighting off (the colours are the light already) to see the true colours;
+ * colour by `Radiance` for values. Non-diffuse surfaces show their emission plus diffuse part (the
+ * view-dependent part of §5.3.1 needs the eye).
  *
  * @warning Patches are tessellated in parallel (vtkSMPTools); the output does not depend on
  * the number of threads.

@@ -8,9 +8,9 @@
 #include "vtkSphericalCoverArrays.h"
 #include "vtkStageProgress.h"
 
+#include "cover/BrightEmitters.h"
 #include "cover/HemisphereGrid.h"
 #include "cover/SphericalCover.h"
-#include "cover/BrightEmitters.h"
 #include "propagation/ExchangeBalance.h"
 #include "propagation/LightPropagation.h"
 #include "propagation/SolutionFigures.h"
@@ -339,8 +339,8 @@ void WriteCoverLampIrradiance(const sphcover::LightPropagation& propagation,
     return;
   }
   vtkDataArray* bounceRays = output->GetFieldData()->GetArray(names::DirectBounceRays);
-  const bool firstBounce = bounceRays && bounceRays->GetNumberOfTuples() == 1 &&
-    bounceRays->GetComponent(0, 0) > 0.0;
+  const bool firstBounce =
+    bounceRays && bounceRays->GetNumberOfTuples() == 1 && bounceRays->GetComponent(0, 0) > 0.0;
   const std::size_t count = cover.PatchCount();
   std::vector<int> surfaces(count);
   std::vector<double> areas(count);

@@ -36,6 +36,20 @@
 
 namespace
 {
+/// The options of an image's samples and tone, the same for render and walk; `budgetHelp`
+/// says what --max-samples bounds.
+void AddImageOptions(CLI::App* command,
+  sphcover_cli::Options& options,
+  const std::string& budgetHelp)
+{
+  command->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
+    ->check(CLI::Range(1, 4096));
+  command->add_option(
+    "--exposure", options.Exposure, "Radiance scale before tone mapping, > 0 (default 1)");
+  command->add_option("--max-samples", options.MaxSamples, budgetHelp)
+    ->check(CLI::Range(1.0, 1e18));
+}
+
 /// The options of the cover's fill and of the light it measures, the same for solve and render.
 void AddCoverOptions(CLI::App* command, sphcover_cli::Options& options)
 {
@@ -145,16 +159,10 @@ int main(int argc, char** argv)
   render->add_option("--png", options.Png, "PNG file (tone-mapped sRGB)");
   render->add_option("--camera", options.Camera, "Camera of the scene (default: the first)");
   render->add_option("--size", options.Size, "Image size WIDTHxHEIGHT (default: the camera's)");
-  render->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
-    ->check(CLI::Range(1, 4096));
-  render->add_option(
-    "--exposure", options.Exposure, "Radiance scale before tone mapping, > 0 (default 1)");
-  render
-    ->add_option("--max-samples",
-      options.MaxSamples,
-      "Budget of width x height x spp rays (default 2^30, about 18 minutes on one core); a "
-      "larger image is refused before solving")
-    ->check(CLI::Range(1.0, 1e18));
+  AddImageOptions(render,
+    options,
+    "Budget of width x height x spp rays (default 2^30, about 18 minutes on one core); a "
+    "larger image is refused before solving");
   render->add_option("--solution",
     options.SolutionFile,
     "A solution written by `sphcover solve -o` (.vtm): only render, no solving");
@@ -188,15 +196,7 @@ int main(int argc, char** argv)
   walk->add_option(
     "--size", options.Size, "Frame size WIDTHxHEIGHT of every camera (default: each camera's)");
   walk->add_flag("--exr", options.Exr, "Also write frame_NNNN.exr (HDR Radiance and depth)");
-  walk->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
-    ->check(CLI::Range(1, 4096));
-  walk->add_option(
-    "--exposure", options.Exposure, "Radiance scale before tone mapping, > 0 (default 1)");
-  walk
-    ->add_option("--max-samples",
-      options.MaxSamples,
-      "Budget of width x height x spp rays of a frame (default 2^30)")
-    ->check(CLI::Range(1.0, 1e18));
+  AddImageOptions(walk, options, "Budget of width x height x spp rays of a frame (default 2^30)");
   walk->add_option("--report", options.Report, "Report file (.json): milliseconds of each frame");
 
   try

@@ -332,8 +332,8 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       bool found[RayCaster::PacketSize];
       for (std::size_t first = 0; first < local.size(); first += RayCaster::PacketSize)
       {
-        const int packet = static_cast<int>(
-          std::min<std::size_t>(RayCaster::PacketSize, local.size() - first));
+        const int packet =
+          static_cast<int>(std::min<std::size_t>(RayCaster::PacketSize, local.size() - first));
         for (int k = 0; k < packet; ++k)
         {
           const glm::dvec3& d = local[first + static_cast<std::size_t>(k)];

@@ -32,8 +32,8 @@
  * The rest of the light (the lamp's own light reflected again, later bounces, what mirrors
  * send) is the propagation's. The propagation's points hold their own, coarser version of the
  * nodes' light (LightPropagation::LampIrradiance); a renderer takes that off the points'
- * values and adds the nodes', so that only the smooth rest is interpolated. A node on the border of patches of one surface is computed once
- * (by its (surface, u, v)) and shared by them.
+ * values and adds the nodes', so that only the smooth rest is interpolated. A node on the border of
+ * patches of one surface is computed once (by its (surface, u, v)) and shared by them.
  *
  * Rays start a hair inside the patch and off its front (RayOrigin in the source), so that at
  * an edge where surfaces meet a ray into the other surface's front meets it and a ray leaving

@@ -402,8 +402,8 @@ TEST(DirectIrradiance, RendererReplacesTheCoversVersionOfTheNodesLightAtThePoint
     exitant.push_back(rho / Pi * coverIrradiance.back() + glm::dvec3(0.1));
   }
   RadianceRenderer renderer(floor, CharacteristicPointInterpolator::OfPatches(floor), exitant);
-  renderer.SetDirectLight(DirectLight(
-    nodes, std::vector<glm::dvec3>(floor.size(), rho), floor.size(), coverIrradiance));
+  renderer.SetDirectLight(
+    DirectLight(nodes, std::vector<glm::dvec3>(floor.size(), rho), floor.size(), coverIrradiance));
   for (std::size_t p = 0; p < floor.size(); ++p)
   {
     const glm::dvec3 atPoint =
