@@ -11,13 +11,14 @@
 // - without camera properties, the scene's first camera at its size; a property set wins;
 // - bad input: raw surfaces without illumination, an unknown camera, bad camera properties,
 //   an image beyond the memory limit, non-diffuse points without IncidentRadiance, corrupt
-//   DirectIrradiance nodes: one clear error each.
+//   DirectIrradiance nodes and CoverLampIrradiance: one clear error each.
 #include "FailureExpectation.h"
 #include "RenderTestPipeline.h"
 #include "TestFailures.h"
 
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIntArray.h>
@@ -231,6 +232,38 @@ void BadDirectIrradiance(RenderTestPipeline::Pipeline& pipeline)
   corrupt("DirectIrradiance without Diffuse",
     { "DirectIrradiance", "no point array Diffuse" },
     [&](vtkPointData* pd) { pd->RemoveArray("Diffuse"); });
+
+  // The cover's version of the nodes' light, which the render takes off the points.
+  vtkDataArray* coverPart = lit->GetPointData()->GetArray("CoverLampIrradiance");
+  Check(coverPart && coverPart->GetNumberOfComponents() == 3,
+    "Cornell: the propagation's CoverLampIrradiance, 3 bands");
+  if (!coverPart)
+  {
+    return;
+  }
+  corrupt("CoverLampIrradiance of 2 components",
+    { "CoverLampIrradiance", "2 components, not 3" },
+    [&](vtkPointData* pd)
+    {
+      vtkNew<vtkDoubleArray> wrong;
+      wrong->SetName("CoverLampIrradiance");
+      wrong->SetNumberOfComponents(2);
+      wrong->SetNumberOfTuples(lit->GetNumberOfPoints());
+      wrong->Fill(0.0);
+      pd->AddArray(wrong);
+    });
+  for (const double value : { -1.0, std::nan("") })
+  {
+    corrupt("a negative or NaN CoverLampIrradiance",
+      { "CoverLampIrradiance of point 5", "negative or not a finite number" },
+      [&](vtkPointData* pd)
+      {
+        vtkNew<vtkDoubleArray> copy;
+        copy->DeepCopy(coverPart);
+        copy->SetComponent(5, 1, value);
+        pd->AddArray(copy);
+      });
+  }
 }
 
 /// Centre pixel's depth (the image has an odd or even size: the pixel right of the centre).
