@@ -22,6 +22,15 @@
 
 namespace names = vtkSphericalCoverArrayNames;
 
+namespace
+{
+/// What an irradiance read from a dataset must be.
+bool IsFiniteAndNotNegative(double value)
+{
+  return std::isfinite(value) && value >= 0.0;
+}
+}
+
 bool vtkIlluminationAdapter::Read(vtkPolyData* points,
   Illumination& illumination,
   std::string& error,
@@ -117,7 +126,7 @@ bool vtkIlluminationAdapter::ReadDirectIrradiance(vtkPolyData* points,
     for (int c = 0; c < components; ++c)
     {
       const double value = nodes->GetComponent(i, c);
-      if (!std::isfinite(value) || value < 0.0)
+      if (!IsFiniteAndNotNegative(value))
       {
         error =
           "DirectIrradiance of point " + std::to_string(i) + " is negative or not a finite number";
@@ -144,8 +153,8 @@ bool vtkIlluminationAdapter::ReadDirectIrradiance(vtkPolyData* points,
     {
       glm::dvec3& value = coverPart[static_cast<size_t>(i)];
       cover->GetTuple(i, &value[0]);
-      if (!(std::isfinite(value.x) && std::isfinite(value.y) && std::isfinite(value.z)) ||
-        value.x < 0.0 || value.y < 0.0 || value.z < 0.0)
+      if (!IsFiniteAndNotNegative(value.x) || !IsFiniteAndNotNegative(value.y) ||
+        !IsFiniteAndNotNegative(value.z))
       {
         error = "CoverLampIrradiance of point " + std::to_string(i) +
           " is negative or not a finite number";
