@@ -55,10 +55,14 @@ std::unique_ptr<sphcover::RadianceRenderer> vtkSolutionRenderer::New(vtkPolyData
       "come from one solution";
     return nullptr;
   }
+  std::vector<glm::dvec3> transmittance =
+    vtkSurfaceGridAdapter::TransmittanceOfSurfaces(scene, patches);
   auto renderer = std::make_unique<sphcover::RadianceRenderer>(std::move(patches),
     std::move(lit.Interpolator),
     std::move(lit.ExitantRadiance),
     std::move(lit.TwoSidedSurface));
+  // Panes (paper §5.4): what lies behind them shows through, scaled.
+  renderer->SetSurfaceTransmittance(std::move(transmittance));
   if (!lit.Direct.Empty())
   {
     // The lamps' direct light from its nodes, the rest interpolated (DirectIrradiance.h).

@@ -87,6 +87,11 @@ constexpr const char* CoverUnoccluded = "CoverUnoccluded";
 constexpr const char* CoverStrips = "CoverStrips";
 constexpr const char* CoverStripDepths = "CoverStripDepths";
 constexpr const char* CoverMeasures = "CoverMeasures";
+/// Panes (SphericalCover.h "Panes"), all three or none: per entry its layer (uint8) and filter
+/// (3 floats, RGB, one component), per patch its transmittance (3 floats, one component).
+constexpr const char* CoverLayers = "CoverLayers";
+constexpr const char* CoverFilters = "CoverFilters";
+constexpr const char* CoverTransmittances = "CoverTransmittances";
 /// Point data, 3 n^2 components: the lamps' direct irradiance (RGB, W m^-2) at the n x n nodes
 /// of every point's patch, node (i, j) band b at component (j n + i) 3 + b (Core's
 /// DirectIrradiance.h).

@@ -14,6 +14,7 @@
 #include <vtkTypeUInt16Array.h>
 #include <vtkTypeUInt32Array.h>
 #include <vtkTypeUInt64Array.h>
+#include <vtkTypeUInt8Array.h>
 
 #include <cstring>
 
@@ -91,6 +92,15 @@ void vtkSphericalCoverArrays::Store(const sphcover::SphericalCover& cover, vtkDa
     fd->AddArray(RawArray<vtkFloatArray>(
       names::CoverMeasures, 1, arrays.Measures.data(), arrays.Measures.size()));
   }
+  if (!arrays.Layers.empty())
+  {
+    fd->AddArray(RawArray<vtkTypeUInt8Array>(
+      names::CoverLayers, 1, arrays.Layers.data(), arrays.Layers.size()));
+    fd->AddArray(RawArray<vtkFloatArray>(
+      names::CoverFilters, 1, arrays.Filters.data(), arrays.Filters.size()));
+    fd->AddArray(RawArray<vtkFloatArray>(
+      names::CoverTransmittances, 1, arrays.Transmittances.data(), arrays.Transmittances.size()));
+  }
 }
 
 std::string vtkSphericalCoverArrays::Load(vtkDataSet* input, sphcover::SphericalCover& cover)
@@ -123,6 +133,19 @@ std::string vtkSphericalCoverArrays::Load(vtkDataSet* input, sphcover::Spherical
   {
     return "the cover's field array " + std::string(names::CoverMeasures) +
       " is not a float array of one component";
+  }
+  // Panes (SphericalCover.h, "Panes"): the three arrays together or none.
+  if (fd->GetAbstractArray(names::CoverLayers) || fd->GetAbstractArray(names::CoverFilters) ||
+    fd->GetAbstractArray(names::CoverTransmittances))
+  {
+    if (!ReadRaw<vtkTypeUInt8Array>(fd, names::CoverLayers, 1, arrays.Layers) ||
+      !ReadRaw<vtkFloatArray>(fd, names::CoverFilters, 1, arrays.Filters) ||
+      !ReadRaw<vtkFloatArray>(fd, names::CoverTransmittances, 1, arrays.Transmittances))
+    {
+      return "the cover's pane arrays (" + std::string(names::CoverLayers) + ", " +
+        names::CoverFilters + ", " + names::CoverTransmittances +
+        ") are incomplete or of the wrong type";
+    }
   }
   arrays.Areas.resize(static_cast<size_t>(area->GetNumberOfTuples()));
   for (vtkIdType k = 0; k < area->GetNumberOfTuples(); ++k)

@@ -385,3 +385,17 @@ bool vtkSurfaceGridAdapter::ToPatches(vtkDataSet* input,
   }
   return true;
 }
+
+std::vector<glm::dvec3> vtkSurfaceGridAdapter::TransmittanceOfSurfaces(const sphcover::Scene& scene,
+  const std::vector<sphcover::Patch>& patches)
+{
+  std::vector<glm::dvec3> transmittance;
+  for (size_t k = 0; k < patches.size() && k < scene.Surfaces.size(); ++k)
+  {
+    const size_t surface = static_cast<size_t>(std::max(0, patches[k].SurfaceIndex));
+    transmittance.resize(std::max(transmittance.size(), surface + 1), glm::dvec3(0.0));
+    transmittance[surface] =
+      scene.Materials[static_cast<size_t>(scene.Surfaces[k].MaterialIndex)].Transmittance;
+  }
+  return transmittance;
+}

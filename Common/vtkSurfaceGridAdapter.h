@@ -16,6 +16,8 @@
 
 #include "SphericalCoverCommonModule.h" // for export macro
 
+#include <glm/vec3.hpp>
+
 #include <string>
 #include <vector>
 
@@ -45,6 +47,11 @@ public:
     sphcover::Scene& scene,
     std::vector<sphcover::Patch>& patches,
     std::string& error);
+
+  /// After ToPatches: per surface index (Patch::SurfaceIndex) the transmittance of its material
+  /// (a thin pane, paper §5.4; zero: opaque), from the cell of each of its patches.
+  static std::vector<glm::dvec3> TransmittanceOfSurfaces(const sphcover::Scene& scene,
+    const std::vector<sphcover::Patch>& patches);
 };
 
 #endif

@@ -473,14 +473,15 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     vtkErrorMacro(<< "Cannot propagate light: " << problem);
     return 0;
   }
-  if (std::any_of(materials.begin(),
-        materials.end(),
-        [](const sphcover::Material& material) { return material.IsTransmitter(); }))
+  if (!cover.HasPanes() &&
+    std::any_of(materials.begin(),
+      materials.end(),
+      [](const sphcover::Material& material) { return material.IsTransmitter(); }))
   {
-    // Paper §5.4's transparent surfaces are read, checked and two-sided, but the cover does not
-    // yet see through them (Documentation/notes/panes-and-textures.md): say so, once.
-    vtkWarningMacro(<< "The scene has panes (a material's transmittance): this version solves "
-                       "them as opaque two-sided surfaces; the transmitted light is absorbed.");
+    // A cover saved before panes were seen through (SphericalCover.h, "Panes"): say so, once.
+    vtkWarningMacro(<< "The scene has panes (a material's transmittance) but its spherical "
+                       "cover does not see through them: they are solved as opaque, the "
+                       "transmitted light absorbed. Rebuild the cover.");
   }
 
   double watts = 1.0;

@@ -279,6 +279,17 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
     direct.SelfExclusionFraction = options.FillOptions.SelfExclusionFraction;
     direct.BackFacesOcclude = options.FillOptions.BackFacesOcclude;
     direct.BounceRaysPerSide = self->GetDirectBounceRays();
+    // Panes (paper §5.4): the lamps' light reaches the nodes through them.
+    const std::vector<glm::vec3>& panes = options.SurfaceTransmittance;
+    if (std::any_of(
+          panes.begin(), panes.end(), [](const glm::vec3& t) { return t != glm::vec3(0.0f); }))
+    {
+      for (const sphcover::Patch& patch : patches)
+      {
+        const size_t surface = static_cast<size_t>(patch.SurfaceIndex);
+        direct.Transmittance.push_back(surface < panes.size() ? panes[surface] : glm::vec3(0.0f));
+      }
+    }
     vtkStageProgress progress(self, "Spherical Cover: direct light", 0.9, 0.98);
     const bool completed = sphcover::ComputeDirectIrradiance(patches,
       caster,
@@ -528,6 +539,13 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   if (!CoverOptionsOf(this, input, options))
   {
     return 0;
+  }
+  // Panes (paper §5.4): the cover, its refinement and the direct-light nodes see through them
+  // (SphericalCover.h, "Panes").
+  for (const glm::dvec3& t : vtkSurfaceGridAdapter::TransmittanceOfSurfaces(scene, patches))
+  {
+    options.SurfaceTransmittance.push_back(glm::vec3(t));
+    options.FillOptions.PaneSurfaces.push_back(t != glm::dvec3(0.0));
   }
 
   // Refuse before any R-buffer exists what could not fit: first the working memory of the

@@ -30,12 +30,21 @@ struct NodeFilter
   int32_t Surface;
   float SelfExclusion;
   bool BackFacesOcclude;
+  /// Per patch 1 when it is a pane's side (empty: none), and whether the node is on one.
+  const std::vector<char>* PanePatch;
+  bool OnPane;
 };
 
 bool AcceptForNode(const void* context, std::size_t patch, float distance, bool front)
 {
   const NodeFilter& node = *static_cast<const NodeFilter*>(context);
-  if (!front && !node.BackFacesOcclude)
+  const bool pane = !node.PanePatch->empty() && (*node.PanePatch)[patch];
+  // A pane's back side is its reversed copy's front; a node on a pane lies on that copy too.
+  if (!front && (!node.BackFacesOcclude || pane))
+  {
+    return false;
+  }
+  if (distance < node.SelfExclusion && pane && node.OnPane)
   {
     return false;
   }
@@ -158,6 +167,23 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       " is not an odd number from 3 to 33");
   }
   result = DirectIrradianceNodes();
+  if (!options.Transmittance.empty() && options.Transmittance.size() != patches.size())
+  {
+    throw std::invalid_argument(
+      "ComputeDirectIrradiance: " + std::to_string(options.Transmittance.size()) +
+      " transmittances for " + std::to_string(patches.size()) + " patches");
+  }
+  // Panes (see DirectIrradianceOptions::Transmittance): per patch whether it is one.
+  std::vector<char> panePatch;
+  for (const glm::vec3& t : options.Transmittance)
+  {
+    panePatch.push_back(t != glm::vec3(0.0f) ? 1 : 0);
+  }
+  if (std::find(panePatch.begin(), panePatch.end(), 1) == panePatch.end())
+  {
+    panePatch.clear();
+  }
+  const std::vector<glm::vec3>* panes = panePatch.empty() ? nullptr : &options.Transmittance;
 
   std::vector<std::size_t> piecesOfSurface(lamps.size(), 0);
   std::vector<int32_t> surfaceOfPatch(patches.size());
@@ -230,7 +256,9 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     rays.Filter = { &surfaceOfPatch,
       patch.SurfaceIndex,
       static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
-      options.BackFacesOcclude };
+      options.BackFacesOcclude,
+      &panePatch,
+      !panePatch.empty() && panePatch[firstPatch[node]] != 0 };
     rays.Origin = RayOrigin(patch,
       static_cast<double>(firstIndex[node] % n) / (n - 1),
       static_cast<double>(firstIndex[node] / n) / (n - 1),
@@ -255,8 +283,14 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
         continue; // the lamp's own light is not direct light on it
       }
       irradiance += piece.Emission *
-        VisibleProjectedSolidAngle(
-          caster, origin, normal, filter, piece.Patch, patches[piece.Patch], piece.MinimumSide);
+        VisibleProjectedSolidAngleThroughPanes(caster,
+          origin,
+          normal,
+          filter,
+          piece.Patch,
+          patches[piece.Patch],
+          piece.MinimumSide,
+          panes);
     }
     irradianceOfNode[node] = irradiance;
   };
@@ -342,9 +376,20 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
         caster.IntersectPacket(origin, directions, packet, 0.0f, filter, hits, found);
         for (int k = 0; k < packet; ++k)
         {
-          if (found[k] && hits[k].FrontSide)
+          // Through panes: each pane's own Lambertian radiance, then T times what is behind.
+          TriangleHit hit = hits[k];
+          bool met = found[k];
+          glm::dvec3 throughput(1.0);
+          for (int pane = 0; met && hit.FrontSide && pane <= MaxPanesPerRay; ++pane)
           {
-            sum += diffuse[hits[k].Patch] * direct.At(hits[k].Patch, hits[k].U, hits[k].V);
+            sum += throughput * diffuse[hit.Patch] * direct.At(hit.Patch, hit.U, hit.V);
+            if (panePatch.empty() || !panePatch[hit.Patch])
+            {
+              break;
+            }
+            throughput *= glm::dvec3(options.Transmittance[hit.Patch]);
+            met = caster.Intersect(
+              origin, directions[k], hit.Distance * (1.0f + 1e-5f) + 1e-7f, filter, false, hit);
           }
         }
       }

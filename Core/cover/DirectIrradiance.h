@@ -70,6 +70,12 @@ struct DirectIrradianceOptions
   int BounceRaysPerSide = 32;
   double SelfExclusionFraction = 1e-3;
   bool BackFacesOcclude = true;
+  /**
+   * Per patch the transmittance of a thin pane (paper §5.4; empty: no panes). The shadow and
+   * bounce rays go on behind a pane's front side scaled by it (a bounce ray adds the pane's own
+   * Lambertian radiance first), and pass its back side, its reversed copy's front.
+   */
+  std::vector<glm::vec3> Transmittance;
 };
 
 /// Per patch NodesPerSide^2 nodes, RGB irradiance (E_direct + E_bounce) each: patch p's node (i, j)

@@ -104,6 +104,15 @@ struct RBufferFillOptions
   /// rays on the Cornell box at its settings (Documentation/notes/ray-casting.md). Off: every
   /// sample is a ray, as before. The projection fill ignores it.
   bool AdaptiveSampling = true;
+  /**
+   * Per surface (Patch::SurfaceIndex; empty or shorter: none) whether it is one side of a thin
+   * pane (paper §5.4; Data/scenes/FORMAT.md "transmittance"; the loader makes a pane two
+   * one-sided surfaces, the patch and its reversed copy). A pane's front side is a source like
+   * any other; its back side is never met (it is the other copy's front): the rays pass it
+   * whatever BackFacesOcclude says. What lies behind a pane is found by
+   * RayCastFiller::FillBehindPanes. Ray fill only: the projection fill refuses panes.
+   */
+  std::vector<bool> PaneSurfaces;
   /// Ray fill with AdaptiveSampling: cast the rays 16 at a time as Embree packets
   /// (RayCaster::IntersectPacket, in the same order) instead of one by one.
   bool RayPackets = true;

@@ -38,25 +38,38 @@ struct ReceiverFilter
   float SelfExclusion;
   bool CountSelf;
   bool BackFacesOcclude;
+  /// Per patch whether it is a pane's side (RBufferFillOptions::PaneSurfaces); may be empty.
+  const std::vector<char>* PanePatch;
 };
 
 /// The filter of the rays from `receiver`'s point under the fill's options.
 ReceiverFilter FilterFor(std::size_t receiver,
   const Patch& patch,
-  const RBufferFillOptions& options)
+  const RBufferFillOptions& options,
+  const std::vector<char>& panePatch)
 {
   return { receiver,
     static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
     options.CountSelfVisibility,
-    options.BackFacesOcclude };
+    options.BackFacesOcclude,
+    &panePatch };
 }
 
 bool AcceptForReceiver(const void* context, std::size_t patch, float distance, bool front)
 {
   const ReceiverFilter& receiver = *static_cast<const ReceiverFilter*>(context);
-  if (!front && !receiver.BackFacesOcclude)
+  // A pane's back side is its reversed copy's front, which the ray meets at the same place.
+  const bool paneBack = !front && !receiver.PanePatch->empty() && (*receiver.PanePatch)[patch];
+  if (!front && (!receiver.BackFacesOcclude || paneBack))
   {
     return false; // a back side the rays pass through
+  }
+  // A pane's point lies on its reversed copy too (the same place, the other side): a hit on a
+  // pane that near is that copy, not something the point sees.
+  if (distance < receiver.SelfExclusion && !receiver.PanePatch->empty() &&
+    (*receiver.PanePatch)[receiver.Receiver] && (*receiver.PanePatch)[patch])
+  {
+    return false;
   }
   // The receiver's own patch: P_i itself, or all of it when its self-visibility is not counted.
   return !(
@@ -117,10 +130,19 @@ RayCastFiller::RayCastFiller(const std::vector<Patch>& patches,
   , Options(options)
   , Rays(RayCastPatches(patches), RayCastOptions(options))
 {
+  const std::vector<bool>& panes = options.PaneSurfaces;
+  bool anyPane = false;
   for (const Patch& patch : patches)
   {
     this->SurfaceOfPatch.push_back(patch.SurfaceIndex);
     this->PlaneNormals.push_back(PlaneNormal(patch.Geometry));
+    const std::size_t surface = static_cast<std::size_t>(patch.SurfaceIndex);
+    this->PanePatch.push_back(surface < panes.size() && panes[surface] ? 1 : 0);
+    anyPane = anyPane || this->PanePatch.back() != 0;
+  }
+  if (!anyPane)
+  {
+    this->PanePatch.clear();
   }
 }
 
@@ -209,7 +231,8 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   RBuffer& buffer) const
 {
   const HemisphereGrid& grid = this->Grid;
-  const ReceiverFilter receiverFilter = FilterFor(receiver, this->Patches[receiver], this->Options);
+  const ReceiverFilter receiverFilter =
+    FilterFor(receiver, this->Patches[receiver], this->Options, this->PanePatch);
 
   HitScratch& scratch = ThreadScratch();
   scratch.U.resize(grid.SampleCount());
@@ -394,6 +417,103 @@ void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistic
     this->Options.DiffuseRounding);
 }
 
+void RayCastFiller::FillBehindPanes(std::size_t receiver,
+  const RBuffer& front,
+  int layer,
+  RBuffer& behind) const
+{
+  const HemisphereGrid& grid = this->Grid;
+  const HemisphereFrame frame = HemisphereFrame::OfPatch(this->Patches[receiver]);
+  const ReceiverFilter receiverFilter =
+    FilterFor(receiver, this->Patches[receiver], this->Options, this->PanePatch);
+  const RayFilter filter{ AcceptForReceiver, &receiverFilter };
+  behind.Reset(receiver);
+  const int samplesTheta = grid.SamplesTheta();
+  const int samplesPhi = grid.SamplesPhi();
+  const std::vector<int>& order = grid.SamplesFromCentre();
+  std::vector<char> through(order.size());
+  std::size_t rays = 0;
+  for (int row = 0; row < grid.ThetaBins(); ++row)
+  {
+    for (int column = 0; column < grid.PhiBins(); ++column)
+    {
+      const int32_t shown = front.CellSource(grid.CellIndex(row, column));
+      if (shown == RBuffer::NoSource || !this->IsPane(static_cast<std::size_t>(shown)))
+      {
+        continue;
+      }
+      auto sampleOf = [&](int k)
+      {
+        return grid.SampleIndex(
+          row * samplesTheta + k / samplesPhi, column * samplesPhi + k % samplesPhi);
+      };
+      int first = -1;
+      for (int k = 0; k < static_cast<int>(order.size()); ++k)
+      {
+        through[static_cast<std::size_t>(k)] = 0;
+        const int a = row * samplesTheta + k / samplesPhi;
+        const int b = column * samplesPhi + k % samplesPhi;
+        const glm::dvec3 direction = frame.ToWorld(grid.SampleDirection(a, b));
+        // The ray's own path: from each pane met on, cast again just beyond it (Embree's filter
+        // sees hits out of order, so "the next hit" is a new ray, not a callback).
+        float nearest = 0.0f;
+        TriangleHit hit;
+        int passed = 0;
+        bool found = false;
+        for (;;)
+        {
+          ++rays;
+          found = this->Rays.Intersect(frame.Origin, direction, nearest, filter, true, hit) &&
+            hit.FrontSide;
+          if (!found || passed == layer || !this->IsPane(hit.Patch))
+          {
+            break;
+          }
+          ++passed;
+          nearest = hit.Distance * (1.0f + 1e-5f) + 1e-7f;
+        }
+        // Through `layer` panes the ray meets a front side or nothing (an open scene's sky):
+        // both are what the cell shows behind them.
+        if (passed == layer)
+        {
+          through[static_cast<std::size_t>(k)] = 1;
+          if (found)
+          {
+            behind.SetSample(sampleOf(k),
+              static_cast<int32_t>(hit.Patch),
+              hit.Distance,
+              this->IsGrazing(hit, direction));
+          }
+        }
+      }
+      for (const int k : order)
+      {
+        if (through[static_cast<std::size_t>(k)] && first < 0)
+        {
+          first = k;
+        }
+      }
+      if (first < 0)
+      {
+        continue;
+      }
+      const std::size_t copied = sampleOf(first);
+      for (int k = 0; k < static_cast<int>(order.size()); ++k)
+      {
+        if (!through[static_cast<std::size_t>(k)])
+        {
+          behind.SetSample(sampleOf(k),
+            behind.SampleSource(copied),
+            behind.SampleDepth(copied),
+            behind.SampleGrazing(copied));
+        }
+      }
+    }
+  }
+  this->RayCount.fetch_add(rays, std::memory_order_relaxed);
+  behind.Classify(nullptr, &this->SurfaceOfPatch, this->Options.DiffuseRounding);
+}
+
 double VisibleProjectedSolidAngle(const RayCaster& caster,
   const glm::dvec3& origin,
   const glm::dvec3& normal,
@@ -402,6 +522,20 @@ double VisibleProjectedSolidAngle(const RayCaster& caster,
   const Patch& target,
   int minimumSide)
 {
+  return VisibleProjectedSolidAngleThroughPanes(
+    caster, origin, normal, filter, source, target, minimumSide, nullptr)
+    .x;
+}
+
+glm::dvec3 VisibleProjectedSolidAngleThroughPanes(const RayCaster& caster,
+  const glm::dvec3& origin,
+  const glm::dvec3& normal,
+  const RayFilter& filter,
+  std::size_t source,
+  const Patch& target,
+  int minimumSide,
+  const std::vector<glm::vec3>* transmittanceOfPatch)
+{
   const double distance = glm::length(target.Point - origin);
   const double size = target.Geometry.Size();
   const int n = distance > 0.0
@@ -409,7 +543,7 @@ double VisibleProjectedSolidAngle(const RayCaster& caster,
         std::ceil(4.0 * size / distance), static_cast<double>(std::max(1, minimumSide)), 32.0))
     : 32;
   const double step = 1.0 / n;
-  double sum = 0.0;
+  glm::dvec3 sum(0.0);
   for (int a = 0; a < n; ++a)
   {
     for (int b = 0; b < n; ++b)
@@ -433,13 +567,36 @@ double VisibleProjectedSolidAngle(const RayCaster& caster,
       {
         continue;
       }
+      // The node is seen when the ray's first front side is the source's, or when it is
+      // reached through panes' front sides, scaled by their transmittances.
+      glm::dvec3 seen(1.0);
+      float nearest = 0.0f;
       TriangleHit hit;
-      if (!caster.Intersect(origin, direction, 0.0f, filter, false, hit) || hit.Patch != source ||
-        !hit.FrontSide)
+      bool found = false;
+      for (int pane = 0; pane <= MaxPanesPerRay; ++pane)
       {
-        continue;
+        if (!caster.Intersect(origin, direction, nearest, filter, false, hit) || !hit.FrontSide)
+        {
+          break;
+        }
+        if (hit.Patch == source)
+        {
+          found = true;
+          break;
+        }
+        const glm::dvec3 t =
+          transmittanceOfPatch ? glm::dvec3((*transmittanceOfPatch)[hit.Patch]) : glm::dvec3(0.0);
+        if (t == glm::dvec3(0.0))
+        {
+          break;
+        }
+        seen *= t;
+        nearest = hit.Distance * (1.0f + 1e-5f) + 1e-7f;
       }
-      sum += cosReceiver * projectedArea / r2;
+      if (found)
+      {
+        sum += seen * (cosReceiver * projectedArea / r2);
+      }
     }
   }
   return sum;
@@ -451,7 +608,7 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
 {
   const Patch& self = this->Patches[receiver];
   const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
-  const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options);
+  const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options, this->PanePatch);
   const RayFilter filter{ AcceptForReceiver, &receiverFilter };
   return sphcover::VisibleProjectedSolidAngle(
     this->Rays, frame.Origin, frame.Normal, filter, source, this->Patches[source], minimumSide);

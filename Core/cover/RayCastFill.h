@@ -68,6 +68,24 @@ double VisibleProjectedSolidAngle(const RayCaster& caster,
   std::size_t source,
   const Patch& target,
   int minimumSide);
+/**
+ * VisibleProjectedSolidAngle seen through panes (paper §5.4), per band: a node's ray that meets
+ * the front side of a patch with a non-zero transmittanceOfPatch[p] (null: none) goes on behind
+ * it (cast again beyond it, at most MaxPanesPerRay panes), the node counting with the product of
+ * the transmittances passed. The filter must pass the panes' back sides (their reversed copies'
+ * fronts). With no pane on the way, every band is VisibleProjectedSolidAngle.
+ */
+glm::dvec3 VisibleProjectedSolidAngleThroughPanes(const RayCaster& caster,
+  const glm::dvec3& origin,
+  const glm::dvec3& normal,
+  const RayFilter& filter,
+  std::size_t source,
+  const Patch& target,
+  int minimumSide,
+  const std::vector<glm::vec3>* transmittanceOfPatch);
+/// Most panes a node's ray goes through (VisibleProjectedSolidAngleThroughPanes).
+constexpr int MaxPanesPerRay = 8;
+
 /// The caster's options among a fill's.
 RayCasterOptions RayCastOptions(const RBufferFillOptions& options);
 
@@ -99,6 +117,33 @@ public:
   double VisibleProjectedSolidAngle(std::size_t receiver,
     std::size_t source,
     int minimumSide = 8) const;
+
+  /// Whether the scene has panes, and whether `patch` is a pane's side
+  /// (RBufferFillOptions::PaneSurfaces).
+  bool HasPanes() const { return !this->PanePatch.empty(); }
+  bool IsPane(std::size_t patch) const
+  {
+    return !this->PanePatch.empty() && this->PanePatch[patch] != 0;
+  }
+
+  /**
+   * What `receiver`'s point sees behind `layer` >= 1 panes (paper §5.4): `behind` gets, in the
+   * cells where `front` (layer - 1: Fill's buffer, or this function's for the layer before)
+   * is won by a pane's side, for each of the cell's samples the surface its ray meets after
+   * passing exactly `layer` panes' front sides (cast again from each pane met, the ray's own
+   * path), with the tessellation's distance. A sample whose ray meets something else first (an
+   * opaque surface, a back side, nothing) before `layer` panes takes the value of the cell's
+   * first sample in HemisphereGrid::SamplesFromCentre() order that does get through (the cell
+   * is seen through a pane: its samples vote only on what lies behind it); a cell none of
+   * whose samples gets through stays empty, as do the cells `front` does not give to a pane.
+   * Then Classify, as Fill. In a closed scene every cell won by a pane in `front` is covered in
+   * `behind`, so the layers' measures agree (the white furnace with panes stays exact). Costs
+   * layer + 1 rays per sample of those cells. Safe to call from several threads.
+   */
+  void FillBehindPanes(std::size_t receiver,
+    const RBuffer& front,
+    int layer,
+    RBuffer& behind) const;
 
   /// Sample rays cast by all Fill() calls so far (a statistic: with AdaptiveSampling fewer
   /// than Fill() calls x SampleCount(); the same for any number of threads).
@@ -150,6 +195,8 @@ private:
   std::vector<int32_t> SurfaceOfPatch;
   /// Per patch: the unit normal of its plane when it is planar, else zero (IsGrazing).
   std::vector<glm::dvec3> PlaneNormals;
+  /// Per patch 1 when it is a pane's side; empty when no patch is.
+  std::vector<char> PanePatch;
   RayCaster Rays;
   mutable std::atomic<std::uint64_t> RayCount{ 0 };
 };

@@ -49,8 +49,40 @@ struct SphericalCover::Row
   std::vector<float> Depths;
   /// Per entry its region's measure, when the row has a measured region (else empty).
   std::vector<float> Measures;
+  /// Per entry its layer and filter (see "Panes" in the header).
+  std::vector<uint8_t> Layers;
+  std::vector<glm::vec3> Filters;
   CullingStatistics Culling;
 };
+
+namespace
+{
+/// The order of a row's entries: by source, then layer, then filter (band by band).
+bool EntryKeyLess(uint32_t sourceA,
+  unsigned layerA,
+  const glm::vec3& filterA,
+  uint32_t sourceB,
+  unsigned layerB,
+  const glm::vec3& filterB)
+{
+  if (sourceA != sourceB)
+  {
+    return sourceA < sourceB;
+  }
+  if (layerA != layerB)
+  {
+    return layerA < layerB;
+  }
+  for (int b = 0; b < 3; ++b)
+  {
+    if (filterA[b] != filterB[b])
+    {
+      return filterA[b] < filterB[b];
+    }
+  }
+  return false;
+}
+}
 
 SphericalCover::SphericalCover() = default;
 SphericalCover::~SphericalCover() = default;
@@ -69,19 +101,28 @@ void SphericalCover::Clear()
   this->Columns.clear();
   this->Areas.clear();
   this->Measures.clear();
+  this->Layers.clear();
+  this->Filters.clear();
+  this->Transmittances.clear();
   this->UnoccludedKnown = false;
   this->CullingCounts = CullingStatistics();
 }
 
-void SphericalCover::ExtractRow(const RBuffer& buffer, Row& row)
+void SphericalCover::ExtractRow(const RBuffer& buffer,
+  Row& row,
+  unsigned layer,
+  const std::vector<glm::vec3>* filterOfCell)
 {
   const HemisphereGrid& grid = buffer.Grid();
   struct Run
   {
     int32_t Source;
+    glm::vec3 Filter;
     Strip Cells;
     float Depth;
   };
+  auto filterAt = [filterOfCell](int cell)
+  { return filterOfCell ? (*filterOfCell)[static_cast<size_t>(cell)] : glm::vec3(1.0f); };
   std::vector<Run> runs;
   for (int theta = 0; theta < grid.ThetaBins(); ++theta)
   {
@@ -94,36 +135,45 @@ void SphericalCover::ExtractRow(const RBuffer& buffer, Row& row)
         ++column;
         continue;
       }
+      const glm::vec3 filter = filterAt(grid.CellIndex(theta, column));
       const int begin = column;
       double depth = 0.0;
-      while (column < grid.PhiBins() && buffer.CellSource(grid.CellIndex(theta, column)) == source)
+      while (column < grid.PhiBins() &&
+        buffer.CellSource(grid.CellIndex(theta, column)) == source &&
+        filterAt(grid.CellIndex(theta, column)) == filter)
       {
         depth += buffer.CellDepth(grid.CellIndex(theta, column));
         ++column;
       }
       runs.push_back({ source,
+        filter,
         { static_cast<uint16_t>(theta),
           static_cast<uint16_t>(begin),
           static_cast<uint16_t>(column) },
         static_cast<float>(depth / (column - begin)) });
     }
   }
-  // Group by source; within a source the strips stay in row-major order.
-  std::stable_sort(
-    runs.begin(), runs.end(), [](const Run& a, const Run& b) { return a.Source < b.Source; });
+  // Group by source (and filter); within an entry the strips stay in row-major order.
+  std::stable_sort(runs.begin(),
+    runs.end(),
+    [layer](const Run& a, const Run& b)
+    { return EntryKeyLess(a.Source, layer, a.Filter, b.Source, layer, b.Filter); });
   const auto& unoccluded = buffer.UnoccludedProjectedSolidAngles();
   size_t next = 0;
   for (size_t k = 0; k < runs.size(); ++k)
   {
-    if (k == 0 || runs[k].Source != runs[k - 1].Source)
+    if (k == 0 || runs[k].Source != runs[k - 1].Source || runs[k].Filter != runs[k - 1].Filter)
     {
       row.Sources.push_back(static_cast<uint32_t>(runs[k].Source));
       row.StripCounts.push_back(0);
+      row.Layers.push_back(static_cast<uint8_t>(layer));
+      row.Filters.push_back(runs[k].Filter);
       while (next < unoccluded.size() && unoccluded[next].first < runs[k].Source)
       {
         ++next;
       }
-      row.Unoccluded.push_back(next < unoccluded.size() && unoccluded[next].first == runs[k].Source
+      row.Unoccluded.push_back(
+        layer == 0 && next < unoccluded.size() && unoccluded[next].first == runs[k].Source
           ? unoccluded[next].second
           : 0.0f);
     }
@@ -131,6 +181,75 @@ void SphericalCover::ExtractRow(const RBuffer& buffer, Row& row)
     row.Strips.push_back(runs[k].Cells);
     row.Depths.push_back(runs[k].Depth);
   }
+}
+
+void SphericalCover::ExtractLayersBehindPanes(const RayCastFiller& filler,
+  const std::vector<glm::vec3>& transmittanceOfPatch,
+  RBuffer& front,
+  RBuffer& behind,
+  Row& row) const
+{
+  const HemisphereGrid& grid = front.Grid();
+  // Per cell the product of the transmittances of the panes that won it in the layers so far.
+  std::vector<glm::vec3> filter(static_cast<size_t>(grid.CellCount()), glm::vec3(1.0f));
+  for (int layer = 1; layer <= this->BuildOptions.MaxPaneDepth; ++layer)
+  {
+    bool anyPane = false;
+    for (int cell = 0; cell < grid.CellCount(); ++cell)
+    {
+      const int32_t source = front.CellSource(cell);
+      if (source != RBuffer::NoSource && filler.IsPane(static_cast<size_t>(source)))
+      {
+        filter[static_cast<size_t>(cell)] *= transmittanceOfPatch[static_cast<size_t>(source)];
+        anyPane = true;
+      }
+    }
+    if (!anyPane)
+    {
+      break;
+    }
+    filler.FillBehindPanes(front.Receiver(), front, layer, behind);
+    ExtractRow(behind, row, static_cast<unsigned>(layer), &filter);
+    std::swap(front, behind);
+  }
+  // The layers were appended one after the other: the row's entries are sorted by (source,
+  // layer, filter), as FindEntry and the propagation's matching of transposed entries expect.
+  const size_t entries = row.Sources.size();
+  std::vector<size_t> firstStrip(entries + 1, 0);
+  for (size_t e = 0; e < entries; ++e)
+  {
+    firstStrip[e + 1] = firstStrip[e] + row.StripCounts[e];
+  }
+  std::vector<size_t> order(entries);
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(),
+    order.end(),
+    [&row](size_t a, size_t b)
+    {
+      return EntryKeyLess(row.Sources[a],
+        row.Layers[a],
+        row.Filters[a],
+        row.Sources[b],
+        row.Layers[b],
+        row.Filters[b]);
+    });
+  Row sorted;
+  sorted.Culling = row.Culling;
+  for (const size_t e : order)
+  {
+    sorted.Sources.push_back(row.Sources[e]);
+    sorted.StripCounts.push_back(row.StripCounts[e]);
+    sorted.Unoccluded.push_back(row.Unoccluded[e]);
+    sorted.Layers.push_back(row.Layers[e]);
+    sorted.Filters.push_back(row.Filters[e]);
+    sorted.Strips.insert(sorted.Strips.end(),
+      row.Strips.begin() + static_cast<std::ptrdiff_t>(firstStrip[e]),
+      row.Strips.begin() + static_cast<std::ptrdiff_t>(firstStrip[e + 1]));
+    sorted.Depths.insert(sorted.Depths.end(),
+      row.Depths.begin() + static_cast<std::ptrdiff_t>(firstStrip[e]),
+      row.Depths.begin() + static_cast<std::ptrdiff_t>(firstStrip[e + 1]));
+  }
+  row = std::move(sorted);
 }
 
 void SphericalCover::MeasureRow(std::size_t receiver,
@@ -151,7 +270,8 @@ void SphericalCover::MeasureRow(std::size_t receiver,
     cells[e] = MeasureOfStrips(grid, strips, strips + row.StripCounts[e]);
     strips += row.StripCounts[e];
     const size_t surface = static_cast<size_t>(patches[row.Sources[e]].SurfaceIndex);
-    isMeasured[e] = surface < measured.size() && measured[surface];
+    // Regions seen through panes keep their cells (the lamp's visible part is layer 0's).
+    isMeasured[e] = row.Layers[e] == 0 && surface < measured.size() && measured[surface];
     any = any || isMeasured[e];
   }
   if (!any)
@@ -170,6 +290,10 @@ void SphericalCover::MeasureRow(std::size_t receiver,
   std::vector<int> surfaces;
   for (size_t e = 0; e < entries; ++e)
   {
+    if (row.Layers[e] != 0)
+    {
+      continue;
+    }
     covered += cells[e];
     if (isMeasured[e])
     {
@@ -233,11 +357,14 @@ void SphericalCover::MeasureRow(std::size_t receiver,
       othersScale = covered / others;
     }
   }
+  // What lies behind a pane counts as the pane's region does.
+  const double behindScale = others > 0.0 ? othersScale : 1.0;
   row.Measures.resize(entries);
   for (size_t e = 0; e < entries; ++e)
   {
-    row.Measures[e] =
-      static_cast<float>(isMeasured[e] ? measure[e] * measuredScale : cells[e] * othersScale);
+    row.Measures[e] = static_cast<float>(isMeasured[e] ? measure[e] * measuredScale
+        : row.Layers[e] != 0                           ? cells[e] * behindScale
+                                                       : cells[e] * othersScale);
   }
 }
 
@@ -254,6 +381,14 @@ void SphericalCover::AppendRow(Row& row)
     this->Entries.push_back({ row.Sources[e], static_cast<uint32_t>(stripIndex) });
     this->Unoccluded.push_back(row.Unoccluded[e]);
     stripIndex += row.StripCounts[e];
+    if (!this->Transmittances.empty())
+    {
+      this->Layers.push_back(row.Layers[e]);
+      for (int b = 0; b < 3; ++b)
+      {
+        this->Filters.push_back(row.Filters[e][b]);
+      }
+    }
   }
   this->Strips.insert(this->Strips.end(), row.Strips.begin(), row.Strips.end());
   this->StripDepths.insert(this->StripDepths.end(), row.Depths.begin(), row.Depths.end());
@@ -291,11 +426,47 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
     throw std::invalid_argument("SphericalCover: more than 2^32 - 2 patches");
   }
   this->BuildOptions = options;
+  // Panes (see the file comment): the fill lets the rays through their back sides, the cover
+  // keeps each patch's transmittance and the layers behind them.
+  std::vector<glm::vec3> transmittanceOfPatch;
+  if (options.MaxPaneDepth > 0)
+  {
+    std::vector<bool>& paneSurfaces = this->BuildOptions.FillOptions.PaneSurfaces;
+    paneSurfaces.assign(options.SurfaceTransmittance.size(), false);
+    for (size_t s = 0; s < options.SurfaceTransmittance.size(); ++s)
+    {
+      const glm::vec3& t = options.SurfaceTransmittance[s];
+      paneSurfaces[s] = t.x > 0.0f || t.y > 0.0f || t.z > 0.0f;
+    }
+    for (const Patch& patch : patches)
+    {
+      const size_t surface = static_cast<size_t>(patch.SurfaceIndex);
+      const bool pane = surface < paneSurfaces.size() && paneSurfaces[surface];
+      transmittanceOfPatch.push_back(
+        pane ? options.SurfaceTransmittance[surface] : glm::vec3(0.0f));
+    }
+    if (std::find(paneSurfaces.begin(), paneSurfaces.end(), true) == paneSurfaces.end())
+    {
+      paneSurfaces.clear();
+      transmittanceOfPatch.clear();
+    }
+    else if (options.Fill != RBufferFill::RayCasting)
+    {
+      throw std::invalid_argument(
+        "SphericalCover: a scene with panes (transmittance) needs the ray-casting fill");
+    }
+  }
+  for (const glm::vec3& t : transmittanceOfPatch)
+  {
+    this->Transmittances.insert(this->Transmittances.end(), { t.x, t.y, t.z });
+  }
   this->GridPointer = std::make_unique<HemisphereGrid>(
     options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
   const HemisphereGrid& grid = *this->GridPointer;
   const std::unique_ptr<RBufferFiller> filler =
-    RBufferFiller::Create(options.Fill, patches, grid, options.FillOptions);
+    RBufferFiller::Create(options.Fill, patches, grid, this->BuildOptions.FillOptions);
+  const RayCastFiller* paneFiller =
+    transmittanceOfPatch.empty() ? nullptr : dynamic_cast<const RayCastFiller*>(filler.get());
   const ParallelFor& run = parallelFor ? parallelFor : ParallelFor(SequentialFor);
   // Regions measured on their sources (see the file comment): the ray fill's rays only.
   const RayCastFiller* rayFiller = nullptr;
@@ -333,10 +504,17 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
       [&](size_t begin, size_t end)
       {
         RBuffer buffer(grid);
+        const std::unique_ptr<RBuffer> behind =
+          paneFiller ? std::make_unique<RBuffer>(grid) : nullptr;
         for (size_t k = begin; k < end; ++k)
         {
           filler->Fill(batchBegin + k, buffer, &rows[k].Culling);
           ExtractRow(buffer, rows[k]);
+          if (paneFiller)
+          {
+            this->ExtractLayersBehindPanes(
+              *paneFiller, transmittanceOfPatch, buffer, *behind, rows[k]);
+          }
           if (rayFiller)
           {
             this->MeasureRow(batchBegin + k, *rayFiller, patches, measuredPieces, rows[k]);
@@ -402,6 +580,9 @@ SphericalCover::Arrays SphericalCover::ExportArrays() const
   arrays.StripDepths = this->StripDepths;
   arrays.Areas = this->Areas;
   arrays.Measures = this->Measures;
+  arrays.Layers = this->Layers;
+  arrays.Filters = this->Filters;
+  arrays.Transmittances = this->Transmittances;
   return arrays;
 }
 
@@ -442,6 +623,23 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
       return "entry " + std::to_string(e) + " refers to a missing source or strip";
     }
   }
+  const size_t entryCount = arrays.Entries.size();
+  if (arrays.Layers.empty() ? !arrays.Filters.empty() || !arrays.Transmittances.empty()
+                            : arrays.Layers.size() != entryCount ||
+        arrays.Filters.size() != 3 * entryCount || arrays.Transmittances.size() != 3 * count)
+  {
+    return "the pane arrays (layers, filters, transmittances) do not match the entries";
+  }
+  for (const std::vector<float>* values : { &arrays.Filters, &arrays.Transmittances })
+  {
+    for (const float value : *values)
+    {
+      if (!(value >= 0.0f && value <= 1.0f))
+      {
+        return "a pane's filter or transmittance is not in [0, 1]";
+      }
+    }
+  }
   for (const float measure : arrays.Measures)
   {
     if (!(measure >= 0.0f) || !std::isfinite(measure))
@@ -473,6 +671,9 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
   this->StripDepths = std::move(arrays.StripDepths);
   this->Areas = std::move(arrays.Areas);
   this->Measures = std::move(arrays.Measures);
+  this->Layers = std::move(arrays.Layers);
+  this->Filters = std::move(arrays.Filters);
+  this->Transmittances = std::move(arrays.Transmittances);
   this->BuildColumns();
   return std::string();
 }
@@ -490,11 +691,33 @@ std::ptrdiff_t SphericalCover::FindEntry(std::size_t receiver, std::size_t sourc
   const auto end = this->Entries.begin() + static_cast<std::ptrdiff_t>(this->EntryEnd(receiver));
   const auto found = std::lower_bound(
     begin, end, source, [](const Entry& e, std::size_t s) { return e.Source < s; });
-  if (found == end || found->Source != source)
+  // The source's entries run by layer: the first is of layer 0 when Q_j is seen directly.
+  if (found == end || found->Source != source ||
+    this->Layer(static_cast<size_t>(found - this->Entries.begin())) != 0)
   {
     return -1;
   }
   return found - this->Entries.begin();
+}
+
+glm::dvec3 SphericalCover::Filter(std::size_t entry) const
+{
+  if (this->Filters.empty())
+  {
+    return glm::dvec3(1.0);
+  }
+  const float* f = &this->Filters[3 * entry];
+  return glm::dvec3(f[0], f[1], f[2]);
+}
+
+glm::dvec3 SphericalCover::PaneTransmittance(std::size_t patch) const
+{
+  if (this->Transmittances.empty())
+  {
+    return glm::dvec3(0.0);
+  }
+  const float* t = &this->Transmittances[3 * patch];
+  return glm::dvec3(t[0], t[1], t[2]);
 }
 
 uint32_t SphericalCover::VisibleCells(std::size_t entry) const
@@ -513,6 +736,10 @@ std::vector<int32_t> SphericalCover::ExpandRow(std::size_t receiver) const
   std::vector<int32_t> cells(static_cast<size_t>(grid.CellCount()), RBuffer::NoSource);
   for (size_t e = this->EntryBegin(receiver); e < this->EntryEnd(receiver); ++e)
   {
+    if (this->Layer(e) != 0)
+    {
+      continue;
+    }
     for (size_t s = this->StripBegin(e); s < this->StripEnd(e); ++s)
     {
       const Strip& strip = this->Strips[s];
@@ -551,6 +778,10 @@ double SphericalCover::CoveredProjectedSolidAngle(std::size_t receiver) const
   std::vector<uint32_t> cellsPerRow(static_cast<size_t>(grid.ThetaBins()), 0);
   for (size_t e = this->EntryBegin(receiver); e < this->EntryEnd(receiver); ++e)
   {
+    if (this->Layer(e) != 0)
+    {
+      continue;
+    }
     for (size_t s = this->StripBegin(e); s < this->StripEnd(e); ++s)
     {
       cellsPerRow[this->Strips[s].Row] += this->Strips[s].PhiEnd - this->Strips[s].PhiBegin;
@@ -590,7 +821,7 @@ std::vector<double> SphericalCover::FormFactors(const std::vector<int>& groupOfP
     for (size_t e = this->EntryBegin(i); e < this->EntryEnd(i); ++e)
     {
       const int b = groupOfPatch[this->Entries[e].Source];
-      if (b >= 0)
+      if (b >= 0 && this->Layer(e) == 0)
       {
         matrix[static_cast<size_t>(a) * g + static_cast<size_t>(b)] +=
           this->Areas[i] * this->ProjectedSolidAngle(e) / Pi;
@@ -613,7 +844,8 @@ std::size_t SphericalCover::MemoryBytes() const
     this->Unoccluded.size() * sizeof(float) + this->Strips.size() * sizeof(Strip) +
     this->StripDepths.size() * sizeof(float) + this->ColumnOffsets.size() * sizeof(uint64_t) +
     this->Columns.size() * sizeof(ColumnEntry) + this->Areas.size() * sizeof(double) +
-    this->Measures.size() * sizeof(float);
+    this->Measures.size() * sizeof(float) + this->Layers.size() * sizeof(uint8_t) +
+    (this->Filters.size() + this->Transmittances.size()) * sizeof(float);
 }
 
 std::size_t SphericalCover::UpperBoundBytes(std::size_t patches,

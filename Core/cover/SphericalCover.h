@@ -43,6 +43,25 @@
  * error against a path tracer. A source that wins no cell of a row stays unseen there.
  * Measures are stored per entry (a float) only when some row has a measured region.
  *
+ * Panes (paper §5.4; SphericalCoverOptions::SurfaceTransmittance). A thin pane passes light
+ * straight through, so along a direction P_i receives L(y_1) + T_1 L(y_2) + T_1 T_2 L(y_3) +
+ * ..., y_1, y_2, ... the surfaces the line meets in order, L a surface's own emitted and
+ * reflected radiance, T_k the transmittance of the pane y_k. Row i then has, besides its
+ * regions of layer 0 (what P_i sees first: they partition the covered hemisphere as without
+ * panes), regions of layer k >= 1: the cells in which the first k surfaces met are panes, by
+ * what the (k+1)-th is (RayCastFiller::FillBehindPanes). Each such entry carries its filter,
+ * the product of the transmittances of the k panes in front of its source (per band; in each
+ * cell those of the cells' winners of the layers before), and entries of one source with
+ * different layers or filters are different entries; they overlap the pane's region of the
+ * layer before. A pane receives all the light that reaches its side (its own entries), and
+ * what it lets through reaches the points behind it through their filtered entries: nothing is
+ * counted twice, the filtered entries are reciprocal as the others are (the same panes lie
+ * between i and j both ways), and in a closed scene every cell of a pane of layer k - 1 is
+ * covered in layer k, so a white furnace with panes stays exact. At most MaxPaneDepth layers
+ * behind the first (light through more panes is dropped). FindEntry, ExpandRow,
+ * CoveredProjectedSolidAngle and FormFactors are of layer 0 (the geometric cover, panes
+ * opaque); the propagation walks every entry. Ray fill only.
+ *
  * Building runs the receivers through a ParallelFor in batches; progress is reported, and
  * abort honoured, from the calling thread between batches. Rows are computed independently
  * and appended in receiver order, so the cover does not depend on the thread count.
@@ -56,6 +75,8 @@
 #include "cover/HemisphereGrid.h"
 #include "cover/RBuffer.h"
 #include "math/ParallelFor.h"
+
+#include <glm/vec3.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -87,6 +108,14 @@ struct SphericalCoverOptions
    * per point.
    */
   std::vector<bool> MeasuredSurfaces;
+  /**
+   * Per surface (Patch::SurfaceIndex; empty or shorter: opaque) the transmittance of a thin pane
+   * (Material::Transmittance; all zero: opaque): see "Panes" in the file comment. Sets the
+   * fill's PaneSurfaces. Needs the ray fill (Build throws std::invalid_argument otherwise).
+   */
+  std::vector<glm::vec3> SurfaceTransmittance;
+  /// Most panes a region is seen through (the layers after the first); 0: panes are opaque.
+  int MaxPaneDepth = 4;
 };
 
 class SphericalCover
@@ -144,7 +173,17 @@ public:
   std::size_t EntryBegin(std::size_t receiver) const { return this->RowOffsets[receiver]; }
   std::size_t EntryEnd(std::size_t receiver) const { return this->RowOffsets[receiver + 1]; }
   const Entry& EntryAt(std::size_t entry) const { return this->Entries[entry]; }
-  /// The entry H(i, j), or -1 when h_ij is null.
+  // --- panes (see "Panes" in the file comment) ------------------------------------------------
+  /// Whether some entry is seen through a pane (the cover of a scene with panes).
+  bool HasPanes() const { return !this->Layers.empty(); }
+  /// How many panes lie in front of entry e's source (0: seen directly).
+  unsigned Layer(std::size_t entry) const { return this->Layers.empty() ? 0 : this->Layers[entry]; }
+  /// The product of the transmittances of those panes, per band (1 for layer 0).
+  glm::dvec3 Filter(std::size_t entry) const;
+  /// The transmittance of patch j's pane (0: opaque).
+  glm::dvec3 PaneTransmittance(std::size_t patch) const;
+
+  /// The entry H(i, j) of layer 0, or -1 when h_ij is null.
   std::ptrdiff_t FindEntry(std::size_t receiver, std::size_t source) const;
   /// Strips [StripBegin(e), StripEnd(e)) of entry e.
   std::size_t StripBegin(std::size_t entry) const { return this->Entries[entry].FirstStrip; }
@@ -206,6 +245,11 @@ public:
     std::vector<double> Areas;
     /// Per entry the measure of its region, or empty: the cells' (see the file comment).
     std::vector<float> Measures;
+    /// Panes (empty without): per entry its layer, and its filter (3 floats per entry); per
+    /// patch its transmittance (3 floats per patch).
+    std::vector<uint8_t> Layers;
+    std::vector<float> Filters;
+    std::vector<float> Transmittances;
   };
   Arrays ExportArrays() const;
   /// Replaces the cover with saved arrays after checking that they are consistent (offsets,
@@ -253,7 +297,19 @@ public:
 
 private:
   struct Row;
-  static void ExtractRow(const RBuffer& buffer, Row& row);
+  /// Appends the regions of `buffer` to `row` as entries of layer `layer`; `filterOfCell` (by
+  /// cell index) gives their filters when layer > 0.
+  static void ExtractRow(const RBuffer& buffer,
+    Row& row,
+    unsigned layer = 0,
+    const std::vector<glm::vec3>* filterOfCell = nullptr);
+  /// Adds the layers behind panes to the row of `front`'s receiver (see "Panes"), then sorts
+  /// its entries by (source, layer, filter).
+  void ExtractLayersBehindPanes(const RayCastFiller& filler,
+    const std::vector<glm::vec3>& transmittanceOfPatch,
+    RBuffer& front,
+    RBuffer& behind,
+    Row& row) const;
   /// Measures the row's regions of measured surfaces on their sources (see the file comment);
   /// piecesOfSurface[s] lists the patches of measured surface s, ascending.
   void MeasureRow(std::size_t receiver,
@@ -279,6 +335,9 @@ private:
   std::vector<ColumnEntry> Columns;
   std::vector<double> Areas;
   std::vector<float> Measures;
+  std::vector<uint8_t> Layers;
+  std::vector<float> Filters;
+  std::vector<float> Transmittances;
   bool UnoccludedKnown = false;
   CullingStatistics CullingCounts;
 };

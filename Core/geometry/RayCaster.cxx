@@ -481,11 +481,15 @@ bool RayCaster::Refine(std::size_t patch,
   return false;
 }
 
-bool RayCaster::CastRay(const glm::dvec3& origin, const glm::dvec3& direction, RayHit& hit) const
+bool RayCaster::CastRay(const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  float tNear,
+  const RayFilter& filter,
+  RayHit& hit) const
 {
-  // No filter: nothing is excluded, and back sides are hits (opaque surfaces).
+  // Without a filter nothing is excluded, and back sides are hits (opaque surfaces).
   TriangleHit triangle;
-  if (!this->Intersect(origin, direction, 0.0f, RayFilter(), false, triangle))
+  if (!this->Intersect(origin, direction, tNear, filter, false, triangle))
   {
     return false;
   }

@@ -163,7 +163,16 @@ public:
    * (within the tessellation's accuracy otherwise), its side from the exact normal.
    * `direction` must be a unit vector. False when the ray escapes.
    */
-  bool CastRay(const glm::dvec3& origin, const glm::dvec3& direction, RayHit& hit) const;
+  bool CastRay(const glm::dvec3& origin, const glm::dvec3& direction, RayHit& hit) const
+  {
+    return this->CastRay(origin, direction, 0.0f, RayFilter(), hit);
+  }
+  /// CastRay beyond `tNear` among the hits `filter` accepts (a renderer going on behind a pane).
+  bool CastRay(const glm::dvec3& origin,
+    const glm::dvec3& direction,
+    float tNear,
+    const RayFilter& filter,
+    RayHit& hit) const;
 
   /**
    * The first patch met by the ray origin + t direction, t > tNear, from either side: its

@@ -49,8 +49,30 @@ void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
 void LightPropagation::MatchTransposedEntries()
 {
   const SphericalCover& cover = this->Cover;
-  // Row j is sorted by source, column j by receiver, so one merge of the two finds, for every
-  // receiver i of column j, the entry (j, i) of row j.
+  // Row j is sorted by (source, layer, filter), column j by receiver and then in the order of
+  // the receiver's row, so one merge of the two finds, for every receiver i of column j, the
+  // entry (j, i) of row j seen through the same panes (SphericalCover.h, "Panes").
+  auto compare = [&cover](uint32_t a, std::size_t entryA, uint32_t b, std::size_t entryB)
+  {
+    if (a != b)
+    {
+      return a < b ? -1 : 1;
+    }
+    if (cover.Layer(entryA) != cover.Layer(entryB))
+    {
+      return cover.Layer(entryA) < cover.Layer(entryB) ? -1 : 1;
+    }
+    const glm::dvec3 filterA = cover.Filter(entryA);
+    const glm::dvec3 filterB = cover.Filter(entryB);
+    for (int band = 0; band < 3; ++band)
+    {
+      if (filterA[band] != filterB[band])
+      {
+        return filterA[band] < filterB[band] ? -1 : 1;
+      }
+    }
+    return 0;
+  };
   this->ColumnBack.assign(cover.EntryCount(), NoEntry);
   for (std::size_t j = 0; j < this->PatchCount(); ++j)
   {
@@ -58,13 +80,13 @@ void LightPropagation::MatchTransposedEntries()
     std::size_t k = cover.ColumnBegin(j);
     while (e < cover.EntryEnd(j) && k < cover.ColumnEnd(j))
     {
-      const uint32_t source = cover.EntryAt(e).Source;
-      const uint32_t receiver = cover.ColumnAt(k).Receiver;
-      if (source < receiver)
+      const int order = compare(
+        cover.EntryAt(e).Source, e, cover.ColumnAt(k).Receiver, cover.ColumnAt(k).EntryIndex);
+      if (order < 0)
       {
         ++e;
       }
-      else if (receiver < source)
+      else if (order > 0)
       {
         ++k;
       }

@@ -28,7 +28,10 @@ public:
     {
       for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
       {
-        this->RowThroughput[e] = cover.PatchArea(i) * cover.ProjectedSolidAngle(e);
+        // The balance is of the geometric cover (layer 0); what lies behind panes follows
+        // their regions (EntryFactors).
+        this->RowThroughput[e] =
+          cover.Layer(e) == 0 ? cover.PatchArea(i) * cover.ProjectedSolidAngle(e) : 0.0;
         this->Target[i] += this->RowThroughput[e];
       }
     }
@@ -97,9 +100,28 @@ public:
     std::vector<double> factors(cover.EntryCount());
     for (std::size_t i = 0; i < cover.PatchCount(); ++i)
     {
+      // Regions seen through panes (SphericalCover.h, "Panes") count as the panes' regions in
+      // front of them do, on average over the row: in a closed scene the layers behind then
+      // keep the measure of the panes' regions (the white furnace with panes stays exact).
+      double paneBalanced = 0.0;
+      double pane = 0.0;
       for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
       {
-        factors[e] = this->X[i] * this->Y[cover.EntryAt(e).Source];
+        const std::size_t j = cover.EntryAt(e).Source;
+        factors[e] = this->X[i] * this->Y[j];
+        if (cover.Layer(e) == 0 && cover.PaneTransmittance(j) != glm::dvec3(0.0))
+        {
+          paneBalanced += factors[e] * cover.ProjectedSolidAngle(e);
+          pane += cover.ProjectedSolidAngle(e);
+        }
+      }
+      const double behind = pane > 0.0 ? paneBalanced / pane : 1.0;
+      for (std::size_t e = cover.EntryBegin(i); e < cover.EntryEnd(i); ++e)
+      {
+        if (cover.Layer(e) != 0)
+        {
+          factors[e] = behind;
+        }
       }
     }
     return factors;

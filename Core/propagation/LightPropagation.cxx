@@ -105,6 +105,14 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
     this->EntryPosition[cover.ColumnAt(k).EntryIndex] = static_cast<uint32_t>(k);
     this->ColumnMeasure[k] = this->EntryOmega[cover.ColumnAt(k).EntryIndex];
   }
+  if (cover.HasPanes())
+  {
+    this->ColumnFilter.resize(cover.EntryCount());
+    for (std::size_t k = 0; k < cover.EntryCount(); ++k)
+    {
+      this->ColumnFilter[k] = cover.Filter(cover.ColumnAt(k).EntryIndex);
+    }
+  }
   for (std::size_t i = 0; i < n; ++i)
   {
     this->TotalEmitted += Pi * cover.PatchArea(i) * BandSum(this->Le[i]);
@@ -226,6 +234,10 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
         value += this->TowardReceiver(shooter, back, mean);
         ++fallbacks;
       }
+    }
+    if (!this->ColumnFilter.empty())
+    {
+      value *= this->ColumnFilter[k]; // seen through panes
     }
     this->Incident[k] += value;
     // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form,
@@ -509,7 +521,8 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
     }
     for (std::size_t k = this->Cover.ColumnBegin(j); k < this->Cover.ColumnEnd(j); ++k)
     {
-      direct[this->Cover.ColumnAt(k).Receiver] += this->ColumnMeasure[k] * this->Le[j];
+      direct[this->Cover.ColumnAt(k).Receiver] +=
+        this->ColumnMeasure[k] * this->Filtered(k, this->Le[j]);
     }
   }
   std::vector<glm::dvec3> lamp = direct;
@@ -518,7 +531,8 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
     const glm::dvec3 reflected = this->Rho[j] / Pi * direct[j];
     for (std::size_t k = this->Cover.ColumnBegin(j); k < this->Cover.ColumnEnd(j); ++k)
     {
-      lamp[this->Cover.ColumnAt(k).Receiver] += this->ColumnMeasure[k] * reflected;
+      lamp[this->Cover.ColumnAt(k).Receiver] +=
+        this->ColumnMeasure[k] * this->Filtered(k, reflected);
     }
   }
   return lamp;
@@ -531,7 +545,10 @@ EnergyBalance LightPropagation::Energy() const
   {
     const double area = this->Cover.PatchArea(i);
     balance.Emitted += Pi * area * this->Le[i];
-    balance.Absorbed += area * (this->Irradiance(i) - this->Reflected(i));
+    const glm::dvec3 irradiance = this->Irradiance(i);
+    // A pane's transmitted part reached the points behind it (see the file comment).
+    balance.Absorbed +=
+      area * (irradiance - this->Reflected(i) - this->Cover.PaneTransmittance(i) * irradiance);
     balance.Unshot += Pi * area * this->Unshot[i];
     if (this->ModelOfPatch[i] >= 0)
     {

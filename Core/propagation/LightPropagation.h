@@ -24,6 +24,12 @@
  * sum_j U_j falls below ConvergenceTolerance times the emitted power, or after MaximumShots. All
  * in the calling thread, in a fixed order: the results are deterministic.
  *
+ * Panes (paper §5.4; SphericalCover.h "Panes"): an entry seen through panes receives the
+ * shooter's radiance times its filter (E_e is what arrives, filtered); a pane's own unshot light
+ * is only what it reflects, what it lets through having reached the points behind it through
+ * their filtered entries of the same shot. Its power balance counts the transmitted part as
+ * not absorbed: absorbed = E - reflected - T E.
+ *
  * Results per patch: Irradiance E_i = sum_{e in row i} f_e E_e Omega_e; ExitantRadiance, the
  * Lambertian part Le + k_d / pi E_i; Brightness (§5's B), the flux density emitted and reflected
  * into the whole hemisphere; ExitantRadianceToward, the exitant radiance toward any direction
@@ -329,6 +335,14 @@ private:
   /// The measure each region's radiance counts with, in column order: f_e Omega_e with exchange
   /// factors (SetExchangeFactors), Omega_e without.
   std::vector<double> ColumnMeasure;
+  /// Per column position the entry's filter (SphericalCover::Filter: the panes in front of its
+  /// source), when the cover has panes; else empty.
+  std::vector<glm::dvec3> ColumnFilter;
+  /// `radiance` as column position k's receiver sees it (times the entry's filter).
+  glm::dvec3 Filtered(std::size_t k, const glm::dvec3& radiance) const
+  {
+    return this->ColumnFilter.empty() ? radiance : radiance * this->ColumnFilter[k];
+  }
   bool Balanced = false;
   /// E_e in column order (EntryPosition), and by entry for IncidentRadiances.
   std::vector<glm::dvec3> Incident;

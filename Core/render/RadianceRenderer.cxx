@@ -512,34 +512,111 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   return glm::max(radiance, glm::dvec3(0.0)) + this->Direct.At(this->Interpolator, surface, u, v);
 }
 
+bool RadianceRenderer::ShadeHit(std::size_t patchIndex,
+  double patchU,
+  double patchV,
+  bool frontSide,
+  const glm::dvec3& direction,
+  DirectionalCache* cache,
+  glm::dvec3& radiance) const
+{
+  const Patch& patch = this->Patches[patchIndex];
+  const int surface = patch.SurfaceIndex;
+  const bool twoSided = static_cast<size_t>(surface) < this->TwoSided.size() &&
+    this->TwoSided[static_cast<size_t>(surface)];
+  if (!frontSide && !twoSided)
+  {
+    return false; // a back side sends no light
+  }
+  const double u = patch.Domain.U0 + patchU * (patch.Domain.U1 - patch.Domain.U0);
+  const double v = patch.Domain.V0 + patchV * (patch.Domain.V1 - patch.Domain.V0);
+  // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
+  // its Lambertian part (one hemisphere per point, on the front).
+  radiance = frontSide ? this->RadianceToward(surface, u, v, -direction, cache)
+                       : this->SurfaceRadiance(surface, u, v);
+  return true;
+}
+
+namespace
+{
+/// The eye rays' filter with panes: a pane's back side is its reversed copy's front, met at the
+/// same place (SetSurfaceTransmittance).
+bool PassPaneBacks(const void* context, std::size_t patch, float, bool front)
+{
+  return front || !(*static_cast<const std::vector<char>*>(context))[patch];
+}
+}
+
 bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
   const glm::dvec3& direction,
   DirectionalCache* cache,
   SampleResult& sample) const
 {
   RayCaster::RayHit hit;
-  if (!this->Caster->CastRay(eye, direction, hit))
+  if (this->PanePatch.empty())
   {
-    return false;
-  }
-  const Patch& patch = this->Patches[hit.Patch];
-  const int surface = patch.SurfaceIndex;
-  sample.Surface = surface;
-  sample.T = hit.T;
-  const bool twoSided = static_cast<size_t>(surface) < this->TwoSided.size() &&
-    this->TwoSided[static_cast<size_t>(surface)];
-  sample.Lit = hit.FrontSide || twoSided; // a back side sends no light
-  if (!sample.Lit)
-  {
+    if (!this->Caster->CastRay(eye, direction, hit))
+    {
+      return false;
+    }
+    sample.Surface = this->Patches[hit.Patch].SurfaceIndex;
+    sample.T = hit.T;
+    sample.Lit =
+      this->ShadeHit(hit.Patch, hit.U, hit.V, hit.FrontSide, direction, cache, sample.Radiance);
     return true;
   }
-  const double u = patch.Domain.U0 + hit.U * (patch.Domain.U1 - patch.Domain.U0);
-  const double v = patch.Domain.V0 + hit.V * (patch.Domain.V1 - patch.Domain.V0);
-  // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
-  // its Lambertian part (one hemisphere per point, on the front).
-  sample.Radiance = hit.FrontSide ? this->RadianceToward(surface, u, v, -direction, cache)
-                                  : this->SurfaceRadiance(surface, u, v);
+  // Through panes (paper §5.4): the pane's own radiance, then T times what lies behind it.
+  const RayFilter filter{ PassPaneBacks, &this->PanePatch };
+  glm::dvec3 throughput(1.0);
+  float nearest = 0.0f;
+  for (int pane = 0; pane <= MaxPanesPerSample; ++pane)
+  {
+    if (!this->Caster->CastRay(eye, direction, nearest, filter, hit))
+    {
+      return pane > 0;
+    }
+    glm::dvec3 radiance(0.0);
+    const bool lit =
+      this->ShadeHit(hit.Patch, hit.U, hit.V, hit.FrontSide, direction, cache, radiance);
+    if (pane == 0)
+    {
+      sample.Surface = this->Patches[hit.Patch].SurfaceIndex;
+      sample.T = hit.T;
+      sample.Lit = lit;
+    }
+    if (lit)
+    {
+      sample.Radiance += throughput * radiance;
+      sample.Lit = true;
+    }
+    if (!hit.FrontSide || !this->PanePatch[hit.Patch])
+    {
+      break;
+    }
+    throughput *= this->Transmittance[static_cast<size_t>(this->Patches[hit.Patch].SurfaceIndex)];
+    nearest = static_cast<float>(hit.T) * (1.0f + 1e-5f) + 1e-7f;
+  }
   return true;
+}
+
+void RadianceRenderer::SetSurfaceTransmittance(std::vector<glm::dvec3> transmittance)
+{
+  this->Transmittance = std::move(transmittance);
+  this->PanePatch.assign(this->Patches.size(), 0);
+  bool any = false;
+  for (size_t p = 0; p < this->Patches.size(); ++p)
+  {
+    const size_t surface = static_cast<size_t>(this->Patches[p].SurfaceIndex);
+    if (surface < this->Transmittance.size() && this->Transmittance[surface] != glm::dvec3(0.0))
+    {
+      this->PanePatch[p] = 1;
+      any = true;
+    }
+  }
+  if (!any)
+  {
+    this->PanePatch.clear();
+  }
 }
 
 bool RadianceRenderer::Render(const Camera& camera,

@@ -242,6 +242,16 @@ public:
    */
   void SetSurfaceTextures(std::vector<SurfaceTexture> textures);
 
+  /**
+   * Per surface index the transmittance of a thin pane (paper §5.4; missing entries and zero:
+   * opaque). A sample that meets a pane's front side shows the pane's own radiance plus T times
+   * what its ray meets behind it (cast again beyond the pane, at most MaxPanesPerSample panes);
+   * a pane's back side is its reversed copy's front (the loader makes a pane two surfaces) and
+   * is passed. The sample's surface and depth are the first pane's.
+   */
+  void SetSurfaceTransmittance(std::vector<glm::dvec3> transmittance);
+  static constexpr int MaxPanesPerSample = 8;
+
   /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
   /// §5.3.2); zero where the surface has no characteristic points. The Lambertian part only.
   glm::dvec3 SurfaceRadiance(int surface, double u, double v) const;
@@ -276,6 +286,14 @@ private:
     bool Lit = false;
     glm::dvec3 Radiance = glm::dvec3(0.0);
   };
+  /// The radiance the hit shows toward the eye, and whether it sends any (a back side does not).
+  bool ShadeHit(std::size_t patch,
+    double patchU,
+    double patchV,
+    bool frontSide,
+    const glm::dvec3& direction,
+    DirectionalCache* cache,
+    glm::dvec3& radiance) const;
   /// Casts one sample ray from the eye; false where it meets nothing.
   bool TraceSample(const glm::dvec3& eye,
     const glm::dvec3& direction,
@@ -302,6 +320,9 @@ private:
   CharacteristicPointInterpolator Interpolator;
   std::vector<glm::dvec3> Exitant;
   std::vector<bool> TwoSided;
+  std::vector<glm::dvec3> Transmittance;
+  /// Per patch 1 when its surface is a pane (SetSurfaceTransmittance); empty without panes.
+  std::vector<char> PanePatch;
   std::unique_ptr<RayCaster> Caster;
   std::unique_ptr<DirectionalIllumination> Directional;
   DirectLight Direct;

@@ -544,12 +544,24 @@ void SceneParser::AddPlacedSurface(const std::vector<BezierPatch>& patches,
         inFile ? "degenerate patch " + std::to_string(p + 1) + " (no area)"
                : std::string("degenerate patch (no area)"));
     }
-    Surface surface(std::move(placed), nameIndex, attributes.MaterialIndex);
-    // A pane sends, receives and lets light through on both sides (FORMAT.md, "transmittance").
-    surface.TwoSided = attributes.TwoSided ||
+    // A pane sends, receives and lets light through on both sides (FORMAT.md, "transmittance"),
+    // and its two sides see different half-spaces: it becomes two one-sided surfaces, the patch
+    // and its reversed copy, each with its own characteristic points and hemispheres (paper
+    // §5.4: "an hemispherical tessellation in a direction opposite to the normal as well").
+    const bool pane =
       scene.Materials[static_cast<size_t>(attributes.MaterialIndex)].IsTransmitter();
+    Surface surface(std::move(placed), nameIndex, attributes.MaterialIndex);
+    surface.TwoSided = attributes.TwoSided && !pane;
     surface.IsTriangle = triangles[p];
     scene.Surfaces.push_back(std::move(surface));
+    if (pane)
+    {
+      Surface back(PlacePatch(patches[p], attributes.Transform, !attributes.Flip),
+        nameIndex,
+        attributes.MaterialIndex);
+      back.IsTriangle = triangles[p];
+      scene.Surfaces.push_back(std::move(back));
+    }
   }
 }
 

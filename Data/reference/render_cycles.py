@@ -364,7 +364,10 @@ def build(args):
     c.glossy_bounces = 0
     c.transmission_bounces = 0
     c.volume_bounces = 0
-    c.transparent_max_bounces = 0
+    # Panes (Transparent BSDF): a path goes on through as many as SphericalCover's renderer
+    # does (RadianceRenderer::MaxPanesPerSample); with 0 every pane would be opaque to paths
+    # and to shadow rays alike.
+    c.transparent_max_bounces = 8
     c.min_light_bounces = 0
     c.use_fast_gi = False
     c.pixel_filter_type = "BOX"

@@ -6,6 +6,7 @@
 #include "scene/SceneLoader.h"
 #include "scene/Texture.h"
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -140,7 +141,7 @@ TEST(Texture, RefusesBadSizesAndValues)
 }
 
 // The scene keys: transmittance, texture (resolved relative to the scene's folder, read with the
-// scene), texture_encoding; a pane is two-sided.
+// scene), texture_encoding; a pane is two one-sided surfaces.
 TEST(Texture, SceneReadsTransmittanceAndTexture)
 {
   const std::string text = R"({
@@ -165,8 +166,14 @@ TEST(Texture, SceneReadsTransmittanceAndTexture)
   const Material& glass = scene.Materials[static_cast<size_t>(scene.FindMaterial("glass"))];
   EXPECT_EQ(glass.Transmittance, glm::dvec3(0.8, 0.7, 0.9));
   EXPECT_TRUE(glass.IsTransmitter());
-  EXPECT_TRUE(scene.Surfaces[0].TwoSided);
-  EXPECT_FALSE(scene.Surfaces[1].TwoSided);
+  // The pane is two one-sided surfaces, the patch and its reversed copy, then the floor.
+  ASSERT_EQ(scene.Surfaces.size(), 4u);
+  EXPECT_NEAR(
+    glm::dot(scene.Surfaces[0].Patch.Normal(0.5, 0.5), scene.Surfaces[1].Patch.Normal(0.5, 0.5)),
+    -1.0,
+    1e-12);
+  EXPECT_FALSE(scene.Surfaces[0].TwoSided);
+  EXPECT_FALSE(scene.Surfaces[2].TwoSided);
   const Material& tiles = scene.Materials[static_cast<size_t>(scene.FindMaterial("tiles"))];
   ASSERT_TRUE(tiles.DiffuseTexture);
   EXPECT_EQ(tiles.TextureFileEncoding, TextureEncoding::Linear);
