@@ -706,7 +706,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
       try
       {
         const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
-          sphcover::SphericalCover::EstimateRowCosts(prepared.Patches),
+          sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options),
           static_cast<std::size_t>(ranks));
         const std::size_t first = bounds[static_cast<std::size_t>(rank)];
         const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];

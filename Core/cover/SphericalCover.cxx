@@ -516,10 +516,13 @@ void SphericalCover::Adopt(Arrays arrays, const SphericalCoverOptions& options)
   this->BuildColumns();
 }
 
-std::vector<double> SphericalCover::EstimateRowCosts(const std::vector<Patch>& patches)
+std::vector<double> SphericalCover::EstimateRowCosts(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options)
 {
   const size_t count = patches.size();
-  std::vector<double> costs(count, 1.0);
+  const double fixed =
+    options.Fill == RBufferFill::RayCasting ? 2.0 * static_cast<double>(count) : 1.0;
+  std::vector<double> costs(count, fixed);
   for (size_t i = 0; i < count; ++i)
   {
     const glm::dvec3& point = patches[i].Point;

@@ -221,13 +221,16 @@ public:
 
   /**
    * An estimate of the work of each receiver's row, for splitting rows among processes by work
-   * rather than by count: 1 plus the number of other patches whose control net reaches above the
-   * tangent plane of P_i (paper §4.2.2's hemispherical containment, bounded by the control
-   * net's box instead of Bernstein ranges): the candidates a fill considers. A point in a
-   * corner sees about a quarter of a room, one on a wall half of it. O(N^2) box tests, about a
-   * thousandth of a build.
+   * rather than by count: a fixed part per row plus the number of other patches whose control
+   * net reaches above the tangent plane of P_i (paper §4.2.2's hemispherical containment,
+   * bounded by the control net's box instead of Bernstein ranges), the candidates a fill
+   * considers. The fixed part is 1 for the projection fill, whose work is its candidates'
+   * projections, and 2N for the ray fill, whose rays through the cells cost about as much per
+   * row as 2N candidates (fitted to the teapot room's rows timed on two ranks,
+   * Documentation/notes/distributed-solve.md). O(N^2) box tests, about a thousandth of a build.
    */
-  static std::vector<double> EstimateRowCosts(const std::vector<Patch>& patches);
+  static std::vector<double> EstimateRowCosts(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options);
   /**
    * Boundaries b_0 = 0 <= b_1 <= ... <= b_parts = costs.size() of `parts` consecutive receiver
    * ranges [b_k, b_k+1) of about equal summed cost: range k ends at the first receiver whose

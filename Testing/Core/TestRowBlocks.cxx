@@ -50,7 +50,7 @@ SphericalCover BuildInBlocks(const std::vector<Patch>& patches,
   std::size_t parts)
 {
   const std::vector<std::size_t> bounds =
-    SphericalCover::PartitionRows(SphericalCover::EstimateRowCosts(patches), parts);
+    SphericalCover::PartitionRows(SphericalCover::EstimateRowCosts(patches, options), parts);
   std::vector<SphericalCover::Arrays> blocks(parts);
   CullingStatistics culling;
   for (std::size_t k = 0; k < parts; ++k)
@@ -145,12 +145,19 @@ TEST(RowBlocks, PartitionByCost)
   // A point in a corner sees less of the room than one in the middle of a wall.
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
   const std::vector<Patch> patches = CornellPatches(scene);
-  const std::vector<double> estimate = SphericalCover::EstimateRowCosts(patches);
+  SphericalCoverOptions projection;
+  projection.Fill = RBufferFill::Projection;
+  const std::vector<double> estimate = SphericalCover::EstimateRowCosts(patches, projection);
   ASSERT_EQ(estimate.size(), patches.size());
   const auto [low, high] = std::minmax_element(estimate.begin(), estimate.end());
   EXPECT_GE(*low, 1.0);
   EXPECT_LE(*high, static_cast<double>(patches.size()));
   EXPECT_LT(*low, *high);
+  // The ray fill's rows cost their rays besides their candidates: a fixed part of 2N each.
+  SphericalCoverOptions rays;
+  rays.Fill = RBufferFill::RayCasting;
+  const std::vector<double> rayEstimate = SphericalCover::EstimateRowCosts(patches, rays);
+  EXPECT_EQ(rayEstimate[0] - estimate[0], 2.0 * static_cast<double>(patches.size()) - 1.0);
 }
 
 // Damaged bytes and inconsistent blocks are refused with a reason, the cover left empty.
