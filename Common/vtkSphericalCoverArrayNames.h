@@ -92,6 +92,9 @@ constexpr const char* CoverMeasures = "CoverMeasures";
 constexpr const char* CoverLayers = "CoverLayers";
 constexpr const char* CoverFilters = "CoverFilters";
 constexpr const char* CoverTransmittances = "CoverTransmittances";
+/// Field data of a cover built on K > 1 ranks, K tuples x 3 (double): per rank the receivers
+/// whose rows it built, the wall seconds it took and the bytes of its row block.
+constexpr const char* CoverRankFigures = "CoverRankFigures";
 /// Point data, 3 n^2 components: the lamps' direct irradiance (RGB, W m^-2) at the n x n nodes
 /// of every point's patch, node (i, j) band b at component (j n + i) 3 + b (Core's
 /// DirectIrradiance.h).

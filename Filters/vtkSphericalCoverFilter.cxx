@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSphericalCoverFilter.h"
 
+#include "vtkCoverDistribution.h"
+#include "vtkMessageText.h"
 #include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkScenePieces.h"
@@ -16,11 +18,13 @@
 #include "cover/DirectIrradiance.h"
 #include "cover/HemisphereGrid.h"
 #include "cover/RayCastFill.h"
+#include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
 #include "geometry/RayCaster.h"
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -29,15 +33,20 @@
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkMultiProcessController.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
+#include <vtkSmartPointer.h>
 #include <vtkTable.h>
 
 #include <algorithm>
+#include <chrono>
 #include <exception>
+#include <string>
+#include <vector>
 
 namespace names = vtkSphericalCoverArrayNames;
 
@@ -479,6 +488,341 @@ void WriteStrips(const sphcover::SphericalCover& cover, std::size_t patchCount, 
   stripsOut->AddColumn(phiEnd);
   stripsOut->AddColumn(depth);
 }
+
+/// The patches a cover is built of, its options and budget, after the refinement.
+struct CoverInput
+{
+  sphcover::Scene Scene;
+  std::vector<sphcover::Patch> Patches;
+  /// The input cell each patch was cut from (the identity without refinement).
+  std::vector<vtkIdType> CellOfPatch;
+  sphcover::SphericalCoverOptions Options;
+  MemoryBudget Budget{ 1, 0 };
+  std::vector<glm::dvec3> Emission;
+  /// Where the cover's own progress starts (after the refinement's).
+  double CoverStart = 0.0;
+};
+
+/// The input's patches, the options from the properties and the refinement (paper §4.3 Steps
+/// 3 and 5), refused before any R-buffer exists when the grid's working memory cannot fit;
+/// false, with the error reported, when anything fails.
+bool PrepareCover(vtkSphericalCoverFilter* self, vtkDataSet* input, CoverInput& prepared)
+{
+  std::string error;
+  if (!vtkSurfaceGridAdapter::ToPatches(input, prepared.Scene, prepared.Patches, error))
+  {
+    vtkErrorWithObjectMacro(self, << "Cannot build a spherical cover of this input: " << error);
+    return false;
+  }
+  sphcover::SphericalCoverOptions& options = prepared.Options;
+  if (!CoverOptionsOf(self, input, options))
+  {
+    return false;
+  }
+  // Panes (paper §5.4): the cover, its refinement and the direct-light nodes see through them
+  // (SphericalCover.h, "Panes").
+  for (const glm::dvec3& t :
+    vtkSurfaceGridAdapter::TransmittanceOfSurfaces(prepared.Scene, prepared.Patches))
+  {
+    options.SurfaceTransmittance.push_back(glm::vec3(t));
+    options.FillOptions.PaneSurfaces.push_back(t != glm::dvec3(0.0));
+  }
+
+  // Refuse before any R-buffer exists what could not fit: first the working memory of the
+  // grid on every thread (the refinement builds R-buffers too), from the options alone.
+  MemoryBudget& budget = prepared.Budget;
+  budget.Threads =
+    static_cast<std::size_t>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
+  budget.LimitBytes =
+    static_cast<std::size_t>(std::min(self->GetMemoryLimit() * 1024.0 * 1024.0, 1.0e18));
+  try
+  {
+    if (!MemoryFits(self, {}, options, budget))
+    {
+      return false;
+    }
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorWithObjectMacro(self, << "Cannot build the spherical cover: " << e.what());
+    return false;
+  }
+  std::vector<sphcover::Patch>& patches = prepared.Patches;
+  prepared.CellOfPatch.resize(patches.size());
+  for (size_t k = 0; k < patches.size(); ++k)
+  {
+    prepared.CellOfPatch[k] = static_cast<vtkIdType>(k);
+  }
+  const int refinement = self->GetRefinement();
+  const double refinementShare =
+    refinement == vtkSphericalCoverFilter::REFINEMENT_FULL ? 0.6 : 0.05;
+  if (refinement != vtkSphericalCoverFilter::REFINEMENT_OFF && !patches.empty() &&
+    !RefinePatches(self, prepared.Scene, options, refinementShare, patches, prepared.CellOfPatch))
+  {
+    return false;
+  }
+  prepared.CoverStart =
+    refinement == vtkSphericalCoverFilter::REFINEMENT_OFF ? 0.0 : refinementShare;
+  prepared.Emission =
+    MaterialOf(prepared.Scene, patches, prepared.CellOfPatch, &sphcover::Material::Emission);
+  if (self->GetMeasureLamps())
+  {
+    options.MeasuredSurfaces = sphcover::BrightEmitters(patches, prepared.Emission);
+  }
+  return true;
+}
+
+/// The lamps' direct light on the patches' nodes when DirectIrradianceNodes asks for it;
+/// false, with the error reported, when it failed or was aborted.
+bool ComputeDirectIrradianceOf(vtkSphericalCoverFilter* self,
+  const CoverInput& prepared,
+  sphcover::DirectIrradianceNodes& direct)
+{
+  return self->GetDirectIrradianceNodes() <= 0 ||
+    ComputeDirectIrradiance(self,
+      prepared.Patches,
+      prepared.Emission,
+      prepared.Options,
+      DiffuseOf(prepared.Scene, prepared.Patches, prepared.CellOfPatch),
+      direct);
+}
+
+/// Both outputs of a built cover: the characteristic points with the direct light's nodes,
+/// and the strips.
+void WriteOutputs(vtkSphericalCoverFilter* self,
+  vtkDataSet* input,
+  const CoverInput& prepared,
+  const sphcover::SphericalCover& cover,
+  const sphcover::DirectIrradianceNodes& direct,
+  vtkPolyData* pointsOut,
+  vtkTable* stripsOut)
+{
+  const std::vector<sphcover::Patch>& patches = prepared.Patches;
+  WriteCharacteristicPoints(input,
+    patches,
+    prepared.CellOfPatch,
+    self->GetRefinement() != vtkSphericalCoverFilter::REFINEMENT_OFF,
+    cover,
+    pointsOut);
+  if (!direct.Empty())
+  {
+    const int components = 3 * direct.NodesPerSide * direct.NodesPerSide;
+    auto array = vtkNamedArrays::New<vtkFloatArray>(
+      names::DirectIrradiance, components, static_cast<vtkIdType>(patches.size()));
+    std::copy(direct.Values.begin(), direct.Values.end(), array->GetPointer(0));
+    pointsOut->GetPointData()->AddArray(array);
+    auto bounce = vtkNamedArrays::New<vtkIntArray>(names::DirectBounceRays, 1, 1);
+    bounce->SetValue(0, self->GetDirectBounceRays());
+    pointsOut->GetFieldData()->AddArray(bounce);
+  }
+  WriteStrips(cover, patches.size(), stripsOut);
+}
+
+/**
+ * Holds back the errors and warnings of an object while the ranks of a distributed build have
+ * not agreed on them (vtkCoverDistribution::Agree): a failing rank would otherwise show its own
+ * message and then the agreed one. Observes before any other observer and stops the event.
+ */
+class HeldMessages
+{
+public:
+  explicit HeldMessages(vtkObject* object)
+    : Object(object)
+  {
+    this->Callback->SetClientData(this);
+    this->Callback->SetCallback(&HeldMessages::Hold);
+    this->Callback->SetAbortFlagOnExecute(1);
+    this->ErrorTag = object->AddObserver(vtkCommand::ErrorEvent, this->Callback, 1.0f);
+    this->WarningTag = object->AddObserver(vtkCommand::WarningEvent, this->Callback, 1.0f);
+  }
+  ~HeldMessages()
+  {
+    this->Object->RemoveObserver(this->ErrorTag);
+    this->Object->RemoveObserver(this->WarningTag);
+  }
+  HeldMessages(const HeldMessages&) = delete;
+  HeldMessages& operator=(const HeldMessages&) = delete;
+
+  /// The first message held, or `otherwise` when there is none.
+  std::string First(const std::string& otherwise) const
+  {
+    return this->Messages.empty() ? otherwise : this->Messages.front();
+  }
+
+private:
+  static void Hold(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    static_cast<HeldMessages*>(clientData)
+      ->Messages.push_back(vtkMessageText::Strip(static_cast<const char*>(callData)));
+  }
+
+  vtkObject* Object;
+  vtkNew<vtkCallbackCommand> Callback;
+  unsigned long ErrorTag = 0;
+  unsigned long WarningTag = 0;
+  std::vector<std::string> Messages;
+};
+
+/**
+ * The cover on the controller's K ranks (vtkCoverDistribution.h): every rank prepares the same
+ * patches (rank 0's input broadcast when the other ranks hold empty pieces, as under pvbatch),
+ * builds the rows of its range of receivers, balanced by Core's cost estimate, and the row
+ * blocks are joined in receiver order: the serial cover bit for bit. The ranks that hold the
+ * whole scene write the outputs (with CoverRankFigures); those that hold an empty piece keep
+ * empty outputs (vtkScenePieces.h). Every rank agrees on success before each collective step,
+ * so a failure anywhere is one error on every rank and no rank waits forever.
+ */
+int BuildDistributed(vtkSphericalCoverFilter* self,
+  vtkMultiProcessController* controller,
+  vtkDataSet* input,
+  vtkScenePieces::Role role,
+  vtkInformationVector* outputVector,
+  vtkPolyData* pointsOut,
+  vtkTable* stripsOut)
+{
+  pointsOut->Initialize();
+  stripsOut->Initialize();
+  const int rank = controller->GetLocalProcessId();
+  const int ranks = controller->GetNumberOfProcesses();
+  const bool whole = role == vtkScenePieces::Role::WholeScene;
+  const bool everyRankWhole = vtkCoverDistribution::Count(controller, whole) == ranks;
+  std::string problem;
+  if (role == vtkScenePieces::Role::PartialScene)
+  {
+    problem = "Cannot build a spherical cover of this input: " +
+      vtkScenePieces::PartialSceneError(outputVector) + ".";
+  }
+  else if (rank == 0 && !whole)
+  {
+    problem = "Cannot build a spherical cover: rank 0 must hold the whole scene (piece 0).";
+  }
+  std::string agreed = vtkCoverDistribution::Agree(controller, problem);
+  if (!agreed.empty())
+  {
+    vtkErrorWithObjectMacro(self, << agreed);
+    return 0;
+  }
+  vtkSmartPointer<vtkDataSet> scene = input;
+  if (!everyRankWhole)
+  {
+    scene = vtkSmartPointer<vtkDataSet>::Take(input->NewInstance());
+    if (rank == 0)
+    {
+      scene->ShallowCopy(input);
+    }
+    vtkCoverDistribution::BroadcastFromFirst(controller, scene);
+  }
+
+  CoverInput prepared;
+  sphcover::DirectIrradianceNodes direct;
+  std::vector<char> bytes;
+  vtkCoverDistribution::RankFigures mine;
+  {
+    HeldMessages held(self);
+    problem = PrepareCover(self, scene, prepared) ? "" : held.First("Spherical cover aborted.");
+    agreed = vtkCoverDistribution::Agree(controller, problem);
+    if (agreed.empty())
+    {
+      try
+      {
+        const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
+          sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options),
+          static_cast<std::size_t>(ranks));
+        const std::size_t first = bounds[static_cast<std::size_t>(rank)];
+        const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];
+        if (MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget))
+        {
+          vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
+          const auto start = std::chrono::steady_clock::now();
+          sphcover::SphericalCover::Arrays block;
+          sphcover::CullingStatistics culling;
+          if (sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
+                prepared.Options,
+                first,
+                last,
+                block,
+                culling,
+                vtkSMPParallelFor::Make(),
+                [&progress](double fraction) { return progress(fraction); }))
+          {
+            mine.Seconds =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            mine.Receivers = static_cast<double>(last - first);
+            bytes = sphcover::PackRowBlock(block, culling);
+            mine.Bytes = static_cast<double>(bytes.size());
+          }
+          else
+          {
+            problem = "Spherical cover aborted.";
+          }
+        }
+        else
+        {
+          problem = held.First("Spherical cover aborted.");
+        }
+      }
+      catch (const std::exception& e)
+      {
+        problem = std::string("Spherical cover failed: ") + e.what();
+      }
+      // The direct light is not distributed: the ranks that write the outputs compute it.
+      if (problem.empty() && whole && !ComputeDirectIrradianceOf(self, prepared, direct))
+      {
+        problem = held.First("Spherical cover aborted.");
+      }
+      agreed = vtkCoverDistribution::Agree(controller, problem);
+    }
+  }
+  if (!agreed.empty())
+  {
+    vtkErrorWithObjectMacro(self, << agreed);
+    return 0;
+  }
+
+  // Every rank is ready: the row blocks move, to every rank that writes the cover.
+  const std::vector<vtkCoverDistribution::RankFigures> figures =
+    vtkCoverDistribution::GatherFigures(controller, mine);
+  std::vector<std::vector<char>> received =
+    vtkCoverDistribution::GatherBytes(controller, bytes, everyRankWhole);
+  bytes = std::vector<char>();
+  if (!whole)
+  {
+    return 1; // an empty piece (vtkScenePieces.h)
+  }
+  std::vector<sphcover::SphericalCover::Arrays> blocks(received.size());
+  sphcover::CullingStatistics culling;
+  for (size_t r = 0; r < received.size(); ++r)
+  {
+    sphcover::CullingStatistics counts;
+    problem = sphcover::UnpackRowBlock(received[r].data(), received[r].size(), blocks[r], counts);
+    if (!problem.empty())
+    {
+      vtkErrorWithObjectMacro(
+        self, << "Spherical cover failed: the rows of rank " << r << ": " << problem);
+      return 0;
+    }
+    received[r] = std::vector<char>();
+    culling += counts;
+  }
+  sphcover::SphericalCover cover;
+  problem = cover.ImportRowBlocks(std::move(blocks), prepared.Options, culling);
+  if (!problem.empty())
+  {
+    vtkErrorWithObjectMacro(self, << "Spherical cover failed: the gathered rows: " << problem);
+    return 0;
+  }
+  WriteOutputs(self, scene, prepared, cover, direct, pointsOut, stripsOut);
+  auto rankFigures = vtkNamedArrays::Double(names::CoverRankFigures, 3, ranks);
+  for (vtkIdType r = 0; r < ranks; ++r)
+  {
+    const vtkCoverDistribution::RankFigures& f = figures[static_cast<size_t>(r)];
+    const double tuple[3] = { f.Receivers, f.Seconds, f.Bytes };
+    rankFigures->SetTuple(r, tuple);
+  }
+  pointsOut->GetFieldData()->AddArray(rankFigures);
+  self->UpdateProgress(1.0);
+  return 1;
+}
 }
 
 vtkStandardNewMacro(vtkSphericalCoverFilter);
@@ -488,9 +832,15 @@ vtkSphericalCoverFilter::vtkSphericalCoverFilter()
   // ParaView's status bar labels progress with this text (vtkStageProgress.h).
   this->SetProgressText("Spherical Cover");
   this->SetNumberOfOutputPorts(2);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkSphericalCoverFilter::~vtkSphericalCoverFilter() = default;
+vtkSphericalCoverFilter::~vtkSphericalCoverFilter()
+{
+  this->SetController(nullptr);
+}
+
+vtkCxxSetObjectMacro(vtkSphericalCoverFilter, Controller, vtkMultiProcessController);
 
 int vtkSphericalCoverFilter::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -511,9 +861,14 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   vtkDataSet* input = vtkDataSet::GetData(inputVector[0], 0);
   vtkPolyData* pointsOut = vtkPolyData::GetData(outputVector, 0);
   vtkTable* stripsOut = vtkTable::GetData(outputVector, 1);
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, input);
+  if (this->Controller && this->Controller->GetNumberOfProcesses() > 1)
+  {
+    return BuildDistributed(
+      this, this->Controller, input, role, outputVector, pointsOut, stripsOut);
+  }
 
   // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
-  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, input);
   if (role != vtkScenePieces::Role::WholeScene)
   {
     pointsOut->Initialize();
@@ -527,93 +882,23 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     return 1;
   }
 
-  sphcover::Scene scene;
-  std::vector<sphcover::Patch> patches;
-  std::string error;
-  if (!vtkSurfaceGridAdapter::ToPatches(input, scene, patches, error))
-  {
-    vtkErrorMacro(<< "Cannot build a spherical cover of this input: " << error);
-    return 0;
-  }
-  sphcover::SphericalCoverOptions options;
-  if (!CoverOptionsOf(this, input, options))
+  CoverInput prepared;
+  if (!PrepareCover(this, input, prepared))
   {
     return 0;
   }
-  // Panes (paper §5.4): the cover, its refinement and the direct-light nodes see through them
-  // (SphericalCover.h, "Panes").
-  for (const glm::dvec3& t : vtkSurfaceGridAdapter::TransmittanceOfSurfaces(scene, patches))
-  {
-    options.SurfaceTransmittance.push_back(glm::vec3(t));
-    options.FillOptions.PaneSurfaces.push_back(t != glm::dvec3(0.0));
-  }
-
-  // Refuse before any R-buffer exists what could not fit: first the working memory of the
-  // grid on every thread (the refinement builds R-buffers too), from the options alone.
-  MemoryBudget budget;
-  budget.Threads =
-    static_cast<std::size_t>(std::max(1, vtkSMPTools::GetEstimatedNumberOfThreads()));
-  budget.LimitBytes =
-    static_cast<std::size_t>(std::min(this->MemoryLimit * 1024.0 * 1024.0, 1.0e18));
-  try
-  {
-    if (!MemoryFits(this, {}, options, budget))
-    {
-      return 0;
-    }
-  }
-  catch (const std::exception& e)
-  {
-    vtkErrorMacro(<< "Cannot build the spherical cover: " << e.what());
-    return 0;
-  }
-
-  // Cell of the input each patch was cut from (the identity without refinement).
-  std::vector<vtkIdType> cellOfPatch(patches.size());
-  for (size_t k = 0; k < patches.size(); ++k)
-  {
-    cellOfPatch[k] = static_cast<vtkIdType>(k);
-  }
-  const double refinementShare = this->Refinement == REFINEMENT_FULL ? 0.6 : 0.05;
-  if (this->Refinement != REFINEMENT_OFF && !patches.empty() &&
-    !RefinePatches(this, scene, options, refinementShare, patches, cellOfPatch))
-  {
-    return 0;
-  }
-  const double coverStart = this->Refinement == REFINEMENT_OFF ? 0.0 : refinementShare;
-  const std::vector<glm::dvec3> emission =
-    MaterialOf(scene, patches, cellOfPatch, &sphcover::Material::Emission);
-  if (this->MeasureLamps)
-  {
-    options.MeasuredSurfaces = sphcover::BrightEmitters(patches, emission);
-  }
-
   sphcover::SphericalCover cover;
-  if (!BuildCover(this, patches, options, budget, coverStart, cover))
+  if (!BuildCover(
+        this, prepared.Patches, prepared.Options, prepared.Budget, prepared.CoverStart, cover))
   {
     return 0;
   }
   sphcover::DirectIrradianceNodes direct;
-  if (this->DirectIrradianceNodes > 0 &&
-    !ComputeDirectIrradiance(
-      this, patches, emission, options, DiffuseOf(scene, patches, cellOfPatch), direct))
+  if (!ComputeDirectIrradianceOf(this, prepared, direct))
   {
     return 0;
   }
-  WriteCharacteristicPoints(
-    input, patches, cellOfPatch, this->Refinement != REFINEMENT_OFF, cover, pointsOut);
-  if (!direct.Empty())
-  {
-    const int components = 3 * direct.NodesPerSide * direct.NodesPerSide;
-    auto array = vtkNamedArrays::New<vtkFloatArray>(
-      names::DirectIrradiance, components, static_cast<vtkIdType>(patches.size()));
-    std::copy(direct.Values.begin(), direct.Values.end(), array->GetPointer(0));
-    pointsOut->GetPointData()->AddArray(array);
-    auto bounce = vtkNamedArrays::New<vtkIntArray>(names::DirectBounceRays, 1, 1);
-    bounce->SetValue(0, this->DirectBounceRays);
-    pointsOut->GetFieldData()->AddArray(bounce);
-  }
-  WriteStrips(cover, patches.size(), stripsOut);
+  WriteOutputs(this, input, prepared, cover, direct, pointsOut, stripsOut);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -637,4 +922,5 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
             : (this->Refinement == REFINEMENT_ENCLOSURES ? "EnclosureBoundaries" : "Full"))
      << "\n";
   os << indent << "RefinementLevels: " << this->RefinementLevels << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

@@ -43,6 +43,19 @@
  * @warning Rows are built in parallel (vtkSMPTools); the result does not depend on the number
  * of threads.
  *
+ * Processes (Controller, by default the global controller: MPI under pvbatch, pvserver and
+ * `mpiexec sphcover`). With K > 1 ranks the rows of the cover are built on all of them: each
+ * rank builds the rows of a range of receivers (characteristic points), the ranges balanced by
+ * Core's estimate of each row's work (SphericalCover::EstimateRowCosts), and the row blocks are
+ * gathered in receiver order, so the cover is the serial one bit for bit (rows are independent,
+ * paper §4.3). When the other ranks hold empty pieces (pvbatch), rank 0's input is broadcast to
+ * them first; they help build and keep empty outputs. The refinement and the direct light are
+ * not distributed (each rank that needs them computes them). The output then carries the field
+ * array `CoverRankFigures` (per rank: receivers, seconds, bytes of its rows). Every rank must
+ * update the filter together (as pvbatch --symmetric, pvserver and mpiexec sphcover do); a
+ * failure on any rank is one error on every rank. To build a cover on one rank alone under MPI,
+ * set the Controller to nullptr.
+ *
  * Pieces (vtkScenePieces.h): the whole scene is piece 0. Asked for a piece > 0 with an empty
  * input (the readers' other pieces, as under `mpiexec -n N pvbatch --symmetric`), the filter
  * produces empty outputs without a message; with a non-empty input there, it refuses with an
@@ -54,6 +67,8 @@
 
 #include "SphericalCoverFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
+
+class vtkMultiProcessController;
 
 class SPHERICALCOVERFILTERS_EXPORT vtkSphericalCoverFilter : public vtkPolyDataAlgorithm
 {
@@ -195,6 +210,15 @@ public:
   vtkGetMacro(MemoryLimit, double);
   ///@}
 
+  ///@{
+  /**
+   * The processes the rows are built on (see above); nullptr or one process: this process
+   * alone. Default is vtkMultiProcessController::GetGlobalController() at construction.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
 protected:
   vtkSphericalCoverFilter();
   ~vtkSphericalCoverFilter() override;
@@ -214,6 +238,7 @@ protected:
   double MemoryLimit = 8192.0;
   int Refinement = REFINEMENT_ENCLOSURES;
   int RefinementLevels = 3;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkSphericalCoverFilter(const vtkSphericalCoverFilter&) = delete;

@@ -21,6 +21,8 @@ find_package(VTK REQUIRED
     IOLegacy
     ImagingCore
     InteractionStyle
+    ParallelCore
+    ParallelMPI
     RenderingCore
     RenderingOpenGL2
     TestingCore

@@ -204,10 +204,19 @@ int RunRender(const Options& options)
   const sphcover::RenderSettings renderSettings = RenderBudget(options);
   CheckRenderBudget(camera, width, height, renderSettings);
 
+  // Under mpiexec the ranks build the cover together (a solve); rank 0 alone renders and writes.
+  if (options.Rank > 0 && !solving)
+  {
+    return 0;
+  }
   SavedSolution saved;
   ErrorCollector errors;
   RenderSource source;
   ConnectSolution(options, solving, solution, saved, errors, source);
+  if (options.Rank > 0)
+  {
+    return 0;
+  }
 
   vtkNew<vtkRadianceImageFilter> render;
   SetUpRender(render, source, camera, width, height, options);

@@ -27,6 +27,10 @@ int RunSolve(const Options& options)
   Solution solution;
   solution.Read(options);
   solution.Solve(options);
+  if (options.Rank > 0)
+  {
+    return 0; // rank 0 writes and prints (main.cxx)
+  }
   if (!options.Report.empty())
   {
     WriteTextAtomically(SolutionReport(solution).dump(2) + "\n", options.Report);

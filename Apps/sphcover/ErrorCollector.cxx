@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "ErrorCollector.h"
 
+#include "vtkMessageText.h"
+
 #include <vtkAlgorithm.h>
 #include <vtkCallbackCommand.h>
 #include <vtkCommand.h>
@@ -28,23 +30,7 @@ void ErrorCollector::OnError(vtkObject* caller, unsigned long, void* clientData,
   {
     return;
   }
-  // "ERROR: In <file>, line <n>\n<class> (<address>): <message>\n\n" -> "<message>".
-  std::string message = static_cast<const char*>(callData);
-  const size_t newline = message.find('\n');
-  if (newline != std::string::npos)
-  {
-    message = message.substr(newline + 1);
-  }
-  const size_t address = message.find("): ");
-  if (address != std::string::npos)
-  {
-    message = message.substr(address + 3);
-  }
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' '))
-  {
-    message.pop_back();
-  }
-  self->Messages.push_back(message);
+  self->Messages.push_back(vtkMessageText::Strip(static_cast<const char*>(callData)));
 }
 
 std::string ErrorCollector::First() const

@@ -44,6 +44,10 @@ struct Options
   int MaxPatches = 1000000;
   double MaxPairTests = 1.0e9;
   double MaxSamples = 1073741824.0;
+  /// This process's MPI rank and the number of ranks (0 and 1 outside mpiexec): only rank 0
+  /// prints, writes files and renders.
+  int Rank = 0;
+  int Ranks = 1;
 
   /// --memory-limit (MiB) in bytes.
   std::size_t MemoryLimitBytes() const

@@ -128,6 +128,22 @@ nlohmann::json SolutionReport(Solution& solution)
   nlohmann::json report = Report(solution.Propagation->GetOutput(), counts);
   report["timings_s"] = solution.Timings();
   report["timings_cpu_s"] = solution.CpuTimings();
+  // The ranks the cover was built on (vtkSphericalCoverFilter's CoverRankFigures, present when
+  // there were several): per rank its receivers, wall seconds and the bytes of its rows.
+  vtkDataArray* ranks =
+    solution.Cover->GetOutput()->GetFieldData()->GetArray(names::CoverRankFigures);
+  report["ranks"] = ranks && ranks->GetNumberOfComponents() == 3 ? ranks->GetNumberOfTuples() : 1;
+  if (ranks && ranks->GetNumberOfComponents() == 3)
+  {
+    report["cover_ranks"] = nlohmann::json::array();
+    for (vtkIdType r = 0; r < ranks->GetNumberOfTuples(); ++r)
+    {
+      report["cover_ranks"].push_back(
+        { { "receivers", static_cast<long long>(ranks->GetComponent(r, 0)) },
+          { "seconds", ranks->GetComponent(r, 1) },
+          { "bytes", static_cast<long long>(ranks->GetComponent(r, 2)) } });
+    }
+  }
   // What the solution holds: the cover (its strips, entries and rows, paper §3.3, stored as the
   // cover output's field arrays) and the propagation's state of one incident radiance per
   // region h_ij (§5.1). The stages' working memory (R-buffers, weight tables) comes and goes.

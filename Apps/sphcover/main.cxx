@@ -17,6 +17,11 @@
  *
  * Every error is one line on stderr and a non-zero exit status; no output file is left
  * half-written, also when interrupted (OutputFiles.h).
+ *
+ * Under mpiexec (README.md#running-on-a-cluster) the program joins MPI and the spherical
+ * cover's rows are built on all ranks (vtkSphericalCoverFilter, Controller); every rank reads,
+ * subdivides and propagates alike, and only rank 0 prints, writes files and renders. Started
+ * any other way it is a plain program and never touches MPI.
  */
 #include "Commands.h"
 #include "Options.h"
@@ -25,17 +30,34 @@
 
 #include <CLI/CLI.hpp>
 #include <vtkLogger.h>
+#include <vtkMPIController.h>
 #include <vtkNew.h>
 #include <vtkOutputWindow.h>
 #include <vtkSMPTools.h>
 #include <vtkStringOutputWindow.h>
 
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <string>
 
 namespace
 {
+/// Whether an MPI launcher started this process: Open MPI's mpiexec sets OMPI_COMM_WORLD_SIZE,
+/// MPICH's and PMIx launchers PMI_SIZE or PMIX_RANK. Only then is MPI initialised, so that the
+/// program started by hand needs no MPI runtime.
+bool LaunchedByMpiexec()
+{
+  for (const char* variable : { "OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK" })
+  {
+    if (std::getenv(variable))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 /// The options of an image's samples and tone, the same for render and walk; `budgetHelp`
 /// says what --max-samples bounds.
 void AddImageOptions(CLI::App* command,
@@ -208,6 +230,19 @@ int main(int argc, char** argv)
     return app.exit(e);
   }
 
+  // MPI before any filter exists: the cover filter takes the global controller when it is made.
+  vtkSmartPointer<vtkMPIController> mpi;
+  if (LaunchedByMpiexec())
+  {
+    mpi = vtkSmartPointer<vtkMPIController>::New();
+    mpi->Initialize(&argc, &argv);
+    vtkMultiProcessController::SetGlobalController(mpi);
+    options.Rank = mpi->GetLocalProcessId();
+    options.Ranks = mpi->GetNumberOfProcesses();
+    // One progress display, rank 0's: the ranks build their rows at about the same pace.
+    options.Quiet = options.Quiet || options.Rank > 0;
+  }
+
   // Before any thread starts: an interrupted run leaves no partial output behind.
   sphcover_cli::WatchTerminationSignals();
 
@@ -224,7 +259,12 @@ int main(int argc, char** argv)
   int status = 0;
   try
   {
-    if (info->parsed())
+    // Only solve and render build a cover, the stage the ranks share; the other commands run on
+    // rank 0 alone.
+    if (options.Rank > 0 && !solve->parsed() && !render->parsed())
+    {
+    }
+    else if (info->parsed())
     {
       status = sphcover_cli::RunInfo(options);
     }
@@ -247,14 +287,23 @@ int main(int argc, char** argv)
   }
   catch (const std::exception& e)
   {
-    std::cerr << "sphcover: error: " << e.what() << std::endl;
+    // Every rank fails alike (the same input, or the cover's agreed error): rank 0 says it.
+    if (options.Rank == 0)
+    {
+      std::cerr << "sphcover: error: " << e.what() << std::endl;
+    }
     status = 1;
   }
   const std::string messages = vtkMessages->GetOutput();
-  if (status == 0 && !messages.empty())
+  if (status == 0 && !messages.empty() && options.Rank == 0)
   {
     std::cerr << messages << std::flush;
   }
   vtkOutputWindow::SetInstance(nullptr);
+  if (mpi)
+  {
+    vtkMultiProcessController::SetGlobalController(nullptr);
+    mpi->Finalize();
+  }
   return status;
 }

@@ -3,6 +3,7 @@
 
 #include "cover/RayCastFill.h"
 #include "math/Constants.h"
+#include "math/IntervalVector.h"
 
 #include "subdivision/Patch.h"
 
@@ -393,7 +394,10 @@ void SphericalCover::AppendRow(Row& row)
   this->Strips.insert(this->Strips.end(), row.Strips.begin(), row.Strips.end());
   this->StripDepths.insert(this->StripDepths.end(), row.Depths.begin(), row.Depths.end());
   const size_t firstEntry = this->Entries.size() - row.Sources.size();
-  if (!row.Measures.empty() && this->Measures.empty())
+  // Measures exist once some row is measured: also when that is the very first row (whose
+  // measures an emptiness test of Measures alone would drop).
+  const bool measured = !this->Measures.empty() || !row.Measures.empty();
+  if (!row.Measures.empty() && this->Measures.size() < firstEntry)
   {
     // The first measured row: the entries before it keep their cells' measures.
     this->Measures.reserve(this->Entries.capacity());
@@ -402,7 +406,7 @@ void SphericalCover::AppendRow(Row& row)
       this->Measures.push_back(static_cast<float>(this->CellsMeasure(e)));
     }
   }
-  if (!this->Measures.empty())
+  if (measured)
   {
     for (size_t e = 0; e < row.Sources.size(); ++e)
     {
@@ -415,8 +419,10 @@ void SphericalCover::AppendRow(Row& row)
   this->CullingCounts += row.Culling;
 }
 
-bool SphericalCover::Build(const std::vector<Patch>& patches,
+bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
+  std::size_t first,
+  std::size_t last,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress)
 {
@@ -424,6 +430,11 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
   if (patches.size() >= std::numeric_limits<uint32_t>::max())
   {
     throw std::invalid_argument("SphericalCover: more than 2^32 - 2 patches");
+  }
+  if (first > last || last > patches.size())
+  {
+    throw std::invalid_argument("SphericalCover: the receivers [" + std::to_string(first) + ", " +
+      std::to_string(last) + ") are not among the " + std::to_string(patches.size()) + " patches");
   }
   this->BuildOptions = options;
   // Panes (see the file comment): the fill lets the rays through their back sides, the cover
@@ -486,13 +497,13 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
     }
   }
 
-  const size_t count = patches.size();
+  const size_t count = last - first;
   this->RowOffsets.reserve(count + 1);
   this->RowOffsets.push_back(0);
   this->Areas.resize(count);
   for (size_t i = 0; i < count; ++i)
   {
-    this->Areas[i] = patches[i].Area;
+    this->Areas[i] = patches[first + i].Area;
   }
   const size_t batchSize = options.BatchSize > 0 ? options.BatchSize : DefaultBatchSize;
   std::vector<Row> rows;
@@ -508,7 +519,8 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
           paneFiller ? std::make_unique<RBuffer>(grid) : nullptr;
         for (size_t k = begin; k < end; ++k)
         {
-          filler->Fill(batchBegin + k, buffer, &rows[k].Culling);
+          const size_t receiver = first + batchBegin + k;
+          filler->Fill(receiver, buffer, &rows[k].Culling);
           ExtractRow(buffer, rows[k]);
           if (paneFiller)
           {
@@ -517,7 +529,7 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
           }
           if (rayFiller)
           {
-            this->MeasureRow(batchBegin + k, *rayFiller, patches, measuredPieces, rows[k]);
+            this->MeasureRow(receiver, *rayFiller, patches, measuredPieces, rows[k]);
           }
         }
       });
@@ -532,7 +544,18 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
     }
   }
   this->UnoccludedKnown = filler->Kind() == RBufferFill::Projection;
+  return true;
+}
 
+bool SphericalCover::Build(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress)
+{
+  if (!this->BuildRows(patches, options, 0, patches.size(), parallelFor, progress))
+  {
+    return false;
+  }
   this->BuildColumns();
   if (progress)
   {
@@ -586,9 +609,8 @@ SphericalCover::Arrays SphericalCover::ExportArrays() const
   return arrays;
 }
 
-std::string SphericalCover::ImportArrays(Arrays arrays)
+std::string SphericalCover::CheckArrays(const Arrays& arrays)
 {
-  this->Clear();
   if (arrays.ThetaBins < 1 || arrays.PhiBins < 1 || arrays.ThetaBins > 65535 ||
     arrays.PhiBins > 65535 || arrays.SamplesTheta < 1 || arrays.SamplesPhi < 1)
   {
@@ -655,12 +677,30 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
       return "a strip lies outside the grid";
     }
   }
-  this->BuildOptions = SphericalCoverOptions();
-  this->BuildOptions.ThetaBins = arrays.ThetaBins;
-  this->BuildOptions.PhiBins = arrays.PhiBins;
-  this->BuildOptions.SamplesTheta = arrays.SamplesTheta;
-  this->BuildOptions.SamplesPhi = arrays.SamplesPhi;
-  this->BuildOptions.Fill = static_cast<RBufferFill>(arrays.Fill);
+  return std::string();
+}
+
+std::string SphericalCover::ImportArrays(Arrays arrays)
+{
+  this->Clear();
+  const std::string problem = CheckArrays(arrays);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  SphericalCoverOptions options;
+  options.ThetaBins = arrays.ThetaBins;
+  options.PhiBins = arrays.PhiBins;
+  options.SamplesTheta = arrays.SamplesTheta;
+  options.SamplesPhi = arrays.SamplesPhi;
+  options.Fill = static_cast<RBufferFill>(arrays.Fill);
+  this->Adopt(std::move(arrays), options);
+  return std::string();
+}
+
+void SphericalCover::Adopt(Arrays arrays, const SphericalCoverOptions& options)
+{
+  this->BuildOptions = options;
   this->GridPointer = std::make_unique<HemisphereGrid>(
     arrays.ThetaBins, arrays.PhiBins, arrays.SamplesTheta, arrays.SamplesPhi);
   this->RowOffsets = std::move(arrays.RowOffsets);
@@ -675,6 +715,203 @@ std::string SphericalCover::ImportArrays(Arrays arrays)
   this->Filters = std::move(arrays.Filters);
   this->Transmittances = std::move(arrays.Transmittances);
   this->BuildColumns();
+}
+
+std::vector<double> SphericalCover::EstimateRowCosts(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options)
+{
+  const size_t count = patches.size();
+  const double fixed =
+    options.Fill == RBufferFill::RayCasting ? 2.0 * static_cast<double>(count) : 1.0;
+  std::vector<double> costs(count, fixed);
+  for (size_t i = 0; i < count; ++i)
+  {
+    const glm::dvec3& point = patches[i].Point;
+    const glm::dvec3& normal = patches[i].Normal;
+    size_t candidates = 0;
+    for (size_t j = 0; j < count; ++j)
+    {
+      // The largest height N_i . (Q - P_i) over the box of Q_j's control net, per axis the
+      // larger of the box's two ends.
+      const IntervalVec3& box = patches[j].Geometry.Bounds();
+      double height = 0.0;
+      for (int axis = 0; axis < 3; ++axis)
+      {
+        height += std::max(normal[axis] * (box[axis].Lower() - point[axis]),
+          normal[axis] * (box[axis].Upper() - point[axis]));
+      }
+      candidates += j != i && height > 0.0 ? 1 : 0;
+    }
+    costs[i] += static_cast<double>(candidates);
+  }
+  return costs;
+}
+
+std::vector<std::size_t> SphericalCover::PartitionRows(const std::vector<double>& costs,
+  std::size_t parts)
+{
+  if (parts == 0)
+  {
+    throw std::invalid_argument("SphericalCover::PartitionRows: no part");
+  }
+  const double total = std::accumulate(costs.begin(), costs.end(), 0.0);
+  std::vector<std::size_t> bounds(parts + 1, costs.size());
+  bounds[0] = 0;
+  double running = 0.0;
+  size_t part = 1;
+  for (size_t i = 0; i < costs.size() && part < parts; ++i)
+  {
+    running += costs[i];
+    // Several parts may end at one receiver (fewer receivers than parts): they stay empty.
+    while (part < parts && running >= total * static_cast<double>(part) / parts)
+    {
+      bounds[part++] = i + 1;
+    }
+  }
+  return bounds;
+}
+
+bool SphericalCover::BuildRowBlock(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  std::size_t first,
+  std::size_t last,
+  Arrays& block,
+  CullingStatistics& culling,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress)
+{
+  block = Arrays();
+  culling = CullingStatistics();
+  SphericalCover rows;
+  if (!rows.BuildRows(patches, options, first, last, parallelFor, progress))
+  {
+    return false;
+  }
+  culling = rows.CullingCounts;
+  block.ThetaBins = options.ThetaBins;
+  block.PhiBins = options.PhiBins;
+  block.SamplesTheta = options.SamplesTheta;
+  block.SamplesPhi = options.SamplesPhi;
+  block.Fill = static_cast<int>(options.Fill);
+  block.RowOffsets = std::move(rows.RowOffsets);
+  block.Entries = std::move(rows.Entries);
+  block.Unoccluded = std::move(rows.Unoccluded);
+  block.UnoccludedKnown = rows.UnoccludedKnown;
+  block.Strips = std::move(rows.Strips);
+  block.StripDepths = std::move(rows.StripDepths);
+  block.Areas = std::move(rows.Areas);
+  block.Measures = std::move(rows.Measures);
+  block.Layers = std::move(rows.Layers);
+  block.Filters = std::move(rows.Filters);
+  block.Transmittances = std::move(rows.Transmittances);
+  return true;
+}
+
+std::string SphericalCover::ImportRowBlocks(std::vector<Arrays> blocks,
+  const SphericalCoverOptions& options,
+  const CullingStatistics& culling)
+{
+  this->Clear();
+  if (blocks.empty())
+  {
+    return "no row block";
+  }
+  // Each block on its own: its grid, its offsets and its parallel arrays.
+  bool measured = false;
+  for (size_t b = 0; b < blocks.size(); ++b)
+  {
+    const Arrays& block = blocks[b];
+    const std::string name = "row block " + std::to_string(b) + ": ";
+    if (block.ThetaBins != options.ThetaBins || block.PhiBins != options.PhiBins ||
+      block.SamplesTheta != options.SamplesTheta || block.SamplesPhi != options.SamplesPhi ||
+      block.Fill != static_cast<int>(options.Fill) ||
+      block.UnoccludedKnown != blocks.front().UnoccludedKnown)
+    {
+      return name + "its grid or fill is not the cover's";
+    }
+    if (block.RowOffsets.size() != block.Areas.size() + 1 || block.RowOffsets.front() != 0 ||
+      block.RowOffsets.back() != block.Entries.size() ||
+      block.Unoccluded.size() != block.Entries.size() ||
+      block.StripDepths.size() != block.Strips.size() ||
+      (!block.Measures.empty() && block.Measures.size() != block.Entries.size()) ||
+      (!block.Layers.empty() &&
+        (block.Layers.size() != block.Entries.size() ||
+          block.Filters.size() != 3 * block.Entries.size())) ||
+      block.Transmittances != blocks.front().Transmittances)
+    {
+      return name + "its arrays have inconsistent lengths";
+    }
+    for (const Entry& entry : block.Entries)
+    {
+      if (entry.FirstStrip > block.Strips.size())
+      {
+        return name + "an entry refers to a missing strip";
+      }
+    }
+    measured = measured || !block.Measures.empty();
+  }
+  // Joined in receiver order: offsets and first strips shifted by what precedes the block.
+  Arrays joined;
+  joined.ThetaBins = options.ThetaBins;
+  joined.PhiBins = options.PhiBins;
+  joined.SamplesTheta = options.SamplesTheta;
+  joined.SamplesPhi = options.SamplesPhi;
+  joined.Fill = static_cast<int>(options.Fill);
+  joined.UnoccludedKnown = blocks.front().UnoccludedKnown;
+  joined.RowOffsets.push_back(0);
+  const HemisphereGrid grid(
+    options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  for (Arrays& block : blocks)
+  {
+    const uint64_t entryBase = joined.Entries.size();
+    const uint64_t stripBase = joined.Strips.size();
+    if (stripBase + block.Strips.size() > std::numeric_limits<uint32_t>::max())
+    {
+      return "the row blocks hold more than 2^32 - 1 strips";
+    }
+    for (size_t k = 1; k < block.RowOffsets.size(); ++k)
+    {
+      joined.RowOffsets.push_back(entryBase + block.RowOffsets[k]);
+    }
+    for (size_t e = 0; e < block.Entries.size(); ++e)
+    {
+      const Entry& entry = block.Entries[e];
+      joined.Entries.push_back(
+        { entry.Source, static_cast<uint32_t>(stripBase + entry.FirstStrip) });
+      if (measured && block.Measures.empty())
+      {
+        // Build's AppendRow: a row without measured regions keeps its cells' measures.
+        const size_t end =
+          e + 1 < block.Entries.size() ? block.Entries[e + 1].FirstStrip : block.Strips.size();
+        const Strip* strips = block.Strips.data();
+        joined.Measures.push_back(
+          static_cast<float>(MeasureOfStrips(grid, strips + entry.FirstStrip, strips + end)));
+      }
+    }
+    joined.Measures.insert(joined.Measures.end(), block.Measures.begin(), block.Measures.end());
+    joined.Unoccluded.insert(
+      joined.Unoccluded.end(), block.Unoccluded.begin(), block.Unoccluded.end());
+    joined.Strips.insert(joined.Strips.end(), block.Strips.begin(), block.Strips.end());
+    joined.StripDepths.insert(
+      joined.StripDepths.end(), block.StripDepths.begin(), block.StripDepths.end());
+    joined.Areas.insert(joined.Areas.end(), block.Areas.begin(), block.Areas.end());
+    // Panes: every block's entries' layers and filters; the transmittances (of every patch,
+    // the same in every block) once.
+    if (!block.Transmittances.empty())
+    {
+      joined.Layers.insert(joined.Layers.end(), block.Layers.begin(), block.Layers.end());
+      joined.Filters.insert(joined.Filters.end(), block.Filters.begin(), block.Filters.end());
+      joined.Transmittances = block.Transmittances;
+    }
+    block = Arrays(); // the block's memory goes as the joined cover grows
+  }
+  const std::string problem = CheckArrays(joined);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  this->Adopt(std::move(joined), options);
+  this->CullingCounts = culling;
   return std::string();
 }
 

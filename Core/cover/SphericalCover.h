@@ -256,6 +256,59 @@ public:
   /// indices and cell ranges); returns an explanation (and leaves the cover empty) if not.
   std::string ImportArrays(Arrays arrays);
 
+  // --- row blocks (a cover built by several processes) -----------------------------------------
+  // Rows are independent (paper §4.3: one R-buffer per characteristic point), so the rows of
+  // consecutive receiver ranges can be built apart and joined: what the distributed filter
+  // (vtkSphericalCoverFilter under MPI) does. A row block is an Arrays whose RowOffsets hold
+  // the block's rows from 0, whose entries' FirstStrip count from the block's first strip and
+  // whose Areas are its receivers'; Measures are empty when no row of the block is measured.
+
+  /**
+   * An estimate of the work of each receiver's row, for splitting rows among processes by work
+   * rather than by count: a fixed part per row plus the number of other patches whose control
+   * net reaches above the tangent plane of P_i (paper §4.2.2's hemispherical containment,
+   * bounded by the control net's box instead of Bernstein ranges), the candidates a fill
+   * considers. The fixed part is 1 for the projection fill, whose work is its candidates'
+   * projections, and 2N for the ray fill, whose rays through the cells cost about as much per
+   * row as 2N candidates (fitted to the teapot room's rows timed on two ranks,
+   * Documentation/notes/distributed-solve.md). O(N^2) box tests, about a thousandth of a build.
+   */
+  static std::vector<double> EstimateRowCosts(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options);
+  /**
+   * Boundaries b_0 = 0 <= b_1 <= ... <= b_parts = costs.size() of `parts` consecutive receiver
+   * ranges [b_k, b_k+1) of about equal summed cost: range k ends at the first receiver whose
+   * running cost reaches (k+1)/parts of the total. Throws std::invalid_argument for parts = 0.
+   */
+  static std::vector<std::size_t> PartitionRows(const std::vector<double>& costs,
+    std::size_t parts);
+  /**
+   * Builds the rows of receivers [first, last) of the cover of `patches` into `block` (see
+   * above), with the summed culling counts; everything else as Build, whose rows these are bit
+   * for bit. Returns false, leaving `block` empty, when `progress` returned false (progress
+   * counts the block's rows). Throws as Build does, and std::invalid_argument when
+   * first > last or last > patches.size().
+   */
+  static bool BuildRowBlock(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options,
+    std::size_t first,
+    std::size_t last,
+    Arrays& block,
+    CullingStatistics& culling,
+    const ParallelFor& parallelFor = SequentialFor,
+    const ProgressCallback& progress = nullptr);
+  /**
+   * Replaces the cover with the row blocks of consecutive receiver ranges, in receiver order,
+   * that together hold every receiver once: the cover Build(patches, options) gives, bit for bit
+   * (a block without measured rows gets its cells' measures where another block has measured
+   * ones, as Build's rows before its first measured row do). `options` and `culling` become
+   * Options() and Culling(). Returns an explanation (and leaves the cover empty) when the
+   * blocks are inconsistent (as ImportArrays) or their grid is not the options'.
+   */
+  std::string ImportRowBlocks(std::vector<Arrays> blocks,
+    const SphericalCoverOptions& options,
+    const CullingStatistics& culling);
+
   // --- statistics and memory -------------------------------------------------------------------
   /// Candidate culling counts summed over all receivers (projection fill only).
   const CullingStatistics& Culling() const { return this->CullingCounts; }
@@ -297,6 +350,18 @@ public:
 
 private:
   struct Row;
+  /// Build's rows of receivers [first, last) (first == 0, last == n: the whole cover, without
+  /// its columns); false, with the cover cleared, when aborted.
+  bool BuildRows(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options,
+    std::size_t first,
+    std::size_t last,
+    const ParallelFor& parallelFor,
+    const ProgressCallback& progress);
+  /// Why `arrays` are not a consistent cover ("" when they are).
+  static std::string CheckArrays(const Arrays& arrays);
+  /// Takes consistent `arrays` with `options` as the build's and derives the columns.
+  void Adopt(Arrays arrays, const SphericalCoverOptions& options);
   /// Appends the regions of `buffer` to `row` as entries of layer `layer`; `filterOfCell` (by
   /// cell index) gives their filters when layer > 0.
   static void ExtractRow(const RBuffer& buffer,

@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: BSD-3-Clause
+#include "vtkCoverDistribution.h"
+
+#include <vtkCommunicator.h>
+#include <vtkDataSet.h>
+#include <vtkMultiProcessController.h>
+#include <vtkSmartPointer.h>
+
+#include <string>
+
+namespace vtkCoverDistribution
+{
+std::string Agree(vtkMultiProcessController* controller, const std::string& problem)
+{
+  const int rank = controller->GetLocalProcessId();
+  const int ranks = controller->GetNumberOfProcesses();
+  // The lowest failing rank, or `ranks` when none fails: the one whose message every rank gives.
+  const int mine = problem.empty() ? ranks : rank;
+  int first = ranks;
+  controller->AllReduce(&mine, &first, 1, vtkCommunicator::MIN_OP);
+  if (first == ranks)
+  {
+    return std::string();
+  }
+  long long length = rank == first ? static_cast<long long>(problem.size()) : 0;
+  controller->Broadcast(&length, 1, first);
+  std::string message(static_cast<std::size_t>(length), ' ');
+  if (rank == first)
+  {
+    message = problem;
+  }
+  controller->Broadcast(&message[0], static_cast<vtkIdType>(length), first);
+  return message + " (rank " + std::to_string(first) + " of " + std::to_string(ranks) + ")";
+}
+
+int Count(vtkMultiProcessController* controller, bool flag)
+{
+  const int mine = flag ? 1 : 0;
+  int count = 0;
+  controller->AllReduce(&mine, &count, 1, vtkCommunicator::SUM_OP);
+  return count;
+}
+
+void BroadcastFromFirst(vtkMultiProcessController* controller, vtkDataSet* data)
+{
+  controller->Broadcast(data, 0);
+}
+
+std::vector<RankFigures> GatherFigures(vtkMultiProcessController* controller,
+  const RankFigures& mine)
+{
+  const int ranks = controller->GetNumberOfProcesses();
+  const double sent[3] = { mine.Receivers, mine.Seconds, mine.Bytes };
+  std::vector<double> received(3 * static_cast<std::size_t>(ranks), 0.0);
+  controller->AllGather(sent, received.data(), 3);
+  std::vector<RankFigures> figures(static_cast<std::size_t>(ranks));
+  for (std::size_t r = 0; r < figures.size(); ++r)
+  {
+    figures[r] = { received[3 * r], received[3 * r + 1], received[3 * r + 2] };
+  }
+  return figures;
+}
+
+std::vector<std::vector<char>> GatherBytes(vtkMultiProcessController* controller,
+  const std::vector<char>& mine,
+  bool everyRank)
+{
+  const int ranks = controller->GetNumberOfProcesses();
+  const vtkIdType length = static_cast<vtkIdType>(mine.size());
+  std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks), 0);
+  controller->AllGather(&length, lengths.data(), 1);
+  std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks), 0);
+  vtkIdType total = 0;
+  for (std::size_t r = 0; r < lengths.size(); ++r)
+  {
+    offsets[r] = total;
+    total += lengths[r];
+  }
+  const bool receives = everyRank || controller->GetLocalProcessId() == 0;
+  std::vector<char> all(receives ? static_cast<std::size_t>(total) : 0);
+  if (everyRank)
+  {
+    controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
+  }
+  else
+  {
+    controller->GatherV(mine.data(), all.data(), length, lengths.data(), offsets.data(), 0);
+  }
+  std::vector<std::vector<char>> blocks;
+  if (!receives)
+  {
+    return blocks;
+  }
+  for (std::size_t r = 0; r < lengths.size(); ++r)
+  {
+    blocks.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);
+  }
+  return blocks;
+}
+}

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file vtkCoverDistribution.h
+ * @brief The collective steps of a spherical cover built by the K processes of a
+ * vtkMultiProcessController (MPI under pvbatch, pvserver and `mpiexec sphcover`): every rank
+ * builds the rows H_i of a range of characteristic points (paper §3.3, §4.3: one R-buffer per
+ * point, rows independent), balanced by Core's estimate of each row's work, and the row blocks
+ * are gathered in receiver order, so the cover is the serial one bit for bit whatever K.
+ *
+ * Contract of every function here: collective, so every rank of the controller calls it at the
+ * same point, in the same order. A rank that fails does not return early: it reaches the next
+ * Agree with its problem, and every rank then learns the same one message there. No function
+ * blocks on a rank that has failed before an Agree, because each collective that moves data
+ * comes after an Agree that said every rank is ready.
+ */
+#ifndef vtkCoverDistribution_h
+#define vtkCoverDistribution_h
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+class vtkDataSet;
+class vtkMultiProcessController;
+
+namespace vtkCoverDistribution
+{
+/**
+ * Every rank's `problem` ("" when it has none) reduced to one: "" when no rank has a problem,
+ * else the problem of the lowest rank that has one, followed by " (rank r of K)", on every rank.
+ */
+std::string Agree(vtkMultiProcessController* controller, const std::string& problem);
+
+/// The number of ranks for which `flag` holds.
+int Count(vtkMultiProcessController* controller, bool flag);
+
+/// Rank 0's dataset, copied into `data` on the other ranks (an instance of the same class).
+void BroadcastFromFirst(vtkMultiProcessController* controller, vtkDataSet* data);
+
+/// What each rank did: its rows, the wall seconds it took to build them and their bytes.
+struct RankFigures
+{
+  double Receivers = 0.0;
+  double Seconds = 0.0;
+  double Bytes = 0.0;
+};
+
+/// Every rank's figures, in rank order, on every rank.
+std::vector<RankFigures> GatherFigures(vtkMultiProcessController* controller,
+  const RankFigures& mine);
+
+/**
+ * Every rank's bytes, in rank order: on every rank when `everyRank`, else on rank 0 only (the
+ * others get an empty list).
+ */
+std::vector<std::vector<char>> GatherBytes(vtkMultiProcessController* controller,
+  const std::vector<char>& mine,
+  bool everyRank);
+}
+
+#endif

@@ -1,0 +1,105 @@
+"""sphcover under mpiexec (issue 19): the spherical cover's rows built on 2 and 3 ranks give the
+serial solution, and a failure is one clear error with a non-zero exit, without a hang.
+
+- `sphcover render` of the Cornell box (small grid and subdivision) serially and under
+  `mpiexec -n 2` and `-n 3` (3 ranks oversubscribe a 2-core machine): the reports' form factors
+  and mean radiances equal the serial ones to 1e-12 relative (they are in fact the same bits),
+  the images are equal byte for byte, and the report says "ranks" and each rank's rows;
+- a scene that does not load, under `mpiexec -n 2`: a non-zero exit within the timeout and one
+  `sphcover: error:` line (rank 0 speaks; every rank fails alike).
+Without mpiexec on the PATH the test is skipped (exit 77) with a message.
+
+usage: TestCommandLineMPI.py SPHCOVER DATA"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+sphcover, data = sys.argv[1:3]
+mpiexec = shutil.which("mpiexec")
+if mpiexec is None:
+    print("SKIPPED: mpiexec is not on the PATH (install mpi-default-bin to run the MPI test)")
+    sys.exit(77)
+
+# Open MPI refuses to run as root (CI containers) and to start more ranks than cores unless told;
+# its environment variables say so without breaking other MPI implementations' command lines.
+environment = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+                   OMPI_MCA_rmaps_base_oversubscribe="1")
+SCENE = f"{data}/scenes/cornell_box.scene"
+SMALL = ["--set", "max_level=2", "--set", "theta_bins=8", "--set", "phi_bins=32", "--threads", "1",
+         "--size", "48x48", "--spp", "1", "-q"]
+failures = []
+
+
+def run(command, timeout=600):
+    result = subprocess.run(command, capture_output=True, text=True, timeout=timeout,
+                            env=environment)
+    return result
+
+
+def render(folder, ranks):
+    """The report and the PNG bytes of a render on `ranks` ranks (0: no mpiexec)."""
+    report = os.path.join(folder, f"report{ranks}.json")
+    image = os.path.join(folder, f"image{ranks}.png")
+    launcher = [mpiexec, "-n", str(ranks)] if ranks else []
+    result = run(launcher + [sphcover, "render", SCENE, "-o", image, "--report", report, *SMALL])
+    if result.returncode != 0:
+        failures.append(f"{ranks} ranks: exit {result.returncode}: {result.stderr.strip()}")
+        return None, None
+    with open(report, encoding="utf-8") as file, open(image, "rb") as png:
+        return json.load(file), png.read()
+
+
+def relative(a, b):
+    return abs(a - b) / max(abs(a), abs(b), 1e-300)
+
+
+def compare(serial, parallel, ranks):
+    pairs = list(zip(sum(serial["form_factors"]["matrix"], []),
+                     sum(parallel["form_factors"]["matrix"], [])))
+    for s, p in zip(serial["surfaces"], parallel["surfaces"]):
+        pairs += list(zip(s["mean_exitant_radiance"] + s["mean_irradiance"],
+                          p["mean_exitant_radiance"] + p["mean_irradiance"]))
+    worst = max(relative(a, b) for a, b in pairs)
+    if worst > 1e-12:
+        failures.append(f"{ranks} ranks: form factors or mean radiances differ by {worst:.3g}")
+    if parallel.get("ranks") != ranks:
+        failures.append(f"{ranks} ranks: the report says ranks {parallel.get('ranks')}")
+    rows = parallel.get("cover_ranks", [])
+    if len(rows) != ranks or any(r["bytes"] <= 0 or r["seconds"] < 0 for r in rows):
+        failures.append(f"{ranks} ranks: cover_ranks {rows}")
+    elif sum(r["receivers"] for r in rows) != serial["counts"]["characteristic_points"]:
+        failures.append(f"{ranks} ranks: the ranks' receivers do not add up: {rows}")
+
+
+with tempfile.TemporaryDirectory() as folder:
+    serial, serial_image = render(folder, 0)
+    if serial is not None and serial.get("ranks") != 1:
+        failures.append(f"serial: the report says ranks {serial.get('ranks')}")
+    for ranks in (2, 3):
+        parallel, image = render(folder, ranks)
+        if serial is None or parallel is None:
+            continue
+        compare(serial, parallel, ranks)
+        if image != serial_image:
+            failures.append(f"{ranks} ranks: the image differs from the serial one")
+
+    bad = os.path.join(folder, "bad.scene")
+    with open(bad, "w", encoding="utf-8") as file:
+        file.write("{ \"surfaces\": [ this is not JSON\n")
+    try:
+        result = run([mpiexec, "-n", "2", sphcover, "solve", bad, "-q"], timeout=120)
+        errors = [line for line in result.stderr.splitlines() if "sphcover: error:" in line]
+        if result.returncode == 0:
+            failures.append("a bad scene under mpiexec -n 2 exited 0")
+        if len(errors) != 1:
+            failures.append(f"a bad scene under mpiexec -n 2 gave {len(errors)} errors: "
+                            f"{result.stderr.strip()}")
+    except subprocess.TimeoutExpired:
+        failures.append("a bad scene under mpiexec -n 2 hung (no exit within 120 s)")
+
+for failure in failures:
+    print("FAILED:", failure)
+sys.exit(1 if failures else 0)
