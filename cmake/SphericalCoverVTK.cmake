@@ -1,9 +1,10 @@
 # VTK modules (Common/, Readers/, Filters/), their Python wrapping (package `sphericalcover`), the
+# render-view classes of the plug-in (Views/, ParaView's RemotingViews; not wrapped), the
 # ParaView plug-in and the command-line program, all built against the VTK that Debian's
 # ParaView 5.11 bundles (README.md#layout): a system VTK would conflict with python3-paraview.
 
 # Listing components keeps ParaView from dragging in its Qt client targets.
-find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager)
+find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager RemotingViews)
 find_package(VTK REQUIRED
   COMPONENTS
     CommonCore
@@ -44,9 +45,11 @@ vtk_module_scan(
     "${PROJECT_SOURCE_DIR}/Common/vtk.module"
     "${PROJECT_SOURCE_DIR}/Readers/vtk.module"
     "${PROJECT_SOURCE_DIR}/Filters/vtk.module"
+    "${PROJECT_SOURCE_DIR}/Views/vtk.module"
   REQUEST_MODULES
     SphericalCover::Readers
     SphericalCover::Filters
+    SphericalCover::Views
   PROVIDES_MODULES sphcover_modules
   ENABLE_TESTS OFF)
 
@@ -57,8 +60,11 @@ vtk_module_build(
   INSTALL_EXPORT SphericalCover)
 
 vtk_module_python_default_destination(SPHCOVER_PYTHON_DESTINATION)
+# Views is ParaView's side only (the plug-in wraps it for the server manager).
+set(sphcover_python_modules ${sphcover_modules})
+list(REMOVE_ITEM sphcover_python_modules SphericalCover::Views)
 vtk_module_wrap_python(
-  MODULES ${sphcover_modules}
+  MODULES ${sphcover_python_modules}
   PYTHON_PACKAGE sphericalcover
   MODULE_DESTINATION "${SPHCOVER_PYTHON_DESTINATION}"
   LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"

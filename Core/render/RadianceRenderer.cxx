@@ -431,6 +431,39 @@ glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
   return this->RadianceToward(surface, u, v, towardEye, nullptr);
 }
 
+RadianceRenderer::DirectionalCache::DirectionalCache(int bits)
+  : Shift(64 - std::clamp(bits, 1, 30))
+  , Keys(std::size_t(1) << std::clamp(bits, 1, 30), ~uint64_t(0))
+  , Values(std::size_t(1) << std::clamp(bits, 1, 30))
+{
+}
+
+glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
+  double u,
+  double v,
+  const glm::dvec3& towardEye,
+  DirectionalCache& cache) const
+{
+  return this->RadianceToward(surface, u, v, towardEye, &cache);
+}
+
+bool RadianceRenderer::IsViewDependent(int surface, double u, double v) const
+{
+  InterpolationStencil stencil;
+  if (!this->Directional || !this->Interpolator.Stencil(surface, u, v, stencil))
+  {
+    return false;
+  }
+  for (int k = 0; k < stencil.Count; ++k)
+  {
+    if (this->Reflectances.Table(stencil.Points[static_cast<size_t>(k)]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
   const ReflectanceWeights& table,
   const glm::dvec3& towardEye,
@@ -451,8 +484,7 @@ glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
   }
   const uint64_t key = static_cast<uint64_t>(point) * static_cast<uint64_t>(grid.CellCount()) +
     static_cast<uint64_t>(cell);
-  const std::size_t slot =
-    static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 52) % DirectionalCache::Size;
+  const std::size_t slot = cache->Slot(key);
   if (cache->Keys[slot] != key)
   {
     cache->Keys[slot] = key;

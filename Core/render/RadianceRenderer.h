@@ -257,12 +257,36 @@ public:
   /// samples share their characteristic points and mostly the eye's cell, so a row of pixels
   /// evaluates each pair once (a direct-mapped table; a value is the same whether it comes
   /// from the table or is evaluated, so the image does not depend on the cache).
+  /// A cache kept across calls (a walk-through's vertices, frame after frame) is a lazily
+  /// filled table of the directional part per (point, cell): after the first frames a camera
+  /// move pays only the pairs it newly sees.
   struct DirectionalCache
   {
-    static constexpr std::size_t Size = 4096;
-    std::vector<uint64_t> Keys = std::vector<uint64_t>(Size, ~uint64_t(0));
-    std::vector<glm::dvec3> Values = std::vector<glm::dvec3>(Size);
+    /// 2^bits slots (bits 1 to 30; default 4096 slots, a row of pixels' working set).
+    explicit DirectionalCache(int bits = 12);
+    /// The slot of a (point, cell) key (Fibonacci hashing onto the table's bits).
+    std::size_t Slot(uint64_t key) const { return (key * 0x9E3779B97F4A7C15ull) >> this->Shift; }
+    int Shift;
+    std::vector<uint64_t> Keys;
+    std::vector<glm::dvec3> Values;
   };
+
+  /**
+   * SurfaceRadianceToward through `cache`: the same value (the cache holds exact values of
+   * the directional part per (point, eye cell)), evaluated once per pair the cache keeps.
+   * One cache per thread.
+   */
+  glm::dvec3 SurfaceRadianceToward(int surface,
+    double u,
+    double v,
+    const glm::dvec3& towardEye,
+    DirectionalCache& cache) const;
+
+  /// Whether the front's radiance at (u, v) of the surface depends on the eye: a point of its
+  /// interpolation stencil has a directional part (a non-diffuse material, paper §5.3.1) and
+  /// the directional illumination is set. Elsewhere SurfaceRadianceToward is SurfaceRadiance
+  /// for every eye.
+  bool IsViewDependent(int surface, double u, double v) const;
 
   std::size_t TriangleCount() const;
 
