@@ -54,6 +54,8 @@ struct vtkViewDependentRadiance::FieldState
   const void* UV = nullptr;
   vtkTimeStamp Prepared;
   std::vector<vtkIdType> ViewDependent;
+  /// The eye-independent terms of each view-dependent vertex (same order).
+  std::vector<sphcover::RadianceRenderer::TowardTerms> Terms;
   double Eye[3] = { 0.0, 0.0, 0.0 };
   double Exposure = 0.0;
 
@@ -219,21 +221,19 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
   const glm::dvec3 eye(x, y, z);
   const double scale = std::exp2(exposure);
   const sphcover::RadianceRenderer& renderer = *this->Renderer;
-  // The vertex's radiance toward the eye, and its bytes as the field's DisplayRGB: the float
-  // radiance, exposed and encoded.
-  auto evaluate = [&](vtkIdType id)
+  // The vertex's radiance toward the eye from its tabulated terms, and its bytes as the field's
+  // DisplayRGB: the float radiance, exposed and encoded.
+  using Terms = sphcover::RadianceRenderer::TowardTerms;
+  auto evaluate = [&](vtkIdType id, const Terms& terms)
   {
     double p[3];
     field->GetPoint(id, p);
-    const int surface = static_cast<int>(surfaces->GetComponent(id, 0));
-    const double u = uv->GetComponent(id, 0);
-    const double v = uv->GetComponent(id, 1);
     const glm::dvec3 toward = eye - glm::dvec3(p[0], p[1], p[2]);
     const double distance = glm::length(toward);
     // At the eye itself no direction: the front's Lambertian radiance.
     const glm::dvec3 l = distance > 0.0
-      ? renderer.SurfaceRadianceToward(surface, u, v, toward / distance, state.Caches.Local())
-      : renderer.SurfaceRadiance(surface, u, v);
+      ? renderer.RadianceToward(terms, toward / distance, state.Caches.Local())
+      : renderer.SurfaceRadiance(terms.Surface, terms.U, terms.V);
     for (int c = 0; c < 3; ++c)
     {
       radiance->SetTypedComponent(id, c, static_cast<float>(l[c]));
@@ -251,7 +251,8 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
   const vtkIdType count = field->GetNumberOfPoints();
   if (!sameField)
   {
-    // A new field: every vertex once, and which of them depend on the eye.
+    // A new field: every vertex once, and which of them depend on the eye, with their terms.
+    std::vector<Terms> all(static_cast<std::size_t>(count));
     std::vector<char> dependent(static_cast<std::size_t>(count), 0);
     vtkSMPTools::For(vtkIdType(0),
       count,
@@ -259,20 +260,23 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
       {
         for (vtkIdType id = begin; id < end; ++id)
         {
-          evaluate(id);
+          Terms& terms = all[static_cast<std::size_t>(id)];
+          terms = renderer.Terms(static_cast<int>(surfaces->GetComponent(id, 0)),
+            uv->GetComponent(id, 0),
+            uv->GetComponent(id, 1));
+          evaluate(id, terms);
           encode(id);
-          dependent[static_cast<std::size_t>(id)] =
-            renderer.IsViewDependent(static_cast<int>(surfaces->GetComponent(id, 0)),
-              uv->GetComponent(id, 0),
-              uv->GetComponent(id, 1));
+          dependent[static_cast<std::size_t>(id)] = renderer.IsViewDependent(terms);
         }
       });
     state.ViewDependent.clear();
+    state.Terms.clear();
     for (vtkIdType id = 0; id < count; ++id)
     {
       if (dependent[static_cast<std::size_t>(id)])
       {
         state.ViewDependent.push_back(id);
+        state.Terms.push_back(all[static_cast<std::size_t>(id)]);
       }
     }
     state.Field = field;
@@ -294,7 +298,7 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
         {
           for (std::size_t k = begin; k < end; ++k)
           {
-            evaluate(ids[k]);
+            evaluate(ids[k], state.Terms[k]);
             encode(ids[k]);
           }
         });

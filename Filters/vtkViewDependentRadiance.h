@@ -18,13 +18,15 @@
  *
  * What a camera move costs (paper §1, §5.3: after the solve every view is cheap). The first
  * Update of a field evaluates every vertex and remembers which vertices depend on the eye
- * (RadianceRenderer::IsViewDependent: a non-diffuse point in the stencil); a later Update of the
- * same field (same points, `SurfaceId` and `UV`) for another eye evaluates only those, through
- * one directional cache per thread kept across Updates (a lazily filled table of I_dir per
- * (point, eye cell), which does not depend on the eye's position), and re-encodes only their
- * bytes; the same eye and exposure again cost nothing. The values are those of the uncached
- * evaluation whatever the history. vtkViewDependentRadianceRepresentation (plug-in) calls Update
- * from the render view's camera before every render.
+ * (RadianceRenderer::IsViewDependent: a non-diffuse point in the stencil) with what of their
+ * radiance does not (RadianceRenderer::TowardTerms: the interpolation stencil, the lamps' direct
+ * light); a later Update of the same field (same points, `SurfaceId` and `UV`) for another eye
+ * evaluates only those vertices, from their terms, through one directional cache per thread kept
+ * across Updates (a lazily filled table of I_dir per (point, eye cell), which does not depend on
+ * the eye's position), and re-encodes only their bytes; the same eye and exposure again cost
+ * nothing. The values are those of the uncached evaluation whatever the history.
+ * vtkViewDependentRadianceRepresentation (plug-in) calls Update from the render view's camera
+ * before every render.
  *
  * @warning Vertices are evaluated in parallel (vtkSMPTools); the values do not depend on the
  * number of threads. Not thread-safe itself: one Update at a time.

@@ -438,25 +438,32 @@ RadianceRenderer::DirectionalCache::DirectionalCache(int bits)
 {
 }
 
-glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
-  double u,
-  double v,
+RadianceRenderer::TowardTerms RadianceRenderer::Terms(int surface, double u, double v) const
+{
+  TowardTerms terms;
+  terms.Surface = surface;
+  terms.U = u;
+  terms.V = v;
+  terms.HasStencil = this->Interpolator.Stencil(surface, u, v, terms.Stencil);
+  if (terms.HasStencil)
+  {
+    terms.Direct = this->Direct.At(this->Interpolator, surface, u, v);
+  }
+  return terms;
+}
+
+glm::dvec3 RadianceRenderer::RadianceToward(const TowardTerms& terms,
   const glm::dvec3& towardEye,
   DirectionalCache& cache) const
 {
-  return this->RadianceToward(surface, u, v, towardEye, &cache);
+  return this->TermsToward(terms, towardEye, &cache);
 }
 
-bool RadianceRenderer::IsViewDependent(int surface, double u, double v) const
+bool RadianceRenderer::IsViewDependent(const TowardTerms& terms) const
 {
-  InterpolationStencil stencil;
-  if (!this->Directional || !this->Interpolator.Stencil(surface, u, v, stencil))
+  for (int k = 0; this->Directional && terms.HasStencil && k < terms.Stencil.Count; ++k)
   {
-    return false;
-  }
-  for (int k = 0; k < stencil.Count; ++k)
-  {
-    if (this->Reflectances.Table(stencil.Points[static_cast<size_t>(k)]))
+    if (this->Reflectances.Table(terms.Stencil.Points[static_cast<size_t>(k)]))
     {
       return true;
     }
@@ -500,17 +507,24 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   const glm::dvec3& towardEye,
   DirectionalCache* cache) const
 {
-  InterpolationStencil stencil;
-  if (!this->Interpolator.Stencil(surface, u, v, stencil))
+  return this->TermsToward(this->Terms(surface, u, v), towardEye, cache);
+}
+
+glm::dvec3 RadianceRenderer::TermsToward(const TowardTerms& terms,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
+  if (!terms.HasStencil)
   {
     return glm::dvec3(0.0);
   }
   // Paper §5.3.1 with §3.4: each neighbour's exitant radiance toward the eye (the eye's
   // direction in its own hemisphere frame), blended with the interpolation weights; the same
   // as the BRDF applied to the interpolated E, the BRDF being linear in E.
+  const InterpolationStencil& stencil = terms.Stencil;
   glm::dvec3 radiance(0.0);
   glm::dvec3 directional(0.0);
-  const bool textured = this->IsTextured(surface);
+  const bool textured = this->IsTextured(terms.Surface);
   for (int k = 0; k < stencil.Count; ++k)
   {
     const std::size_t point = stencil.Points[static_cast<size_t>(k)];
@@ -534,14 +548,11 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   if (textured)
   {
     // The texture scales the Lambertian part only (SetSurfaceTextures).
-    return this->Textured(surface,
-             u,
-             v,
-             glm::max(radiance, glm::dvec3(0.0)) +
-               this->Direct.At(this->Interpolator, surface, u, v)) +
+    return this->Textured(
+             terms.Surface, terms.U, terms.V, glm::max(radiance, glm::dvec3(0.0)) + terms.Direct) +
       glm::max(directional, glm::dvec3(0.0));
   }
-  return glm::max(radiance, glm::dvec3(0.0)) + this->Direct.At(this->Interpolator, surface, u, v);
+  return glm::max(radiance, glm::dvec3(0.0)) + terms.Direct;
 }
 
 bool RadianceRenderer::TraceSample(const glm::dvec3& eye,

@@ -271,22 +271,37 @@ public:
     std::vector<glm::dvec3> Values;
   };
 
+  /// What the radiance at (u, v) of a surface toward an eye needs that does not depend on the
+  /// eye: the interpolation stencil (§3.4 Fig. 6) and the lamps' direct light at (u, v).
+  /// Tabulated once per vertex of a walk-through, so that a camera move pays the directional
+  /// part of §5.3.1 only.
+  struct TowardTerms
+  {
+    int Surface = -1;
+    double U = 0.0;
+    double V = 0.0;
+    /// False where the surface has no characteristic points (radiance 0).
+    bool HasStencil = false;
+    InterpolationStencil Stencil;
+    glm::dvec3 Direct = glm::dvec3(0.0);
+  };
+
+  /// The terms of (u, v) of the surface (see TowardTerms).
+  TowardTerms Terms(int surface, double u, double v) const;
+
   /**
-   * SurfaceRadianceToward through `cache`: the same value (the cache holds exact values of
-   * the directional part per (point, eye cell)), evaluated once per pair the cache keeps.
-   * One cache per thread.
+   * SurfaceRadianceToward from tabulated terms and through `cache` (one per thread): the same
+   * value (the cache holds exact values of the directional part per (point, eye cell)), each
+   * pair the cache keeps evaluated once.
    */
-  glm::dvec3 SurfaceRadianceToward(int surface,
-    double u,
-    double v,
+  glm::dvec3 RadianceToward(const TowardTerms& terms,
     const glm::dvec3& towardEye,
     DirectionalCache& cache) const;
 
-  /// Whether the front's radiance at (u, v) of the surface depends on the eye: a point of its
-  /// interpolation stencil has a directional part (a non-diffuse material, paper §5.3.1) and
-  /// the directional illumination is set. Elsewhere SurfaceRadianceToward is SurfaceRadiance
-  /// for every eye.
-  bool IsViewDependent(int surface, double u, double v) const;
+  /// Whether the front's radiance with these terms depends on the eye: a point of the stencil
+  /// has a directional part (a non-diffuse material, paper §5.3.1) and the directional
+  /// illumination is set. Elsewhere SurfaceRadianceToward is SurfaceRadiance for every eye.
+  bool IsViewDependent(const TowardTerms& terms) const;
 
   std::size_t TriangleCount() const;
 
@@ -308,6 +323,9 @@ private:
   glm::dvec3 RadianceToward(int surface,
     double u,
     double v,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+  glm::dvec3 TermsToward(const TowardTerms& terms,
     const glm::dvec3& towardEye,
     DirectionalCache* cache) const;
   /// I_dir of point toward the world direction, through the cache when given.
