@@ -12,8 +12,9 @@ vertices only).
         build/lib/paraview-plugins/SphericalCover/SphericalCover.so teapot.vtm \\
         --frames 24 --size 1024x768 --resolution 4 --backend STDThread
 
-(PYTHONPATH must hold the `sphericalcover` package for the evaluation's figures:
-build/lib/python3.11/site-packages.) Timings only; nothing is checked (Testing/Benchmarks/README.md).
+(PYTHONPATH must hold the `sphericalcover` package for the evaluation figures:
+build/lib/python3.11/site-packages.) Timings only; nothing is checked
+(Testing/Benchmarks/README.md).
 """
 import argparse
 import math

@@ -8,6 +8,8 @@ white wall (diffuse), the mirror wall and the glossy cube:
 - every mirror pixel but a few differs from the field's (which shows the mirror's zero diffuse
   part) and the mirror differs between the two cameras;
 - the Illumination Field's output is neither executed again nor written (its own view unchanged);
+- each view equals the field's own display rewritten by hand (vtkViewDependentRadiance) for
+  that camera's eye, within 1 byte: the representation follows the camera;
 - back at the first camera the image is the first one again (the evaluation's caches hold values,
   not a history);
 - Exposure -1 instead of 0 halves the white wall's radiance: its bytes are the sRGB encoding of
@@ -16,74 +18,25 @@ white wall (diffuse), the mirror wall and the glossy cube:
   drawn (no crash).
 Regions are the pixels of each surface in a view of the field coloured by SurfaceId, shrunk by 2
 pixels (an edge pixel may show either surface)."""
-import shutil
+import os
 import sys
-import tempfile
 
 import numpy as np
-from paraview.simple import (Calculator, ColorBy, CreateRenderView, Delete, GetViews, Hide,
-                             LoadPlugin, OpenDataFile, OutputPort, Render, SaveScreenshot, Show,
-                             Sphere)
+from paraview.simple import ColorBy, Hide, Render, Show, Sphere
 from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkIOImage import vtkPNGReader
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mixed_box_views import (CAMERAS, HEIGHT, WIDTH, Screenshots, black_view,  # noqa: E402
+                             look, mixed_box_field, unlit)
 
 plugin, data = sys.argv[1:3]
-folder = tempfile.mkdtemp()
-LoadPlugin(plugin, remote=False, ns=globals())
-
+subdivision, propagation, field = mixed_box_field(plugin, data)
+from sphericalcover import vtkViewDependentRadiance  # noqa: E402
 failures = []
-WIDTH, HEIGHT = 320, 240
-# The mixed box's surfaces in the scene's order: x_max the mirror, z_min white (diffuse).
-MIRROR, WHITE = 1, 4
-CAMERAS = [([0.3, 0.45, 0.9], [0.75, 0.5, 0.0]), ([0.5, 0.6, 0.95], [0.9, 0.4, 0.1])]
 TYPE = "View-Dependent Radiance"
-
-scene = OpenDataFile(f"{data}/scenes/mixed_box.scene")
-subdivision = globals()["IntervalSubdivision"](Input=scene)
-subdivision.MaxLevel = 2
-subdivision.ThetaBins = 16
-subdivision.PhiBins = 64
-cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0))
-cover.ThetaBins = 16
-cover.PhiBins = 64
-propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
-field = globals()["IlluminationField"](Input=OutputPort(propagation, 0),
-                                       Patches=OutputPort(subdivision, 0))
-field.Resolution = 4
-
-
-def black_view():
-    created = CreateRenderView()
-    created.ViewSize = [WIDTH, HEIGHT]
-    created.OrientationAxesVisibility = 0
-    created.UseColorPaletteForBackground = 0
-    created.Background = [0, 0, 0]
-    return created
-
-
-def look(target, camera):
-    target.CameraPosition, target.CameraFocalPoint = camera
-    target.CameraViewUp = [0, 1, 0]
-    target.CameraViewAngle = 60
-
-
-def shot(name, target):
-    path = f"{folder}/{name}.png"
-    SaveScreenshot(path, target, ImageResolution=[WIDTH, HEIGHT])
-    reader = vtkPNGReader()
-    reader.SetFileName(path)
-    reader.Update()
-    pixels = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())
-    return pixels.reshape(HEIGHT, WIDTH, -1)[:, :, :3].astype(int)
-
-
-def unlit(display):
-    display.MapScalars = 0
-    display.Ambient = 1.0
-    display.Diffuse = 0.0
-
+screenshots = Screenshots()
+shot = screenshots.shot
 
 # The Illumination Field as the Surface representation shows it (DisplayRGB, unlit).
 field_view = black_view()
@@ -93,32 +46,7 @@ unlit(field_display)
 # paraview.simple resets the camera on a view's first render: render once before placing it.
 Render(field_view)
 
-# Which surface each pixel shows: each vertex coloured (SurfaceId + 1) x 16 in red.
-mask_view = black_view()
-ids = Calculator(Input=field, ResultArrayName="SurfaceColour", ResultArrayType="Float",
-                 Function="(SurfaceId+1)*16/255*iHat")
-ids_display = Show(ids, mask_view)
-ColorBy(ids_display, ("POINTS", "SurfaceColour"))
-unlit(ids_display)
-Render(mask_view)
-
-
-def regions(camera, k):
-    """The pixels of each surface, 2 pixels in from its edges (an edge pixel may show either)."""
-    look(mask_view, camera)
-    surface = np.rint(shot(f"surfaces_{k}", mask_view)[:, :, 0] / 16.0).astype(int) - 1
-    found = {}
-    for name, index in [("white", WHITE), ("mirror", MIRROR)]:
-        mask = surface == index
-        for _ in range(2):
-            mask[1:-1, 1:-1] &= mask[:-2, 1:-1] & mask[2:, 1:-1] & mask[1:-1, :-2] & mask[1:-1, 2:]
-            mask[[0, -1], :] = False
-            mask[:, [0, -1]] = False
-        found[name] = mask
-    return found
-
-
-masks = [regions(camera, k) for k, camera in enumerate(CAMERAS)]
+masks = screenshots.regions(field)
 field_shots = []
 for k, camera in enumerate(CAMERAS):
     look(field_view, camera)
@@ -183,6 +111,32 @@ def encode(linear):
     return np.rint(255 * np.where(c <= 0.0031308, 12.92 * c, 1.055 * c ** (1 / 2.4) - 0.055))
 
 
+# Each view is the evaluation toward its own camera: the Illumination Field's Surface display,
+# its rendered data rewritten by hand by vtkViewDependentRadiance for that eye (as
+# ParaView.ViewDependentRadiance does), shows the same pixels (within 1; last, since this writes
+# the field's own arrays, which that display shares).
+evaluator = vtkViewDependentRadiance()
+if not evaluator.SetSolution(propagation.GetClientSideObject().GetOutputDataObject(0),
+                             subdivision.GetClientSideObject().GetOutputDataObject(0)):
+    failures.append("the solution was refused")
+rendered = field_display.GetClientSideObject().GetRenderedDataObject(0)
+iterator = rendered.NewIterator()
+iterator.InitTraversal()
+displayed = iterator.GetCurrentDataObject()
+for k, camera in enumerate(CAMERAS):
+    look(field_view, camera)
+    evaluator.Update(displayed, *camera[0], 0.0)
+    Render(field_view)
+    by_hand = shot(f"by_hand_{k}", field_view)
+    mirror = masks[k]["mirror"]
+    difference = np.abs(view_shots[k] - by_hand).max(axis=2)
+    print(f"camera {k}: largest difference from the evaluation by hand {difference.max()}, on "
+          f"the mirror {difference[mirror].max()}")
+    if difference.max() > 1:
+        failures.append(f"camera {k}: {(difference > 1).sum()} pixels "
+                        f"({(difference[mirror] > 1).sum()} on the mirror) differ from the "
+                        "evaluation toward this camera by hand")
+
 # Exposure: one stop less halves the radiance shown (camera 0, the white wall, pixels neither
 # black nor white).
 display.Exposure = -1.0
@@ -227,10 +181,7 @@ print(f"a sphere: {len(errors)} error(s): {errors}")
 if len(errors) != 1 or "SurfaceId" not in errors[0]:
     failures.append(f"a sphere gave {len(errors)} errors instead of one naming SurfaceId")
 
-# Views deleted before pvbatch exits: tearing down a view at interpreter exit crashes in X.
-for created in GetViews():
-    Delete(created)
-shutil.rmtree(folder)
+screenshots.close()
 for failure in failures:
     print("FAILED:", failure)
 sys.exit(1 if failures else 0)
