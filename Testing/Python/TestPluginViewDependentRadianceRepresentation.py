@@ -22,36 +22,23 @@ import os
 import sys
 
 import numpy as np
-from paraview.simple import ColorBy, Hide, Render, Show, Sphere
+from paraview.simple import Hide, Render, Show, Sphere
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from mixed_box_views import (CAMERAS, HEIGHT, WIDTH, Screenshots, black_view,  # noqa: E402
-                             look, mixed_box_field, unlit)
+                             check_views, evaluator_of, look, mixed_box_field)
 
 plugin, data = sys.argv[1:3]
 subdivision, propagation, field = mixed_box_field(plugin, data)
-from sphericalcover import vtkViewDependentRadiance  # noqa: E402
 failures = []
 TYPE = "View-Dependent Radiance"
 screenshots = Screenshots()
 shot = screenshots.shot
 
 # The Illumination Field as the Surface representation shows it (DisplayRGB, unlit).
-field_view = black_view()
-field_display = Show(field, field_view)
-ColorBy(field_display, ("POINTS", "DisplayRGB"))
-unlit(field_display)
-# paraview.simple resets the camera on a view's first render: render once before placing it.
-Render(field_view)
-
-masks = screenshots.regions(field)
-field_shots = []
-for k, camera in enumerate(CAMERAS):
-    look(field_view, camera)
-    Render(field_view)
-    field_shots.append(shot(f"field_{k}", field_view))
+field_view, field_display, masks, field_shots = screenshots.field_views(field)
 
 # The representation under test, in a view of its own; nothing but the camera changes below.
 view = black_view()
@@ -74,28 +61,7 @@ if (shot("field_again", field_view) != field_shots[0]).any():
     failures.append("the Illumination Field's Surface view changed after the view-dependent one "
                     "rendered")
 
-for k in range(len(CAMERAS)):
-    white = masks[k]["white"]
-    difference = np.abs(view_shots[k] - field_shots[k]).max(axis=2)
-    print(f"camera {k}, white wall: {white.sum()} pixels, largest difference from the field "
-          f"{difference[white].max() if white.any() else '-'}")
-    if white.sum() < 0.02 * WIDTH * HEIGHT:
-        failures.append(f"camera {k}: the white wall is hardly in view; the test is wrong")
-    elif difference[white].max() > 1:
-        failures.append(f"camera {k}: {(difference[white] > 1).sum()} pixels of the white wall "
-                        "differ from the Illumination Field's by more than 1")
-    mirror = masks[k]["mirror"]
-    changed = (difference > 0) & mirror
-    print(f"camera {k}, mirror: {mirror.sum()} pixels, {changed.sum()} differ from the field")
-    if mirror.sum() < 0.02 * WIDTH * HEIGHT:
-        failures.append(f"camera {k}: the mirror is hardly in view; the test is wrong")
-    elif changed.sum() < 0.9 * mirror.sum():
-        failures.append(f"camera {k}: only {changed.sum()} of {mirror.sum()} mirror pixels show "
-                        "more than the field's diffuse part")
-means = [view_shots[k][masks[k]["mirror"]].mean(axis=0) for k in range(len(CAMERAS))]
-print(f"the mirror's mean colour: {means[0]} and {means[1]}")
-if not np.abs(means[0] - means[1]).max() > 2:
-    failures.append(f"the mirror looks the same from both cameras ({means[0]}, {means[1]})")
+check_views(view_shots, field_shots, masks, failures, white_tolerance=1)
 if (view_shots[2] != view_shots[0]).any():
     failures.append(f"back at camera 0, {(view_shots[2] != view_shots[0]).any(axis=2).sum()} "
                     "pixels differ from the first view of it")
@@ -115,14 +81,7 @@ def encode(linear):
 # its rendered data rewritten by hand by vtkViewDependentRadiance for that eye (as
 # ParaView.ViewDependentRadiance does), shows the same pixels (within 1; last, since this writes
 # the field's own arrays, which that display shares).
-evaluator = vtkViewDependentRadiance()
-if not evaluator.SetSolution(propagation.GetClientSideObject().GetOutputDataObject(0),
-                             subdivision.GetClientSideObject().GetOutputDataObject(0)):
-    failures.append("the solution was refused")
-rendered = field_display.GetClientSideObject().GetRenderedDataObject(0)
-iterator = rendered.NewIterator()
-iterator.InitTraversal()
-displayed = iterator.GetCurrentDataObject()
+evaluator, displayed = evaluator_of(subdivision, propagation, field_display, failures)
 for k, camera in enumerate(CAMERAS):
     look(field_view, camera)
     evaluator.Update(displayed, *camera[0], 0.0)

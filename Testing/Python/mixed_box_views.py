@@ -53,6 +53,49 @@ def unlit(display):
     display.Diffuse = 0.0
 
 
+def evaluator_of(subdivision, propagation, display, failures):
+    """A vtkViewDependentRadiance with the solution, and the polydata `display` renders (its copy
+    of the field, whose arrays are the field's own: rewriting them changes the field's output)."""
+    from sphericalcover import vtkViewDependentRadiance
+    evaluator = vtkViewDependentRadiance()
+    if not evaluator.SetSolution(propagation.GetClientSideObject().GetOutputDataObject(0),
+                                 subdivision.GetClientSideObject().GetOutputDataObject(0)):
+        failures.append("the solution was refused")
+    iterator = display.GetClientSideObject().GetRenderedDataObject(0).NewIterator()
+    iterator.InitTraversal()
+    return evaluator, iterator.GetCurrentDataObject()
+
+
+def check_views(view_shots, field_shots, masks, failures, white_tolerance):
+    """The checks of a view-dependent view against the field's, per camera: the white wall's
+    pixels within `white_tolerance` of the field's; 90 % of the mirror's pixels differ from the
+    field's (its zero diffuse part; the view shows its reflection of the room, paper §5.3.1);
+    and the mirror's mean colour differs between the cameras."""
+    for k in range(len(CAMERAS)):
+        white = masks[k]["white"]
+        difference = np.abs(view_shots[k] - field_shots[k]).max(axis=2)
+        print(f"camera {k}, white wall: {white.sum()} pixels, largest difference from the field "
+              f"{difference[white].max() if white.any() else '-'}")
+        if white.sum() < 0.02 * WIDTH * HEIGHT:
+            failures.append(f"camera {k}: the white wall is hardly in view; the test is wrong")
+        elif difference[white].max() > white_tolerance:
+            failures.append(f"camera {k}: {(difference[white] > white_tolerance).sum()} pixels of "
+                            f"the white wall differ from the Illumination Field's by more than "
+                            f"{white_tolerance}")
+        mirror = masks[k]["mirror"]
+        changed = (difference > 0) & mirror
+        print(f"camera {k}, mirror: {mirror.sum()} pixels, {changed.sum()} differ from the field")
+        if mirror.sum() < 0.02 * WIDTH * HEIGHT:
+            failures.append(f"camera {k}: the mirror is hardly in view; the test is wrong")
+        elif changed.sum() < 0.9 * mirror.sum():
+            failures.append(f"camera {k}: only {changed.sum()} of {mirror.sum()} mirror pixels "
+                            "show more than the field's diffuse part")
+    means = [view_shots[k][masks[k]["mirror"]].mean(axis=0) for k in range(len(CAMERAS))]
+    print(f"the mirror's mean colour: {means[0]} and {means[1]}")
+    if not np.abs(means[0] - means[1]).max() > 2:
+        failures.append(f"the mirror looks the same from both cameras ({means[0]}, {means[1]})")
+
+
 def look(view, camera):
     view.CameraPosition, view.CameraFocalPoint = camera
     view.CameraViewUp = [0, 1, 0]
@@ -102,6 +145,23 @@ class Screenshots:
                 found[name] = mask
             masks.append(found)
         return masks
+
+    def field_views(self, field):
+        """The Illumination Field as the Surface representation shows it (DisplayRGB, unlit) in
+        a black view: (view, display, regions of each camera, screenshot of each camera)."""
+        view = black_view()
+        display = simple.Show(field, view)
+        simple.ColorBy(display, ("POINTS", "DisplayRGB"))
+        unlit(display)
+        # paraview.simple resets the camera on a view's first render: render before placing it.
+        simple.Render(view)
+        masks = self.regions(field)
+        shots = []
+        for k, camera in enumerate(CAMERAS):
+            look(view, camera)
+            simple.Render(view)
+            shots.append(self.shot(f"field_{k}", view))
+        return view, display, masks, shots
 
     def close(self):
         """Deletes the views (tearing one down at interpreter exit crashes in X) and the folder."""
