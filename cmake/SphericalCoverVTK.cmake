@@ -1,5 +1,5 @@
 # VTK modules (Common/, Readers/, Filters/), their Python wrapping (package `sphericalcover`), the
-# render-view classes of the plug-in (Views/, ParaView's RemotingViews; not wrapped), the
+# render-view classes of the plug-in (Views/, ParaView's RemotingViews), the
 # ParaView plug-in and the command-line program, all built against the VTK that Debian's
 # ParaView 5.11 bundles (README.md#layout): a system VTK would conflict with python3-paraview.
 
@@ -60,11 +60,8 @@ vtk_module_build(
   INSTALL_EXPORT SphericalCover)
 
 vtk_module_python_default_destination(SPHCOVER_PYTHON_DESTINATION)
-# Views is ParaView's side only (the plug-in wraps it for the server manager).
-set(sphcover_python_modules ${sphcover_modules})
-list(REMOVE_ITEM sphcover_python_modules SphericalCover::Views)
 vtk_module_wrap_python(
-  MODULES ${sphcover_python_modules}
+  MODULES ${sphcover_modules}
   PYTHON_PACKAGE sphericalcover
   MODULE_DESTINATION "${SPHCOVER_PYTHON_DESTINATION}"
   LIBRARY_DESTINATION "${CMAKE_INSTALL_LIBDIR}"
