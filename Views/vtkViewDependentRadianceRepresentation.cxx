@@ -45,11 +45,9 @@ void vtkViewDependentRadianceRepresentation::SetExposure(double exposure)
 {
   auto* mapper = static_cast<vtkViewDependentRadianceMapper*>(this->Mapper);
   const double clamped = std::clamp(exposure, -20.0, 20.0);
-  if (mapper->GetExposure() != clamped)
-  {
-    mapper->SetExposure(clamped);
-    this->Modified();
-  }
+  // The mapper's alone: the next render re-encodes the colours (no pipeline execution, which
+  // would give the mapper a new field to evaluate in full).
+  mapper->SetExposure(clamped);
 }
 
 double vtkViewDependentRadianceRepresentation::GetExposure() const
