@@ -153,6 +153,8 @@ constexpr const char* RGB = "RGB";
 /// vtkIlluminationField's point data for display: the radiance exposed and sRGB-encoded, bytes
 /// shown as they are (Map Scalars off), as the image's RGB.
 constexpr const char* DisplayRGB = "DisplayRGB";
+/// vtkViewDependentRadiance's point data: the radiance toward the last eye (float RGB).
+constexpr const char* ViewRadiance = "ViewRadiance";
 }
 
 #endif

@@ -7,12 +7,11 @@
 #include <vtkDataSet.h>
 #include <vtkInformationVector.h>
 
-vtkDataSet* vtkCoverPatches::Find(vtkAlgorithm* self, vtkInformationVector** inputVector)
+namespace
 {
-  if (self->GetNumberOfInputConnections(1) > 0)
-  {
-    return vtkDataSet::GetData(inputVector[1], 0);
-  }
+/// The input of the nearest vtkSphericalCoverFilter up port 0's chain of first inputs.
+vtkDataSet* UpstreamCoverInput(vtkAlgorithm* self)
+{
   // Follow the first input of every stage up from the illumination; a pipeline is a few stages
   // deep, the bound only stops a cycle a broken pipeline could hold.
   vtkAlgorithm* algorithm =
@@ -29,4 +28,23 @@ vtkDataSet* vtkCoverPatches::Find(vtkAlgorithm* self, vtkInformationVector** inp
       : nullptr;
   }
   return nullptr;
+}
+}
+
+vtkDataSet* vtkCoverPatches::Find(vtkAlgorithm* self, vtkInformationVector** inputVector)
+{
+  if (self->GetNumberOfInputConnections(1) > 0)
+  {
+    return vtkDataSet::GetData(inputVector[1], 0);
+  }
+  return UpstreamCoverInput(self);
+}
+
+vtkDataSet* vtkCoverPatches::Find(vtkAlgorithm* self)
+{
+  if (self->GetNumberOfInputPorts() > 1 && self->GetNumberOfInputConnections(1) > 0)
+  {
+    return vtkDataSet::SafeDownCast(self->GetInputDataObject(1, 0));
+  }
+  return UpstreamCoverInput(self);
 }

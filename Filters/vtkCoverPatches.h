@@ -28,6 +28,13 @@ namespace vtkCoverPatches
  * none. Call from RequestData: the upstream stages have executed by then.
  */
 vtkDataSet* Find(vtkAlgorithm* self, vtkInformationVector** inputVector);
+
+/**
+ * The same outside RequestData, for a filter that has executed (a render-time consumer such as
+ * vtkViewDependentRadiance::SetSolutionFrom): port 1's current input data when connected, else
+ * the input of the nearest vtkSphericalCoverFilter upstream of port 0.
+ */
+vtkDataSet* Find(vtkAlgorithm* self);
 }
 
 #endif

@@ -20,7 +20,8 @@
  * sRGB-encoded, as vtkRadianceImageFilter's `RGB`), and cell data `PatchId`. Show `DisplayRGB` with
  * Map Scalars off and lighting off (the colours are the light already) to see the true colours;
  * colour by `Radiance` for values. Non-diffuse surfaces show their emission plus diffuse part (the
- * view-dependent part of §5.3.1 needs the eye).
+ * view-dependent part of §5.3.1 needs the eye: ParaView's "View-Dependent Radiance"
+ * representation of this output adds it for the render view's camera, vtkViewDependentRadiance).
  *
  * @warning Patches are tessellated in parallel (vtkSMPTools); the output does not depend on
  * the number of threads.

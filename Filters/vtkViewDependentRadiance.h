@@ -16,11 +16,20 @@
  * showing `DisplayRGB` shows the new view at its next render. On diffuse surfaces the value
  * is the field's `Radiance` itself (the same interpolation), whatever the eye.
  *
- * Status (issue 18, part b): the evaluation only. A ParaView representation or mapper that calls
- * Update from the render view's camera before each render is not written yet.
+ * What a camera move costs (paper §1, §5.3: after the solve every view is cheap). The first
+ * Update of a field evaluates every vertex and remembers which vertices depend on the eye
+ * (RadianceRenderer::IsViewDependent: a non-diffuse point in the stencil) with what of their
+ * radiance does not (RadianceRenderer::TowardTerms: the interpolation stencil, the lamps' direct
+ * light); a later Update of the same field (same points, `SurfaceId` and `UV`) for another eye
+ * evaluates only those vertices, from their terms, through one directional cache per thread kept
+ * across Updates (a lazily filled table of I_dir per (point, eye cell), which does not depend on
+ * the eye's position), and re-encodes only their bytes; the same eye and exposure again cost
+ * nothing. The values are those of the uncached evaluation whatever the history.
+ * vtkViewDependentRadianceRepresentation (plug-in) calls Update from the render view's camera
+ * before every render.
  *
  * @warning Vertices are evaluated in parallel (vtkSMPTools); the values do not depend on the
- * number of threads.
+ * number of threads. Not thread-safe itself: one Update at a time.
  */
 #ifndef vtkViewDependentRadiance_h
 #define vtkViewDependentRadiance_h
@@ -29,7 +38,9 @@
 #include "vtkObject.h"
 
 #include <memory> // for the renderer
+#include <string> // for CanEvaluate's problem
 
+class vtkAlgorithm;
 class vtkDataSet;
 class vtkPolyData;
 namespace sphcover
@@ -52,6 +63,19 @@ public:
   bool SetSolution(vtkPolyData* illumination, vtkDataSet* patches);
 
   /**
+   * SetSolution from the pipeline that made a field: the nearest vtkIlluminationField at or
+   * above `consumer` along first inputs (ParaView's stages in between included), its
+   * illumination input and its patches (port 1, or those upstream, vtkCoverPatches). Does
+   * nothing and returns true when that solution is the one already set and unchanged. False,
+   * with one error, when there is no Illumination Field upstream or its solution is refused.
+   * Call after the pipeline has executed (the inputs' data are read, not updated).
+   */
+  bool SetSolutionFrom(vtkAlgorithm* consumer);
+
+  /// Whether a solution is set.
+  bool HasSolution() const;
+
+  /**
    * Writes `ViewRadiance` and `DisplayRGB` of `field` (vtkIlluminationField's output) for an
    * eye at (x, y, z), exposure in stops as vtkIlluminationField's Exposure. False, with the
    * error reported and the field unchanged, without a solution or when the field lacks
@@ -59,8 +83,18 @@ public:
    */
   bool Update(vtkPolyData* field, double x, double y, double z, double exposure);
 
+  /**
+   * Whether `field` has what Update needs: `SurfaceId` and a 2-component `UV` point array. False
+   * with the problem in one sentence in `problem`.
+   */
+  static bool CanEvaluate(vtkPolyData* field, std::string& problem);
+
   /// Seconds the last Update took (its evaluation and the arrays' bytes).
   vtkGetMacro(LastUpdateSeconds, double);
+
+  /// Vertices the last Update evaluated (all on a field's first Update, then the view-dependent
+  /// ones when the eye moved, none when nothing changed).
+  vtkGetMacro(LastEvaluatedVertices, vtkIdType);
 
 protected:
   vtkViewDependentRadiance();
@@ -68,6 +102,11 @@ protected:
 
   std::unique_ptr<sphcover::RadianceRenderer> Renderer;
   double LastUpdateSeconds = 0.0;
+  vtkIdType LastEvaluatedVertices = 0;
+
+  /// What the Updates of one field share (see the class comment).
+  struct FieldState;
+  std::unique_ptr<FieldState> State;
 
 private:
   vtkViewDependentRadiance(const vtkViewDependentRadiance&) = delete;

@@ -1,9 +1,10 @@
 # VTK modules (Common/, Readers/, Filters/), their Python wrapping (package `sphericalcover`), the
+# render-view classes of the plug-in (Views/, ParaView's RemotingViews), the
 # ParaView plug-in and the command-line program, all built against the VTK that Debian's
 # ParaView 5.11 bundles (README.md#layout): a system VTK would conflict with python3-paraview.
 
 # Listing components keeps ParaView from dragging in its Qt client targets.
-find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager)
+find_package(ParaView 5.11 REQUIRED COMPONENTS RemotingCore RemotingServerManager RemotingViews)
 find_package(VTK REQUIRED
   COMPONENTS
     CommonCore
@@ -46,9 +47,11 @@ vtk_module_scan(
     "${PROJECT_SOURCE_DIR}/Common/vtk.module"
     "${PROJECT_SOURCE_DIR}/Readers/vtk.module"
     "${PROJECT_SOURCE_DIR}/Filters/vtk.module"
+    "${PROJECT_SOURCE_DIR}/Views/vtk.module"
   REQUEST_MODULES
     SphericalCover::Readers
     SphericalCover::Filters
+    SphericalCover::Views
   PROVIDES_MODULES sphcover_modules
   ENABLE_TESTS OFF)
 

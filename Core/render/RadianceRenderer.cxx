@@ -431,6 +431,46 @@ glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
   return this->RadianceToward(surface, u, v, towardEye, nullptr);
 }
 
+RadianceRenderer::DirectionalCache::DirectionalCache(int bits)
+  : Shift(64 - std::clamp(bits, 1, 30))
+  , Keys(std::size_t(1) << std::clamp(bits, 1, 30), ~uint64_t(0))
+  , Values(std::size_t(1) << std::clamp(bits, 1, 30))
+{
+}
+
+RadianceRenderer::TowardTerms RadianceRenderer::Terms(int surface, double u, double v) const
+{
+  TowardTerms terms;
+  terms.Surface = surface;
+  terms.U = u;
+  terms.V = v;
+  terms.HasStencil = this->Interpolator.Stencil(surface, u, v, terms.Stencil);
+  if (terms.HasStencil)
+  {
+    terms.Direct = this->Direct.At(this->Interpolator, surface, u, v);
+  }
+  return terms;
+}
+
+glm::dvec3 RadianceRenderer::RadianceToward(const TowardTerms& terms,
+  const glm::dvec3& towardEye,
+  DirectionalCache& cache) const
+{
+  return this->TermsToward(terms, towardEye, &cache);
+}
+
+bool RadianceRenderer::IsViewDependent(const TowardTerms& terms) const
+{
+  for (int k = 0; this->Directional && terms.HasStencil && k < terms.Stencil.Count; ++k)
+  {
+    if (this->Reflectances.Table(terms.Stencil.Points[static_cast<size_t>(k)]))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
 glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
   const ReflectanceWeights& table,
   const glm::dvec3& towardEye,
@@ -451,8 +491,7 @@ glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
   }
   const uint64_t key = static_cast<uint64_t>(point) * static_cast<uint64_t>(grid.CellCount()) +
     static_cast<uint64_t>(cell);
-  const std::size_t slot =
-    static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 52) % DirectionalCache::Size;
+  const std::size_t slot = cache->Slot(key);
   if (cache->Keys[slot] != key)
   {
     cache->Keys[slot] = key;
@@ -468,17 +507,24 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   const glm::dvec3& towardEye,
   DirectionalCache* cache) const
 {
-  InterpolationStencil stencil;
-  if (!this->Interpolator.Stencil(surface, u, v, stencil))
+  return this->TermsToward(this->Terms(surface, u, v), towardEye, cache);
+}
+
+glm::dvec3 RadianceRenderer::TermsToward(const TowardTerms& terms,
+  const glm::dvec3& towardEye,
+  DirectionalCache* cache) const
+{
+  if (!terms.HasStencil)
   {
     return glm::dvec3(0.0);
   }
   // Paper §5.3.1 with §3.4: each neighbour's exitant radiance toward the eye (the eye's
   // direction in its own hemisphere frame), blended with the interpolation weights; the same
   // as the BRDF applied to the interpolated E, the BRDF being linear in E.
+  const InterpolationStencil& stencil = terms.Stencil;
   glm::dvec3 radiance(0.0);
   glm::dvec3 directional(0.0);
-  const bool textured = this->IsTextured(surface);
+  const bool textured = this->IsTextured(terms.Surface);
   for (int k = 0; k < stencil.Count; ++k)
   {
     const std::size_t point = stencil.Points[static_cast<size_t>(k)];
@@ -502,14 +548,11 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   if (textured)
   {
     // The texture scales the Lambertian part only (SetSurfaceTextures).
-    return this->Textured(surface,
-             u,
-             v,
-             glm::max(radiance, glm::dvec3(0.0)) +
-               this->Direct.At(this->Interpolator, surface, u, v)) +
+    return this->Textured(
+             terms.Surface, terms.U, terms.V, glm::max(radiance, glm::dvec3(0.0)) + terms.Direct) +
       glm::max(directional, glm::dvec3(0.0));
   }
-  return glm::max(radiance, glm::dvec3(0.0)) + this->Direct.At(this->Interpolator, surface, u, v);
+  return glm::max(radiance, glm::dvec3(0.0)) + terms.Direct;
 }
 
 bool RadianceRenderer::ShadeHit(std::size_t patchIndex,

@@ -267,12 +267,51 @@ public:
   /// samples share their characteristic points and mostly the eye's cell, so a row of pixels
   /// evaluates each pair once (a direct-mapped table; a value is the same whether it comes
   /// from the table or is evaluated, so the image does not depend on the cache).
+  /// A cache kept across calls (a walk-through's vertices, frame after frame) is a lazily
+  /// filled table of the directional part per (point, cell): after the first frames a camera
+  /// move pays only the pairs it newly sees.
   struct DirectionalCache
   {
-    static constexpr std::size_t Size = 4096;
-    std::vector<uint64_t> Keys = std::vector<uint64_t>(Size, ~uint64_t(0));
-    std::vector<glm::dvec3> Values = std::vector<glm::dvec3>(Size);
+    /// 2^bits slots (bits 1 to 30; default 4096 slots, a row of pixels' working set).
+    explicit DirectionalCache(int bits = 12);
+    /// The slot of a (point, cell) key (Fibonacci hashing onto the table's bits).
+    std::size_t Slot(uint64_t key) const { return (key * 0x9E3779B97F4A7C15ull) >> this->Shift; }
+    int Shift;
+    std::vector<uint64_t> Keys;
+    std::vector<glm::dvec3> Values;
   };
+
+  /// What the radiance at (u, v) of a surface toward an eye needs that does not depend on the
+  /// eye: the interpolation stencil (§3.4 Fig. 6) and the lamps' direct light at (u, v).
+  /// Tabulated once per vertex of a walk-through, so that a camera move pays the directional
+  /// part of §5.3.1 only.
+  struct TowardTerms
+  {
+    int Surface = -1;
+    double U = 0.0;
+    double V = 0.0;
+    /// False where the surface has no characteristic points (radiance 0).
+    bool HasStencil = false;
+    InterpolationStencil Stencil;
+    glm::dvec3 Direct = glm::dvec3(0.0);
+  };
+
+  /// The terms of (u, v) of the surface (see TowardTerms).
+  TowardTerms Terms(int surface, double u, double v) const;
+
+  /**
+   * SurfaceRadianceToward from tabulated terms and through `cache` (one per thread): the same
+   * value (the cache holds exact values of the directional part per (point, eye cell)), each
+   * pair the cache keeps evaluated once.
+   */
+  glm::dvec3 RadianceToward(const TowardTerms& terms,
+    const glm::dvec3& towardEye,
+    DirectionalCache& cache) const;
+
+  /// Whether the front's radiance with these terms depends on the eye: a point of the stencil
+  /// has a directional part (a non-diffuse material, paper §5.3.1) and the directional
+  /// illumination is set. Elsewhere SurfaceRadianceToward is SurfaceRadiance for every eye.
+  bool IsViewDependent(const TowardTerms& terms) const;
 
   std::size_t TriangleCount() const;
 
@@ -302,6 +341,9 @@ private:
   glm::dvec3 RadianceToward(int surface,
     double u,
     double v,
+    const glm::dvec3& towardEye,
+    DirectionalCache* cache) const;
+  glm::dvec3 TermsToward(const TowardTerms& terms,
     const glm::dvec3& towardEye,
     DirectionalCache* cache) const;
   /// I_dir of point toward the world direction, through the cache when given.

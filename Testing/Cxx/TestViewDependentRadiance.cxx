@@ -99,6 +99,47 @@ int TestViewDependentRadiance(int, char*[])
     values.push_back(copy);
   }
 
+  // A camera move evaluates the view-dependent vertices only (the mirror's, the glossy cube's),
+  // from their tabulated terms and the caches the first eye filled; the same eye again nothing.
+  // The values are a fresh evaluator's for that eye alone, bit for bit, exposure included.
+  const vtkIdType moved = view->GetLastEvaluatedVertices();
+  vtkIdType nonDiffuse = 0;
+  for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+  {
+    nonDiffuse += types.at(static_cast<int>(
+                    mesh->GetPointData()->GetArray("SurfaceId")->GetComponent(p, 0))) != 0;
+  }
+  std::cout << "the camera move evaluated " << moved << " of " << mesh->GetNumberOfPoints()
+            << " vertices, " << nonDiffuse << " on non-diffuse surfaces\n";
+  Check(moved == nonDiffuse && moved < mesh->GetNumberOfPoints(),
+    "a camera move evaluates the non-diffuse surfaces' vertices only (" + std::to_string(moved) +
+      ")");
+  Check(view->Update(mesh, eyes[1][0], eyes[1][1], eyes[1][2], 1.0) &&
+      view->GetLastEvaluatedVertices() == 0,
+    "an exposure change evaluates no vertex");
+  vtkNew<vtkPolyData> alone;
+  alone->DeepCopy(mesh);
+  vtkNew<vtkViewDependentRadiance> fresh;
+  Check(fresh->SetSolution(pipeline.Propagation->GetOutput(), pipeline.Subdivision->GetOutput()) &&
+      fresh->Update(alone, eyes[1][0], eyes[1][1], eyes[1][2], 1.0),
+    "a fresh evaluator evaluates the second eye");
+  for (const char* name : { "ViewRadiance", "DisplayRGB" })
+  {
+    vtkDataArray* incremental = mesh->GetPointData()->GetArray(name);
+    vtkDataArray* direct = alone->GetPointData()->GetArray(name);
+    vtkIdType differ = 0;
+    for (vtkIdType p = 0; p < mesh->GetNumberOfPoints(); ++p)
+    {
+      for (int b = 0; b < 3; ++b)
+      {
+        differ += incremental->GetComponent(p, b) != direct->GetComponent(p, b);
+      }
+    }
+    Check(differ == 0,
+      std::string(name) + " after a camera move and an exposure change is a fresh evaluation's (" +
+        std::to_string(differ) + " values differ)");
+  }
+
   vtkDataArray* radiance = mesh->GetPointData()->GetArray("Radiance");
   vtkDataArray* surfaces = mesh->GetPointData()->GetArray("SurfaceId");
   vtkIdType diffuseDiffer = 0;

@@ -10,7 +10,8 @@ proxy added later without a check here makes this test fail.
   arrays (with their component counts) of Documentation/Pipeline.md, and the stages' counts agree (one
   characteristic point and one cover point per patch, ThetaBins x PhiBins hemisphere cells);
 - the OpenEXR writer writes a hemisphere image that the OpenEXR reader reads back;
-- the long stages (reader, subdivision, cover, propagation) report progress to ParaView.
+- the long stages (reader, subdivision, cover, propagation) report progress to ParaView;
+- the View-Dependent Radiance representation of the Illumination Field renders.
 
 usage: pvbatch TestPluginAllProxies.py PLUGIN DATA_DIR PLUGIN_XML_DIR"""
 import glob
@@ -20,7 +21,8 @@ import tempfile
 import xml.etree.ElementTree as ElementTree
 
 from paraview import servermanager
-from paraview.simple import (Calculator, CellDatatoPointData, Delete, LoadPlugin, OutputPort)
+from paraview.simple import (Calculator, CellDatatoPointData, CreateRenderView, Delete,
+                             LoadPlugin, OutputPort, Render, Show)
 
 plugin, data, xml_folder = sys.argv[1:4]
 LoadPlugin(plugin, remote=False, ns=globals())
@@ -324,6 +326,30 @@ def check_illumination_field():
     Delete(field)
 
 
+def check_view_dependent_representation():
+    # The Illumination Field shown as "View-Dependent Radiance" renders, the data it shows with
+    # the arrays the mapper evaluates from (SurfaceId, UV) and writes (DisplayRGB; its
+    # ViewRadiance goes to the copy the view delivers to the mapper, not to this data).
+    # ParaView.ViewDependentRadianceRepresentation checks what it shows.
+    field = globals()["IlluminationField"](Input=OutputPort(propagation, 0),
+                                           Patches=OutputPort(subdivision, 0))
+    view = CreateRenderView()
+    view.ViewSize = [64, 48]
+    display = Show(field, view)
+    display.SetRepresentationType("View-Dependent Radiance")
+    Render(view)
+    rendered = display.GetClientSideObject().GetRenderedDataObject(0)
+    leaves = rendered.NewIterator() if rendered else None
+    if leaves is None:
+        failures.append("ViewDependentRadianceRepresentation: nothing rendered")
+    else:
+        leaves.InitTraversal()
+        check_output("ViewDependentRadianceRepresentation", leaves.GetCurrentDataObject(),
+                     "vtkPolyData", point={"DisplayRGB": 3, "SurfaceId": 1, "UV": 2})
+    Delete(view)
+    Delete(field)
+
+
 exr_path = os.path.join(folder, "hemisphere.exr")
 
 
@@ -361,6 +387,7 @@ CHECKS = {
     "HemisphereExtractor": check_hemisphere,
     "RadianceImage": check_radiance_image,
     "IlluminationField": check_illumination_field,
+    "ViewDependentRadianceRepresentation": check_view_dependent_representation,
     "OpenEXRWriter": check_exr_writer,
     "OpenEXRReader": check_exr_reader,
 }
