@@ -70,6 +70,10 @@ public:
       return false;
     }
     values.resize(static_cast<std::size_t>(count));
+    if (count == 0)
+    {
+      return true; // an empty vector's data() may be null, which memcpy must not get
+    }
     std::memcpy(values.data(), this->Next, values.size() * sizeof(T));
     this->Next += values.size() * sizeof(T);
     this->Left -= values.size() * sizeof(T);

@@ -23,7 +23,9 @@ namespace
 template<typename T>
 bool SameBytes(const std::vector<T>& a, const std::vector<T>& b)
 {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+  // memcmp must not get an empty vector's data(), which may be null.
+  return a.size() == b.size() &&
+    (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 void ExpectSameCover(const SphericalCover& joined, const SphericalCover& serial)
