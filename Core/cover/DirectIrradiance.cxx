@@ -389,7 +389,7 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
             }
             throughput *= glm::dvec3(options.Transmittance[hit.Patch]);
             met = caster.Intersect(
-              origin, directions[k], hit.Distance * (1.0f + 1e-5f) + 1e-7f, filter, false, hit);
+              origin, directions[k], RayCaster::Beyond(hit.Distance), filter, false, hit);
           }
         }
       }

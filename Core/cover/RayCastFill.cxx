@@ -470,7 +470,7 @@ void RayCastFiller::FillBehindPanes(std::size_t receiver,
             break;
           }
           ++passed;
-          nearest = hit.Distance * (1.0f + 1e-5f) + 1e-7f;
+          nearest = RayCaster::Beyond(hit.Distance);
         }
         // Through `layer` panes the ray meets a front side or nothing (an open scene's sky):
         // both are what the cell shows behind them.
@@ -591,7 +591,7 @@ glm::dvec3 VisibleProjectedSolidAngleThroughPanes(const RayCaster& caster,
           break;
         }
         seen *= t;
-        nearest = hit.Distance * (1.0f + 1e-5f) + 1e-7f;
+        nearest = RayCaster::Beyond(hit.Distance);
       }
       if (found)
       {

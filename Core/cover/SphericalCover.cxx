@@ -56,35 +56,6 @@ struct SphericalCover::Row
   CullingStatistics Culling;
 };
 
-namespace
-{
-/// The order of a row's entries: by source, then layer, then filter (band by band).
-bool EntryKeyLess(uint32_t sourceA,
-  unsigned layerA,
-  const glm::vec3& filterA,
-  uint32_t sourceB,
-  unsigned layerB,
-  const glm::vec3& filterB)
-{
-  if (sourceA != sourceB)
-  {
-    return sourceA < sourceB;
-  }
-  if (layerA != layerB)
-  {
-    return layerA < layerB;
-  }
-  for (int b = 0; b < 3; ++b)
-  {
-    if (filterA[b] != filterB[b])
-    {
-      return filterA[b] < filterB[b];
-    }
-  }
-  return false;
-}
-}
-
 SphericalCover::SphericalCover() = default;
 SphericalCover::~SphericalCover() = default;
 SphericalCover::SphericalCover(SphericalCover&&) noexcept = default;
@@ -158,7 +129,7 @@ void SphericalCover::ExtractRow(const RBuffer& buffer,
   std::stable_sort(runs.begin(),
     runs.end(),
     [layer](const Run& a, const Run& b)
-    { return EntryKeyLess(a.Source, layer, a.Filter, b.Source, layer, b.Filter); });
+    { return CompareEntryKeys(a.Source, layer, a.Filter, b.Source, layer, b.Filter) < 0; });
   const auto& unoccluded = buffer.UnoccludedProjectedSolidAngles();
   size_t next = 0;
   for (size_t k = 0; k < runs.size(); ++k)
@@ -227,12 +198,12 @@ void SphericalCover::ExtractLayersBehindPanes(const RayCastFiller& filler,
     order.end(),
     [&row](size_t a, size_t b)
     {
-      return EntryKeyLess(row.Sources[a],
-        row.Layers[a],
-        row.Filters[a],
-        row.Sources[b],
-        row.Layers[b],
-        row.Filters[b]);
+      return CompareEntryKeys(row.Sources[a],
+               row.Layers[a],
+               row.Filters[a],
+               row.Sources[b],
+               row.Layers[b],
+               row.Filters[b]) < 0;
     });
   Row sorted;
   sorted.Culling = row.Culling;
@@ -919,6 +890,31 @@ std::size_t SphericalCover::StripEnd(std::size_t entry) const
 {
   return entry + 1 < this->Entries.size() ? this->Entries[entry + 1].FirstStrip
                                           : this->Strips.size();
+}
+
+int CompareEntryKeys(uint32_t sourceA,
+  unsigned layerA,
+  const glm::vec3& filterA,
+  uint32_t sourceB,
+  unsigned layerB,
+  const glm::vec3& filterB)
+{
+  if (sourceA != sourceB)
+  {
+    return sourceA < sourceB ? -1 : 1;
+  }
+  if (layerA != layerB)
+  {
+    return layerA < layerB ? -1 : 1;
+  }
+  for (int band = 0; band < 3; ++band)
+  {
+    if (filterA[band] != filterB[band])
+    {
+      return filterA[band] < filterB[band] ? -1 : 1;
+    }
+  }
+  return 0;
 }
 
 std::ptrdiff_t SphericalCover::FindEntry(std::size_t receiver, std::size_t source) const

@@ -118,6 +118,18 @@ struct SphericalCoverOptions
   int MaxPaneDepth = 4;
 };
 
+/**
+ * The order of a row's entries (see "Panes"): by source, then layer, then filter band by band;
+ * -1, 0 or 1. A column lists each receiver's entries in this order too, which is what lets the
+ * propagation match an entry with its transposed one in one merge.
+ */
+int CompareEntryKeys(uint32_t sourceA,
+  unsigned layerA,
+  const glm::vec3& filterA,
+  uint32_t sourceB,
+  unsigned layerB,
+  const glm::vec3& filterB);
+
 class SphericalCover
 {
 public:

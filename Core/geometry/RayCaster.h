@@ -114,6 +114,10 @@ public:
     bool coherent,
     TriangleHit& hit) const;
 
+  /// The tNear that casts a ray on from a hit at `distance`, past it and past a coincident
+  /// surface (a pane's reversed copy): the rays that go on behind panes (paper §5.4).
+  static float Beyond(float distance) { return distance * (1.0f + 1e-5f) + 1e-7f; }
+
   /// Largest number of rays of one IntersectPacket call.
   static constexpr int PacketSize = 16;
 

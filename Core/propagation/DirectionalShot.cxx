@@ -54,24 +54,12 @@ void LightPropagation::MatchTransposedEntries()
   // entry (j, i) of row j seen through the same panes (SphericalCover.h, "Panes").
   auto compare = [&cover](uint32_t a, std::size_t entryA, uint32_t b, std::size_t entryB)
   {
-    if (a != b)
-    {
-      return a < b ? -1 : 1;
-    }
-    if (cover.Layer(entryA) != cover.Layer(entryB))
-    {
-      return cover.Layer(entryA) < cover.Layer(entryB) ? -1 : 1;
-    }
-    const glm::dvec3 filterA = cover.Filter(entryA);
-    const glm::dvec3 filterB = cover.Filter(entryB);
-    for (int band = 0; band < 3; ++band)
-    {
-      if (filterA[band] != filterB[band])
-      {
-        return filterA[band] < filterB[band] ? -1 : 1;
-      }
-    }
-    return 0;
+    return CompareEntryKeys(a,
+      cover.Layer(entryA),
+      glm::vec3(cover.Filter(entryA)),
+      b,
+      cover.Layer(entryB),
+      glm::vec3(cover.Filter(entryB)));
   };
   this->ColumnBack.assign(cover.EntryCount(), NoEntry);
   for (std::size_t j = 0; j < this->PatchCount(); ++j)

@@ -637,7 +637,7 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
       break;
     }
     throughput *= this->Transmittance[static_cast<size_t>(this->Patches[hit.Patch].SurfaceIndex)];
-    nearest = static_cast<float>(hit.T) * (1.0f + 1e-5f) + 1e-7f;
+    nearest = RayCaster::Beyond(static_cast<float>(hit.T));
   }
   return true;
 }
