@@ -10,18 +10,65 @@
 
 namespace vtkCoverDistribution
 {
+sphcover::RankShare ShareOf(vtkMultiProcessController* controller)
+{
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  if (ranks <= 1)
+  {
+    return sphcover::RankShare();
+  }
+  return sphcover::RankShare(controller->GetLocalProcessId(),
+    ranks,
+    [controller, ranks](const std::vector<char>& mine,
+      bool ok,
+      std::vector<std::vector<char>>& all,
+      std::vector<char>& oks)
+    {
+      // Per rank its length and flag in one all-gather, then the bytes.
+      const vtkIdType sent[2] = { static_cast<vtkIdType>(mine.size()), ok ? 1 : 0 };
+      std::vector<vtkIdType> received(2 * static_cast<std::size_t>(ranks), 0);
+      controller->AllGather(sent, received.data(), 2);
+      std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks), 0);
+      std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks), 0);
+      vtkIdType total = 0;
+      oks.assign(static_cast<std::size_t>(ranks), 0);
+      for (std::size_t r = 0; r < lengths.size(); ++r)
+      {
+        lengths[r] = received[2 * r];
+        oks[r] = received[2 * r + 1] != 0 ? 1 : 0;
+        offsets[r] = total;
+        total += lengths[r];
+      }
+      std::vector<char> bytes(static_cast<std::size_t>(total));
+      controller->AllGatherV(mine.data(),
+        bytes.data(),
+        static_cast<vtkIdType>(mine.size()),
+        lengths.data(),
+        offsets.data());
+      all.clear();
+      for (std::size_t r = 0; r < lengths.size(); ++r)
+      {
+        all.emplace_back(bytes.begin() + offsets[r], bytes.begin() + offsets[r] + lengths[r]);
+      }
+    });
+}
+
 std::string Agree(vtkMultiProcessController* controller, const std::string& problem)
 {
   const int rank = controller->GetLocalProcessId();
   const int ranks = controller->GetNumberOfProcesses();
-  // The lowest failing rank, or `ranks` when none fails: the one whose message every rank gives.
-  const int mine = problem.empty() ? ranks : rank;
-  int first = ranks;
-  controller->AllReduce(&mine, &first, 1, vtkCommunicator::MIN_OP);
-  if (first == ranks)
+  // The lowest failing rank, or 2 K when none fails: the one whose message every rank gives.
+  // A rank that failed only because another did (RankShare::PeerFailure) comes after every
+  // rank that failed for a reason of its own.
+  const bool peerFailed = problem.find(sphcover::RankShare::PeerFailure::Text) != std::string::npos;
+  const int mine = problem.empty() ? 2 * ranks : (peerFailed ? ranks + rank : rank);
+  int lowest = 2 * ranks;
+  controller->AllReduce(&mine, &lowest, 1, vtkCommunicator::MIN_OP);
+  if (lowest == 2 * ranks)
   {
     return std::string();
   }
+  const int first = lowest % ranks;
   long long length = rank == first ? static_cast<long long>(problem.size()) : 0;
   controller->Broadcast(&length, 1, first);
   std::string message(static_cast<std::size_t>(length), ' ');

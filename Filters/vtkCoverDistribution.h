@@ -16,6 +16,8 @@
 #ifndef vtkCoverDistribution_h
 #define vtkCoverDistribution_h
 
+#include "math/RankShare.h"
+
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -26,8 +28,16 @@ class vtkMultiProcessController;
 namespace vtkCoverDistribution
 {
 /**
+ * The controller as Core's RankShare (math/RankShare.h): Join is an all-gather of every
+ * rank's flag and bytes (two collectives: the lengths and flags, then the bytes). One rank:
+ * the plain RankShare.
+ */
+sphcover::RankShare ShareOf(vtkMultiProcessController* controller);
+
+/**
  * Every rank's `problem` ("" when it has none) reduced to one: "" when no rank has a problem,
- * else the problem of the lowest rank that has one, followed by " (rank r of K)", on every rank.
+ * else the problem of the lowest rank that has one (a rank whose problem is only that another
+ * failed, RankShare::PeerFailure, after the others), followed by " (rank r of K)", on every rank.
  */
 std::string Agree(vtkMultiProcessController* controller, const std::string& problem);
 

@@ -44,6 +44,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <functional>
 #include <exception>
 #include <string>
 #include <vector>
@@ -181,6 +182,7 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
   const sphcover::Scene& scene,
   const sphcover::SphericalCoverOptions& options,
   double refinementShare,
+  const sphcover::RankShare& share,
   std::vector<sphcover::Patch>& patches,
   std::vector<vtkIdType>& cellOfPatch)
 {
@@ -206,6 +208,7 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
     std::vector<int> groups;
     ProbeExtentsOf(patches, extents, groups);
     refinement.SetProbeExtents(std::move(extents), std::move(groups));
+    refinement.SetRankShare(share);
     vtkStageProgress progress(self, "Spherical Cover: refining", 0.0, refinementShare);
     const bool completed = refinement.Run(
       [&progress](double fraction) { return progress(fraction); }, vtkSMPParallelFor::Make());
@@ -272,6 +275,7 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
   const std::vector<glm::dvec3>& emission,
   const sphcover::SphericalCoverOptions& options,
   const std::vector<glm::dvec3>& diffuse,
+  const sphcover::RankShare& share,
   sphcover::DirectIrradianceNodes& nodes)
 {
   try
@@ -308,7 +312,8 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
       direct,
       nodes,
       vtkSMPParallelFor::Make(),
-      [&progress](double fraction) { return progress(fraction); });
+      [&progress](double fraction) { return progress(fraction); },
+      share);
     if (!completed)
     {
       vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
@@ -503,6 +508,11 @@ struct CoverInput
   double CoverStart = 0.0;
 };
 
+double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 /// The input's patches, the options from the properties and the refinement (paper §4.3 Steps
 /// 3 and 5), refused before any R-buffer exists when the grid's working memory cannot fit;
 /// false, with the error reported, when anything fails.
@@ -547,20 +557,34 @@ bool PrepareCover(vtkSphericalCoverFilter* self, vtkDataSet* input, CoverInput& 
     vtkErrorWithObjectMacro(self, << "Cannot build the spherical cover: " << e.what());
     return false;
   }
-  std::vector<sphcover::Patch>& patches = prepared.Patches;
-  prepared.CellOfPatch.resize(patches.size());
-  for (size_t k = 0; k < patches.size(); ++k)
+  prepared.CellOfPatch.resize(prepared.Patches.size());
+  for (size_t k = 0; k < prepared.Patches.size(); ++k)
   {
     prepared.CellOfPatch[k] = static_cast<vtkIdType>(k);
   }
+  return true;
+}
+
+/// The refinement of the prepared patches (paper §4.3 Steps 3 and 5; under MPI shared by the
+/// ranks, collective) and what depends on the refined patches: their emission and the
+/// measured lamps. False, with the error reported, when anything fails.
+bool RefineCover(vtkSphericalCoverFilter* self,
+  const sphcover::RankShare& share,
+  CoverInput& prepared)
+{
+  sphcover::SphericalCoverOptions& options = prepared.Options;
+  std::vector<sphcover::Patch>& patches = prepared.Patches;
+  const auto start = std::chrono::steady_clock::now();
   const int refinement = self->GetRefinement();
   const double refinementShare =
     refinement == vtkSphericalCoverFilter::REFINEMENT_FULL ? 0.6 : 0.05;
   if (refinement != vtkSphericalCoverFilter::REFINEMENT_OFF && !patches.empty() &&
-    !RefinePatches(self, prepared.Scene, options, refinementShare, patches, prepared.CellOfPatch))
+    !RefinePatches(
+      self, prepared.Scene, options, refinementShare, share, patches, prepared.CellOfPatch))
   {
     return false;
   }
+  self->RecordStageSeconds(0, SecondsSince(start));
   prepared.CoverStart =
     refinement == vtkSphericalCoverFilter::REFINEMENT_OFF ? 0.0 : refinementShare;
   prepared.Emission =
@@ -575,16 +599,21 @@ bool PrepareCover(vtkSphericalCoverFilter* self, vtkDataSet* input, CoverInput& 
 /// The lamps' direct light on the patches' nodes when DirectIrradianceNodes asks for it;
 /// false, with the error reported, when it failed or was aborted.
 bool ComputeDirectIrradianceOf(vtkSphericalCoverFilter* self,
+  const sphcover::RankShare& share,
   const CoverInput& prepared,
   sphcover::DirectIrradianceNodes& direct)
 {
-  return self->GetDirectIrradianceNodes() <= 0 ||
+  const auto start = std::chrono::steady_clock::now();
+  const bool completed = self->GetDirectIrradianceNodes() <= 0 ||
     ComputeDirectIrradiance(self,
       prepared.Patches,
       prepared.Emission,
       prepared.Options,
       DiffuseOf(prepared.Scene, prepared.Patches, prepared.CellOfPatch),
+      share,
       direct);
+  self->RecordStageSeconds(2, SecondsSince(start));
+  return completed;
 }
 
 /// Both outputs of a built cover: the characteristic points with the direct light's nodes,
@@ -717,26 +746,44 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
   sphcover::DirectIrradianceNodes direct;
   std::vector<char> bytes;
   vtkCoverDistribution::RankFigures mine;
+  const sphcover::RankShare share = vtkCoverDistribution::ShareOf(controller);
+  // Each step's messages are held until the ranks agree on them (HeldMessages).
+  auto step = [self](const std::function<bool()>& body)
   {
     HeldMessages held(self);
-    problem = PrepareCover(self, scene, prepared) ? "" : held.First("Spherical cover aborted.");
-    agreed = vtkCoverDistribution::Agree(controller, problem);
-    if (agreed.empty())
-    {
-      try
+    return body() ? std::string() : held.First("Spherical cover aborted.");
+  };
+  // Every rank prepares the same patches; the refinement's hemispheres, the rows and the direct
+  // light's nodes are then shared among the ranks, each step collective, with an Agree after
+  // it (the refinement and the direct light join inside too, RankShare.h).
+  agreed = vtkCoverDistribution::Agree(
+    controller, step([&] { return PrepareCover(self, scene, prepared); }));
+  if (agreed.empty())
+  {
+    agreed = vtkCoverDistribution::Agree(
+      controller, step([&] { return RefineCover(self, share, prepared); }));
+  }
+  if (agreed.empty())
+  {
+    problem = step(
+      [&]
       {
         const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
           sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options),
           static_cast<std::size_t>(ranks));
         const std::size_t first = bounds[static_cast<std::size_t>(rank)];
         const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];
-        if (MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget))
+        if (!MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget))
         {
-          vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
-          const auto start = std::chrono::steady_clock::now();
-          sphcover::SphericalCover::Arrays block;
-          sphcover::CullingStatistics culling;
-          if (sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
+          return false;
+        }
+        vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
+        const auto start = std::chrono::steady_clock::now();
+        sphcover::SphericalCover::Arrays block;
+        sphcover::CullingStatistics culling;
+        try
+        {
+          if (!sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
                 prepared.Options,
                 first,
                 last,
@@ -745,33 +792,28 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
                 vtkSMPParallelFor::Make(),
                 [&progress](double fraction) { return progress(fraction); }))
           {
-            mine.Seconds =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            mine.Receivers = static_cast<double>(last - first);
-            bytes = sphcover::PackRowBlock(block, culling);
-            mine.Bytes = static_cast<double>(bytes.size());
-          }
-          else
-          {
-            problem = "Spherical cover aborted.";
+            vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+            return false;
           }
         }
-        else
+        catch (const std::exception& e)
         {
-          problem = held.First("Spherical cover aborted.");
+          vtkErrorWithObjectMacro(self, << "Spherical cover failed: " << e.what());
+          return false;
         }
-      }
-      catch (const std::exception& e)
-      {
-        problem = std::string("Spherical cover failed: ") + e.what();
-      }
-      // The direct light is not distributed: the ranks that write the outputs compute it.
-      if (problem.empty() && whole && !ComputeDirectIrradianceOf(self, prepared, direct))
-      {
-        problem = held.First("Spherical cover aborted.");
-      }
-      agreed = vtkCoverDistribution::Agree(controller, problem);
-    }
+        mine.Seconds = SecondsSince(start);
+        self->RecordStageSeconds(1, mine.Seconds);
+        mine.Receivers = static_cast<double>(last - first);
+        bytes = sphcover::PackRowBlock(block, culling);
+        mine.Bytes = static_cast<double>(bytes.size());
+        return true;
+      });
+    agreed = vtkCoverDistribution::Agree(controller, problem);
+  }
+  if (agreed.empty())
+  {
+    agreed = vtkCoverDistribution::Agree(controller,
+      step([&] { return ComputeDirectIrradianceOf(self, share, prepared, direct); }));
   }
   if (!agreed.empty())
   {
@@ -883,18 +925,21 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   }
 
   CoverInput prepared;
-  if (!PrepareCover(this, input, prepared))
+  const sphcover::RankShare serial;
+  if (!PrepareCover(this, input, prepared) || !RefineCover(this, serial, prepared))
   {
     return 0;
   }
   sphcover::SphericalCover cover;
+  const auto start = std::chrono::steady_clock::now();
   if (!BuildCover(
         this, prepared.Patches, prepared.Options, prepared.Budget, prepared.CoverStart, cover))
   {
     return 0;
   }
+  this->RecordStageSeconds(1, SecondsSince(start));
   sphcover::DirectIrradianceNodes direct;
-  if (!ComputeDirectIrradianceOf(this, prepared, direct))
+  if (!ComputeDirectIrradianceOf(this, serial, prepared, direct))
   {
     return 0;
   }

@@ -219,6 +219,15 @@ public:
   vtkGetObjectMacro(Controller, vtkMultiProcessController);
   ///@}
 
+  /**
+   * Wall seconds of the last execution's stages on this process: the R-buffer refinement, the
+   * rows of the cover (this rank's, under MPI) and the direct light's nodes. Measurements, not
+   * part of the output (which stays the same from run to run).
+   */
+  const double* GetStageSeconds() const { return this->StageSeconds; }
+  /// For RequestData's steps; does not modify the filter.
+  void RecordStageSeconds(int stage, double seconds) { this->StageSeconds[stage] = seconds; }
+
 protected:
   vtkSphericalCoverFilter();
   ~vtkSphericalCoverFilter() override;
@@ -239,6 +248,7 @@ protected:
   int Refinement = REFINEMENT_ENCLOSURES;
   int RefinementLevels = 3;
   vtkMultiProcessController* Controller = nullptr;
+  double StageSeconds[3] = { 0.0, 0.0, 0.0 };
 
 private:
   vtkSphericalCoverFilter(const vtkSphericalCoverFilter&) = delete;

@@ -128,6 +128,11 @@ nlohmann::json SolutionReport(Solution& solution)
   nlohmann::json report = Report(solution.Propagation->GetOutput(), counts);
   report["timings_s"] = solution.Timings();
   report["timings_cpu_s"] = solution.CpuTimings();
+  // The cover stage's parts on this rank (vtkSphericalCoverFilter::GetStageSeconds).
+  const double* stages = solution.Cover->GetStageSeconds();
+  report["cover_stages_s"] = { { "refinement", stages[0] },
+    { "rows", stages[1] },
+    { "direct_light", stages[2] } };
   // The ranks the cover was built on (vtkSphericalCoverFilter's CoverRankFigures, present when
   // there were several): per rank its receivers, wall seconds and the bytes of its rows.
   vtkDataArray* ranks =

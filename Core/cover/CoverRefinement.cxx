@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstring>
+#include <exception>
 #include <memory>
 #include <stdexcept>
 #include <utility>
@@ -125,14 +127,36 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
   // of the time.
   const double receiverShare = this->Settings.AnalyseHemispheres ? 0.05 : 1.0;
   const double probeShare = this->Settings.SplitHorizons ? 0.8 * receiverShare : receiverShare;
-  if (this->Settings.SplitEnclosureBoundaries &&
-    !this->SplitAcrossEnclosures(progress, run, probeShare))
+  // Steps 1 and 2 run whole on every rank (RankShare.h); a rank that fails there still takes
+  // part in one join, so that the others learn it and none waits in Step 3's joins.
+  bool completed = true;
+  std::exception_ptr failure;
+  try
   {
-    return false;
+    completed = (!this->Settings.SplitEnclosureBoundaries ||
+                  this->SplitAcrossEnclosures(progress, run, probeShare)) &&
+      (!this->Settings.SplitHorizons ||
+        this->SplitAcrossHorizons(
+          progress, run, this->Settings.SplitEnclosureBoundaries ? probeShare : 0.0, receiverShare));
   }
-  if (this->Settings.SplitHorizons &&
-    !this->SplitAcrossHorizons(
-      progress, run, this->Settings.SplitEnclosureBoundaries ? probeShare : 0.0, receiverShare))
+  catch (...)
+  {
+    failure = std::current_exception();
+  }
+  if (this->Share.Distributed())
+  {
+    std::vector<std::vector<char>> all;
+    const bool everyRankOk = this->Share.Join({}, completed && !failure, all);
+    if (completed && !failure && !everyRankOk)
+    {
+      throw RankShare::PeerFailure();
+    }
+  }
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  if (!completed)
   {
     return false;
   }
@@ -306,57 +330,158 @@ bool CoverRefinement::AnalyseRound(const HemisphereGrid& grid,
   const std::unique_ptr<RBufferFiller> filler =
     RBufferFiller::Create(RBufferFill::Projection, current, grid, this->Settings.Cover.FillOptions);
 
-  // Step 3 for every hemisphere that may have changed; requests merged in receiver order.
+  // Step 3 for every hemisphere that may have changed. The merge of one hemisphere's verdicts
+  // does not depend on the others' (flags are or-ed, the visible lists are per node), so the
+  // order of the merge does not matter. Under MPI each rank analyses its share of the
+  // hemispheres and the verdicts are joined (RankShare.h).
   hidden.assign(count, 0);
   disconnected.assign(count, 0);
-  std::vector<HemisphereAnalysis> results;
-  for (size_t first = 0; first < receivers.size(); first += BatchSize)
+  const std::vector<size_t> mine = this->Share.MyItems(receivers.size());
+  std::vector<char> myVerdicts; // under MPI: node, visible nodes, per analysed hemisphere
+  std::size_t limited = 0;
+  auto merge = [&](const HemisphereAnalysis& analysis, size_t receiver)
   {
-    const size_t batch = std::min(BatchSize, receivers.size() - first);
-    results.assign(batch, HemisphereAnalysis());
-    run(batch,
-      [&](size_t begin, size_t end)
-      {
-        RBuffer buffer(grid);
-        HiddenPartAnalyser analyser(this->Settings);
-        for (size_t k = begin; k < end; ++k)
-        {
-          analyser.Analyse(receivers[first + k], current, *filler, buffer, results[k]);
-        }
-      });
-    for (size_t k = 0; k < batch; ++k)
+    const size_t node = static_cast<size_t>(this->Leaves[receiver]);
+    this->Analysed[node] = true;
+    std::vector<int>& visible = this->VisibleNodes[node];
+    visible.clear();
+    for (uint32_t j : analysis.Visible)
     {
-      const HemisphereAnalysis& analysis = results[k];
-      const size_t node = static_cast<size_t>(this->Leaves[receivers[first + k]]);
-      this->Analysed[node] = true;
-      std::vector<int>& visible = this->VisibleNodes[node];
-      visible.clear();
-      for (uint32_t j : analysis.Visible)
-      {
-        visible.push_back(this->Leaves[j]);
-      }
-      std::sort(visible.begin(), visible.end());
-      for (uint32_t j : analysis.Hidden)
-      {
-        hidden[j] = 1;
-      }
-      for (uint32_t j : analysis.Disconnected)
-      {
-        disconnected[j] = 1;
-      }
-      this->Stats.LimitedRequests += analysis.Limited;
+      visible.push_back(this->Leaves[j]);
     }
-    this->Stats.RowsAnalysed += batch;
-    if (progress &&
-      !progress(progressStart +
-        (1.0 - progressStart) *
-          std::min(
-            1.0, (this->Stats.Rounds + double(first + batch) / receivers.size()) / expectedRounds)))
+    std::sort(visible.begin(), visible.end());
+    for (uint32_t j : analysis.Hidden)
     {
-      return false;
+      hidden[j] = 1;
+    }
+    for (uint32_t j : analysis.Disconnected)
+    {
+      disconnected[j] = 1;
+    }
+    limited += analysis.Limited;
+    if (this->Share.Distributed())
+    {
+      const int32_t header[2] = { static_cast<int32_t>(node), static_cast<int32_t>(visible.size()) };
+      AppendBytes(myVerdicts, header, 2);
+      AppendBytes(myVerdicts, visible.data(), visible.size());
+    }
+  };
+  bool completed = true;
+  std::exception_ptr failure;
+  try
+  {
+    std::vector<HemisphereAnalysis> results;
+    for (size_t first = 0; first < mine.size() && completed; first += BatchSize)
+    {
+      const size_t batch = std::min(BatchSize, mine.size() - first);
+      results.assign(batch, HemisphereAnalysis());
+      run(batch,
+        [&](size_t begin, size_t end)
+        {
+          RBuffer buffer(grid);
+          HiddenPartAnalyser analyser(this->Settings);
+          for (size_t k = begin; k < end; ++k)
+          {
+            analyser.Analyse(receivers[mine[first + k]], current, *filler, buffer, results[k]);
+          }
+        });
+      for (size_t k = 0; k < batch; ++k)
+      {
+        merge(results[k], receivers[mine[first + k]]);
+      }
+      completed = !progress ||
+        progress(progressStart +
+          (1.0 - progressStart) *
+            std::min(1.0,
+              (this->Stats.Rounds + double(first + batch) / mine.size()) / expectedRounds));
     }
   }
+  catch (...)
+  {
+    failure = std::current_exception();
+  }
+  if (this->Share.Distributed())
+  {
+    this->JoinVerdicts(myVerdicts, completed && !failure, hidden, disconnected, limited);
+  }
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  if (!completed)
+  {
+    return false;
+  }
+  this->Stats.RowsAnalysed += receivers.size();
+  this->Stats.LimitedRequests += limited;
   return true;
+}
+
+void CoverRefinement::JoinVerdicts(std::vector<char>& myVerdicts,
+  bool ok,
+  std::vector<char>& hidden,
+  std::vector<char>& disconnected,
+  std::size_t& limited)
+{
+  // Every rank's verdicts: its hidden and disconnected flags, its limited requests and the
+  // visible nodes of the hemispheres it analysed.
+  const uint64_t myLimited = limited;
+  std::vector<char> mine(hidden.begin(), hidden.end());
+  mine.insert(mine.end(), disconnected.begin(), disconnected.end());
+  AppendBytes(mine, &myLimited, 1);
+  mine.insert(mine.end(), myVerdicts.begin(), myVerdicts.end());
+  myVerdicts = std::vector<char>();
+  std::vector<std::vector<char>> all;
+  const bool everyRankOk = this->Share.Join(mine, ok, all);
+  if (!ok)
+  {
+    return; // this rank's own failure is reported by the caller
+  }
+  if (!everyRankOk)
+  {
+    throw RankShare::PeerFailure();
+  }
+  const size_t count = hidden.size();
+  limited = 0;
+  for (size_t r = 0; r < all.size(); ++r)
+  {
+    const std::vector<char>& bytes = all[r];
+    size_t at = 2 * count + sizeof(uint64_t);
+    if (bytes.size() < at)
+    {
+      throw std::runtime_error("CoverRefinement: rank " + std::to_string(r) + "'s verdicts are short");
+    }
+    for (size_t k = 0; k < count; ++k)
+    {
+      hidden[k] = static_cast<char>(hidden[k] | bytes[k]);
+      disconnected[k] = static_cast<char>(disconnected[k] | bytes[count + k]);
+    }
+    uint64_t rankLimited = 0;
+    std::memcpy(&rankLimited, bytes.data() + 2 * count, sizeof(uint64_t));
+    limited += static_cast<size_t>(rankLimited);
+    while (at < bytes.size())
+    {
+      int32_t header[2] = { 0, 0 };
+      if (bytes.size() - at < sizeof(header))
+      {
+        throw std::runtime_error("CoverRefinement: rank " + std::to_string(r) + "'s verdicts are short");
+      }
+      std::memcpy(header, bytes.data() + at, sizeof(header));
+      at += sizeof(header);
+      const size_t node = static_cast<size_t>(header[0]);
+      const size_t visibleCount = static_cast<size_t>(header[1]);
+      if (header[0] < 0 || header[1] < 0 || node >= this->Nodes.size() ||
+        (bytes.size() - at) / sizeof(int32_t) < visibleCount)
+      {
+        throw std::runtime_error("CoverRefinement: rank " + std::to_string(r) + "'s verdicts are damaged");
+      }
+      this->Analysed[node] = true;
+      std::vector<int>& visible = this->VisibleNodes[node];
+      visible.resize(visibleCount);
+      std::memcpy(visible.data(), bytes.data() + at, visibleCount * sizeof(int32_t));
+      at += visibleCount * sizeof(int32_t);
+    }
+  }
 }
 
 bool CoverRefinement::ReplaceSplitPatches(const std::vector<char>& hidden,

@@ -31,6 +31,7 @@
 #include "cover/RefinementSettings.h"
 #include "cover/SphericalCover.h"
 #include "math/ParallelFor.h"
+#include "math/RankShare.h"
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
 
@@ -92,6 +93,14 @@ public:
    */
   void SetProbeExtents(std::vector<UVRect> extents, std::vector<int> groups);
 
+  /**
+   * Under MPI: the ranks analyse the hemispheres of each round of Step 3 in turn and join their
+   * verdicts (RankShare.h), so every rank refines alike, to the serial result bit for bit. Run
+   * is then collective, and throws RankShare::PeerFailure when another rank failed. Steps 1
+   * and 2 (cheap, per leaf) run whole on every rank.
+   */
+  void SetRankShare(RankShare share) { this->Share = std::move(share); }
+
   /// The refined patch list, ordered by surface, then by v, then by u of their domains (as
   /// IntervalSubdivision::Patches()).
   std::vector<Patch> Patches() const;
@@ -120,6 +129,14 @@ private:
     double progressStart,
     std::vector<char>& hidden,
     std::vector<char>& disconnected);
+  /// Under MPI: every rank's verdicts of a round (`myVerdicts`: the nodes this rank analysed
+  /// and their visible nodes, already merged here with the flags and `limited`) merged on
+  /// every rank; `ok` false when this rank failed (it then only takes part in the join).
+  void JoinVerdicts(std::vector<char>& myVerdicts,
+    bool ok,
+    std::vector<char>& hidden,
+    std::vector<char>& disconnected,
+    std::size_t& limited);
   /// Step 5: replaces the marked leaves by their pieces and marks for analysis the
   /// hemispheres in which a split patch was visible; false when nothing was split.
   bool ReplaceSplitPatches(const std::vector<char>& hidden, const std::vector<char>& disconnected);
@@ -138,6 +155,7 @@ private:
   std::vector<std::vector<int>> VisibleNodes;
   std::vector<bool> Analysed;
   RefinementStatistics Stats;
+  RankShare Share;
 };
 
 } // namespace sphcover

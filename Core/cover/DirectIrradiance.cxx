@@ -86,13 +86,14 @@ struct LampPiece
 /// `from` to `to` and abort between batches; false when aborted. Every node is written by one
 /// task, so the result does not depend on the threads.
 template<typename Body>
-bool ForEachNode(std::size_t count,
+bool ForEachNode(const std::vector<std::size_t>& items,
   const Body& body,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress,
   double from,
   double to)
 {
+  const std::size_t count = items.size();
   const std::size_t batch = std::max<std::size_t>(256, count / 50);
   for (std::size_t first = 0; first < count; first += batch)
   {
@@ -102,7 +103,7 @@ bool ForEachNode(std::size_t count,
       {
         for (std::size_t k = begin; k < end; ++k)
         {
-          body(first + k);
+          body(items[first + k]);
         }
       });
     if (progress &&
@@ -145,7 +146,8 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   const DirectIrradianceOptions& options,
   DirectIrradianceNodes& result,
   const ParallelFor& parallelFor,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress,
+  const RankShare& share)
 {
   const bool bounce = options.BounceRaysPerSide > 0;
   if (emission.size() != patches.size() || caster.PatchCount() != patches.size() ||
@@ -297,7 +299,13 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
 
   const std::size_t count = firstPatch.size();
   const double directShare = bounce ? 0.25 : 1.0;
-  if (!ForEachNode(count, computeNode, parallelFor, progress, 0.0, directShare))
+  // The nodes are independent: under MPI each rank computes its share and the values are
+  // joined (RankShare.h), the same on every rank whatever K.
+  if (!ShareItems(share,
+        count,
+        irradianceOfNode,
+        [&](const std::vector<std::size_t>& items)
+        { return ForEachNode(items, computeNode, parallelFor, progress, 0.0, directShare); }))
   {
     return false;
   }
@@ -395,7 +403,11 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       }
       bounced[node] = sum / static_cast<double>(local.size());
     };
-    if (!ForEachNode(count, gatherNode, parallelFor, progress, directShare, 1.0))
+    if (!ShareItems(share,
+          count,
+          bounced,
+          [&](const std::vector<std::size_t>& items)
+          { return ForEachNode(items, gatherNode, parallelFor, progress, directShare, 1.0); }))
     {
       return false;
     }

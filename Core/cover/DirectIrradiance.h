@@ -46,6 +46,7 @@
 #define SPHCOVER_DIRECTIRRADIANCE_H
 
 #include "math/ParallelFor.h"
+#include "math/RankShare.h"
 
 #include <glm/vec3.hpp>
 
@@ -99,7 +100,9 @@ struct DirectIrradianceNodes
  * order. Empty
  * (NodesPerSide 0) when no patch belongs to a lamp. Returns false, the result incomplete,
  * when `progress` returned false. Throws std::invalid_argument for sizes that differ or
- * NodesPerSide or BounceRaysPerSide outside its range.
+ * NodesPerSide or BounceRaysPerSide outside its range. Under MPI (`share`, RankShare.h) the
+ * ranks compute the nodes in turn and every rank gets all of them, the serial values bit for
+ * bit; collective then, and RankShare::PeerFailure when another rank failed.
  */
 bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   const RayCaster& caster,
@@ -109,7 +112,8 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   const DirectIrradianceOptions& options,
   DirectIrradianceNodes& result,
   const ParallelFor& parallelFor = SequentialFor,
-  const ProgressCallback& progress = nullptr);
+  const ProgressCallback& progress = nullptr,
+  const RankShare& share = RankShare());
 
 } // namespace sphcover
 

@@ -337,6 +337,57 @@ TEST(CoverRefinement, DeterministicWhateverTheThreads)
   EXPECT_EQ(sequential.Statistics().LimitedRequests, threaded.Statistics().LimitedRequests);
 }
 
+// Under MPI the ranks analyse each round's hemispheres in turn and join their verdicts
+// (RankShare.h): every rank refines to the serial patches, with the serial statistics.
+TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
+{
+  const Scene scene = FurnaceBoxWithOccluder();
+  const Pipeline pipeline(8, 1, 2);
+  ASSERT_TRUE(pipeline.Refinement.AnalyseHemispheres);
+  const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
+  CoverRefinement serial(scene, before, pipeline.Refinement);
+  ASSERT_TRUE(serial.Run(nullptr, ThreadedFor(2)));
+  const std::vector<Patch> expected = serial.Patches();
+  ASSERT_GT(serial.Statistics().Rounds, 1);
+  for (const int ranks : { 2, 3 })
+  {
+    InProcessRanks world(ranks);
+    std::vector<std::vector<Patch>> results(static_cast<std::size_t>(ranks));
+    std::vector<RefinementStatistics> statistics(static_cast<std::size_t>(ranks));
+    world.Run(
+      [&](const RankShare& share, int rank)
+      {
+        CoverRefinement refinement(scene, before, pipeline.Refinement);
+        refinement.SetRankShare(share);
+        if (refinement.Run(nullptr, SequentialFor))
+        {
+          results[static_cast<std::size_t>(rank)] = refinement.Patches();
+          statistics[static_cast<std::size_t>(rank)] = refinement.Statistics();
+        }
+      });
+    for (int rank = 0; rank < ranks; ++rank)
+    {
+      SCOPED_TRACE(testing::Message() << "rank " << rank << " of " << ranks);
+      const std::vector<Patch>& b = results[static_cast<std::size_t>(rank)];
+      ASSERT_EQ(b.size(), expected.size());
+      for (size_t k = 0; k < b.size(); ++k)
+      {
+        ASSERT_EQ(b[k].SurfaceIndex, expected[k].SurfaceIndex);
+        ASSERT_EQ(b[k].Domain.U0, expected[k].Domain.U0);
+        ASSERT_EQ(b[k].Domain.U1, expected[k].Domain.U1);
+        ASSERT_EQ(b[k].Domain.V0, expected[k].Domain.V0);
+        ASSERT_EQ(b[k].Domain.V1, expected[k].Domain.V1);
+        ASSERT_EQ(b[k].Level, expected[k].Level);
+      }
+      const RefinementStatistics& s = statistics[static_cast<std::size_t>(rank)];
+      EXPECT_EQ(s.Rounds, serial.Statistics().Rounds);
+      EXPECT_EQ(s.RowsAnalysed, serial.Statistics().RowsAnalysed);
+      EXPECT_EQ(s.Splits, serial.Statistics().Splits);
+      EXPECT_EQ(s.LimitedRequests, serial.Statistics().LimitedRequests);
+    }
+  }
+}
+
 TEST(CoverRefinement, ProgressAndAbort)
 {
   const Scene scene = FurnaceBoxWithOccluder();

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 using namespace sphcover;
@@ -224,6 +225,90 @@ TEST(DirectIrradiance, IndependentOfThreadsAndBilinearBetweenNodes)
   {
     EXPECT_NEAR(middle[band], mean[band], 1e-6 * (1.0 + mean[band]));
   }
+}
+
+// Under MPI the ranks compute the nodes in turn and join them (RankShare.h): the direct light and
+// its first bounce (which reads the joined direct light at the nodes of other ranks) are the
+// serial values bit for bit, whatever the number of ranks (run here as threads).
+TEST(DirectIrradiance, SharedAmongRanksEqualsSerial)
+{
+  const std::vector<Patch> patches = LampOverFloor(true);
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  const std::vector<glm::dvec3> emission = EmissionOf(patches);
+  const std::vector<glm::dvec3> diffuse(patches.size(), glm::dvec3(0.5, 0.4, 0.3));
+  const std::vector<bool> lamps = BrightEmitters(patches, emission);
+  DirectIrradianceOptions options;
+  options.NodesPerSide = 5;
+  options.BounceRaysPerSide = 8;
+  DirectIrradianceNodes serial;
+  ASSERT_TRUE(
+    ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, options, serial));
+  ASSERT_FALSE(serial.Empty());
+  for (const int ranks : { 2, 3, 5 })
+  {
+    InProcessRanks world(ranks);
+    std::vector<DirectIrradianceNodes> results(static_cast<std::size_t>(ranks));
+    std::vector<int> completed(static_cast<std::size_t>(ranks), 0);
+    world.Run(
+      [&](const RankShare& share, int rank)
+      {
+        completed[static_cast<std::size_t>(rank)] = ComputeDirectIrradiance(patches,
+          caster,
+          lamps,
+          emission,
+          diffuse,
+          options,
+          results[static_cast<std::size_t>(rank)],
+          SequentialFor,
+          nullptr,
+          share);
+      });
+    for (int rank = 0; rank < ranks; ++rank)
+    {
+      SCOPED_TRACE(testing::Message() << "rank " << rank << " of " << ranks);
+      EXPECT_TRUE(completed[static_cast<std::size_t>(rank)]);
+      EXPECT_EQ(results[static_cast<std::size_t>(rank)].NodesPerSide, serial.NodesPerSide);
+      EXPECT_EQ(results[static_cast<std::size_t>(rank)].Values, serial.Values);
+    }
+  }
+}
+
+// A rank that aborts (its progress returns false) returns false; the others learn it at the
+// join and throw RankShare::PeerFailure: no rank waits for ever.
+TEST(DirectIrradiance, ARankThatAbortsStopsEveryRank)
+{
+  const std::vector<Patch> patches = LampOverFloor(false);
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  const std::vector<glm::dvec3> emission = EmissionOf(patches);
+  const std::vector<bool> lamps = BrightEmitters(patches, emission);
+  DirectIrradianceOptions options;
+  options.BounceRaysPerSide = 0;
+  InProcessRanks world(3);
+  std::vector<std::string> outcome(3);
+  world.Run(
+    [&](const RankShare& share, int rank)
+    {
+      DirectIrradianceNodes nodes;
+      try
+      {
+        const bool completed = ComputeDirectIrradiance(patches,
+          caster,
+          lamps,
+          emission,
+          {},
+          options,
+          nodes,
+          SequentialFor,
+          [rank](double) { return rank != 1; },
+          share);
+        outcome[static_cast<std::size_t>(rank)] = completed ? "completed" : "aborted";
+      }
+      catch (const RankShare::PeerFailure&)
+      {
+        outcome[static_cast<std::size_t>(rank)] = "peer failed";
+      }
+    });
+  EXPECT_EQ(outcome, std::vector<std::string>({ "peer failed", "aborted", "peer failed" }));
 }
 
 TEST(DirectIrradiance, FirstBounceOfAnEvenFloor)

@@ -1,0 +1,296 @@
+// SPDX-License-Identifier: BSD-3-Clause
+/**
+ * @file RankShare.h
+ * @brief The hook through which Core's engines share independent items among the K processes
+ * (MPI ranks) of one solve without depending on MPI or VTK: each rank computes a consecutive
+ * range of the items, and Join gives every rank every rank's results, in rank order. An engine
+ * that merges the joined results in item order gives the serial result bit for bit whatever K.
+ * The VTK filters give a RankShare over their vtkMultiProcessController (vtkCoverDistribution);
+ * Core's tests and benchmarks run K ranks as threads (InProcessRanks).
+ *
+ * Contract: Join is collective (every rank calls it at the same point, as often); a rank that
+ * fails still calls it, with `ok` false, so that no rank waits forever, and every rank then
+ * learns that one failed (Join returns false). An engine whose Join returns false stops and
+ * reports it as RankShare::PeerFailure (the failing rank reports its own problem).
+ */
+#ifndef SPHCOVER_RANKSHARE_H
+#define SPHCOVER_RANKSHARE_H
+
+#include <condition_variable>
+#include <cstddef>
+#include <cstring>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace sphcover
+{
+
+class RankShare
+{
+public:
+  /// Every rank's bytes and `ok`, in rank order, on every rank (an all-gather).
+  using AllGather = std::function<void(const std::vector<char>& mine,
+    bool ok,
+    std::vector<std::vector<char>>& all,
+    std::vector<char>& oks)>;
+
+  /// Thrown by an engine on a rank whose Join learnt that another rank failed.
+  class PeerFailure : public std::runtime_error
+  {
+  public:
+    PeerFailure()
+      : std::runtime_error(Text)
+    {
+    }
+    /// Its message: a caller that reduces the ranks' problems to one prefers any other.
+    static constexpr const char* Text = "another rank failed";
+  };
+
+  /// One process: every item is this rank's, Join returns the rank's own bytes.
+  RankShare() = default;
+  /// Rank `rank` of `ranks`, joined through `allGather`. Throws std::invalid_argument for a rank
+  /// out of range or no all-gather with more than one rank.
+  RankShare(int rank, int ranks, AllGather allGather)
+    : ThisRank(rank)
+    , RankCount(ranks)
+    , Gather(std::move(allGather))
+  {
+    if (ranks < 1 || rank < 0 || rank >= ranks || (ranks > 1 && !this->Gather))
+    {
+      throw std::invalid_argument("RankShare: rank " + std::to_string(rank) + " of " +
+        std::to_string(ranks) + (this->Gather ? "" : " without an all-gather"));
+    }
+  }
+
+  int Rank() const { return this->ThisRank; }
+  int Ranks() const { return this->RankCount; }
+  bool Distributed() const { return this->RankCount > 1; }
+
+  /// The consecutive range [first, second) of `count` items that rank `rank` computes: the
+  /// ranks' ranges tile [0, count) in rank order, their sizes differing by at most one.
+  static std::pair<std::size_t, std::size_t> RangeOf(std::size_t count, int rank, int ranks)
+  {
+    const std::size_t r = static_cast<std::size_t>(rank);
+    const std::size_t k = static_cast<std::size_t>(ranks);
+    return { count * r / k, count * (r + 1) / k };
+  }
+  std::pair<std::size_t, std::size_t> MyRange(std::size_t count) const
+  {
+    return RangeOf(count, this->ThisRank, this->RankCount);
+  }
+
+  /// The items of [0, count) this rank computes: k = Rank(), Rank() + K, ... Interleaved, so
+  /// that neighbouring items, whose costs are alike (nodes of one patch, patches of one
+  /// surface), are spread over the ranks and the ranks' loads are balanced without an estimate.
+  std::vector<std::size_t> MyItems(std::size_t count) const
+  {
+    std::vector<std::size_t> items;
+    const std::size_t k = static_cast<std::size_t>(this->RankCount);
+    for (std::size_t item = static_cast<std::size_t>(this->ThisRank); item < count; item += k)
+    {
+      items.push_back(item);
+    }
+    return items;
+  }
+
+  /// Every rank's `mine`, in rank order, into `all`; false (and `all` empty) when some rank
+  /// gave `ok` false. Collective (see the file comment).
+  bool Join(const std::vector<char>& mine, bool ok, std::vector<std::vector<char>>& all) const
+  {
+    all.clear();
+    if (!this->Distributed())
+    {
+      if (ok)
+      {
+        all.push_back(mine);
+      }
+      return ok;
+    }
+    std::vector<char> oks;
+    this->Gather(mine, ok, all, oks);
+    for (char rankOk : oks)
+    {
+      if (!rankOk)
+      {
+        all.clear();
+        return false;
+      }
+    }
+    return true;
+  }
+
+private:
+  int ThisRank = 0;
+  int RankCount = 1;
+  AllGather Gather;
+};
+
+/**
+ * K ranks as threads of one process, for Core's tests and benchmarks: Share(r) is rank r's
+ * RankShare; each rank's thread calls its engine, and Join waits for all K (a barrier).
+ * The object must outlive the shares' use.
+ */
+class InProcessRanks
+{
+public:
+  explicit InProcessRanks(int ranks)
+    : Slots(static_cast<std::size_t>(ranks))
+    , Oks(static_cast<std::size_t>(ranks), 1)
+  {
+  }
+
+  RankShare Share(int rank)
+  {
+    return RankShare(rank,
+      static_cast<int>(this->Slots.size()),
+      [this, rank](const std::vector<char>& mine,
+        bool ok,
+        std::vector<std::vector<char>>& all,
+        std::vector<char>& oks) { this->Exchange(rank, mine, ok, all, oks); });
+  }
+
+  /// Runs body(Share(r), r) on one thread per rank and waits for all of them; `body` must not
+  /// throw.
+  void Run(const std::function<void(const RankShare&, int)>& body)
+  {
+    std::vector<std::thread> threads;
+    for (int r = 0; r < static_cast<int>(this->Slots.size()); ++r)
+    {
+      threads.emplace_back([this, r, &body] { body(this->Share(r), r); });
+    }
+    for (std::thread& thread : threads)
+    {
+      thread.join();
+    }
+  }
+
+private:
+  void Exchange(int rank,
+    const std::vector<char>& mine,
+    bool ok,
+    std::vector<std::vector<char>>& all,
+    std::vector<char>& oks)
+  {
+    std::unique_lock<std::mutex> lock(this->Mutex);
+    // Wait until the previous exchange has been read by every rank.
+    this->Changed.wait(lock, [this] { return this->Reading == 0; });
+    const std::size_t generation = this->Generation;
+    this->Slots[static_cast<std::size_t>(rank)] = mine;
+    this->Oks[static_cast<std::size_t>(rank)] = ok ? 1 : 0;
+    if (++this->Arrived == this->Slots.size())
+    {
+      this->Arrived = 0;
+      this->Reading = this->Slots.size();
+      ++this->Generation;
+      this->Changed.notify_all();
+    }
+    else
+    {
+      this->Changed.wait(lock, [this, generation] { return this->Generation != generation; });
+    }
+    all = this->Slots;
+    oks = this->Oks;
+    if (--this->Reading == 0)
+    {
+      this->Changed.notify_all();
+    }
+  }
+
+  std::mutex Mutex;
+  std::condition_variable Changed;
+  std::vector<std::vector<char>> Slots;
+  std::vector<char> Oks;
+  std::size_t Arrived = 0;
+  std::size_t Reading = 0;
+  std::size_t Generation = 0;
+};
+
+/// Appends `count` trivially copyable values' bytes to `bytes`.
+template <typename T>
+void AppendBytes(std::vector<char>& bytes, const T* values, std::size_t count)
+{
+  static_assert(std::is_trivially_copyable<T>::value, "AppendBytes copies values as bytes");
+  const char* first = reinterpret_cast<const char*>(values);
+  bytes.insert(bytes.end(), first, first + count * sizeof(T));
+}
+
+/**
+ * `values[k]` for every k of [0, count) on every rank: `computeMine(items)` computes those of
+ * this rank's items (RankShare::MyItems; returns false when aborted), and the ranks' values are
+ * joined. `Value` is trivially copyable. Returns false when this rank aborted; throws what
+ * computeMine threw (after joining, so no rank waits), and RankShare::PeerFailure when another
+ * rank failed. One process: computeMine gets every item, nothing is copied.
+ */
+template <typename Value, typename ComputeMine>
+bool ShareItems(const RankShare& share,
+  std::size_t count,
+  std::vector<Value>& values,
+  const ComputeMine& computeMine)
+{
+  static_assert(std::is_trivially_copyable<Value>::value, "ShareItems copies values as bytes");
+  const std::vector<std::size_t> items = share.MyItems(count);
+  if (!share.Distributed())
+  {
+    return computeMine(items);
+  }
+  bool ok = false;
+  std::exception_ptr failure;
+  try
+  {
+    ok = computeMine(items);
+  }
+  catch (...)
+  {
+    failure = std::current_exception();
+  }
+  std::vector<char> mine;
+  if (ok)
+  {
+    mine.resize(items.size() * sizeof(Value));
+    for (std::size_t k = 0; k < items.size(); ++k)
+    {
+      std::memcpy(mine.data() + k * sizeof(Value), &values[items[k]], sizeof(Value));
+    }
+  }
+  std::vector<std::vector<char>> all;
+  const bool everyRankOk = share.Join(mine, ok, all);
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  if (!ok)
+  {
+    return false;
+  }
+  if (!everyRankOk)
+  {
+    throw RankShare::PeerFailure();
+  }
+  const std::size_t ranks = static_cast<std::size_t>(share.Ranks());
+  for (std::size_t r = 0; r < ranks; ++r)
+  {
+    std::size_t k = 0;
+    for (std::size_t item = r; item < count; item += ranks, ++k)
+    {
+      if ((k + 1) * sizeof(Value) > all[r].size())
+      {
+        throw std::runtime_error("ShareItems: rank " + std::to_string(r) + " sent " +
+          std::to_string(all[r].size()) + " bytes, fewer than its items' values");
+      }
+      std::memcpy(&values[item], all[r].data() + k * sizeof(Value), sizeof(Value));
+    }
+  }
+  return true;
+}
+
+} // namespace sphcover
+
+#endif
