@@ -21,9 +21,28 @@ sphcover::RankShare ShareOf(vtkMultiProcessController* controller)
     ranks,
     [controller, ranks](const std::vector<char>& mine,
       bool ok,
+      bool sameSize,
       std::vector<std::vector<char>>& all,
       std::vector<char>& oks)
     {
+      const std::size_t count = static_cast<std::size_t>(ranks);
+      if (sameSize)
+      {
+        // One all-gather of the bytes and the flag.
+        std::vector<char> sent(mine);
+        sent.push_back(ok ? 1 : 0);
+        std::vector<char> received(sent.size() * count);
+        controller->AllGather(sent.data(), received.data(), static_cast<vtkIdType>(sent.size()));
+        all.clear();
+        oks.clear();
+        for (std::size_t r = 0; r < count; ++r)
+        {
+          const auto first = received.begin() + static_cast<std::ptrdiff_t>(r * sent.size());
+          all.emplace_back(first, first + static_cast<std::ptrdiff_t>(mine.size()));
+          oks.push_back(*(first + static_cast<std::ptrdiff_t>(mine.size())));
+        }
+        return;
+      }
       // Per rank its length and flag in one all-gather, then the bytes.
       const vtkIdType sent[2] = { static_cast<vtkIdType>(mine.size()), ok ? 1 : 0 };
       std::vector<vtkIdType> received(2 * static_cast<std::size_t>(ranks), 0);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkLightPropagationFilter.h"
 
+#include "vtkCoverDistribution.h"
+#include "vtkHeldMessages.h"
 #include "vtkIlluminationAdapter.h"
 #include "vtkNamedArrays.h"
 #include "vtkScenePieces.h"
@@ -20,6 +22,7 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkMultiProcessController.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -30,6 +33,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <exception>
 #include <sstream>
 #include <string>
@@ -197,11 +201,21 @@ std::string ReadPropagationInput(vtkPolyData* input,
   return std::string();
 }
 
+/// Under MPI: the ranks that propagate together and this rank's receivers.
+struct PropagationRanks
+{
+  sphcover::RankShare Share;
+  std::size_t First = 0;
+  std::size_t Last = 0;
+};
+
 /// The progressive shooting of paper §5.1 (up to 95% of the progress), after the exchange
-/// balance if asked for (the first 5%); false, with a warning, when aborted.
+/// balance if asked for (the first 5%; of the whole `cover`, whose rows [First, Last) are
+/// `propagation`'s under MPI); false, with a warning, when aborted.
 bool Propagate(vtkLightPropagationFilter* self,
   const sphcover::SphericalCover& cover,
   vtkPolyData* input,
+  const PropagationRanks& ranks,
   sphcover::LightPropagation& propagation)
 {
   sphcover::PropagationSettings settings;
@@ -235,7 +249,15 @@ bool Propagate(vtkLightPropagationFilter* self,
       vtkWarningWithObjectMacro(self, "Light propagation aborted.");
       return false;
     }
-    propagation.SetExchangeFactors(balance.EntryFactors());
+    const std::vector<double>& factors = balance.EntryFactors();
+    propagation.SetExchangeFactors(!ranks.Share.Distributed()
+        ? factors
+        : std::vector<double>(factors.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.First)),
+            factors.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.Last))));
+  }
+  if (ranks.Share.Distributed())
+  {
+    propagation.SetRankShare(ranks.Share, ranks.First, ranks.Last);
   }
   vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
   propagation.Run(settings,
@@ -276,69 +298,36 @@ bool SquareMetresPerUnit(vtkFieldData* fd, double& factor, std::string& problem)
   return true;
 }
 
-/// Output 0's own arrays: per point Irradiance, Radiosity and Brightness; in field data the
-/// regions' IncidentRadiance, the EnergyBalance (in watts: the powers times `watts`, the square
-/// metres of a squared scene unit) and the PropagationStatistics.
-void WriteIllumination(const sphcover::LightPropagation& propagation,
-  int shots,
-  double watts,
-  vtkPolyData* output)
+/// What the outputs are written from: per point and per region the propagation's results
+/// (under MPI gathered from the ranks, ResultsOf), the energy and the history.
+struct PropagationResults
 {
-  const vtkIdType count = output->GetNumberOfPoints();
-  auto irradiance = vtkNamedArrays::Double(names::Irradiance, 3, count);
-  auto radiosity = vtkNamedArrays::Double(names::Radiosity, 3, count);
-  auto brightness = vtkNamedArrays::Double(names::Brightness, 3, count);
-  for (vtkIdType i = 0; i < count; ++i)
-  {
-    const glm::dvec3 e = propagation.Irradiance(static_cast<size_t>(i));
-    const glm::dvec3 l = propagation.ExitantRadiance(static_cast<size_t>(i));
-    const glm::dvec3 b = propagation.Brightness(static_cast<size_t>(i));
-    irradiance->SetTuple(i, &e[0]);
-    radiosity->SetTuple(i, &l[0]);
-    brightness->SetTuple(i, &b[0]);
-  }
-  output->GetPointData()->AddArray(irradiance);
-  output->GetPointData()->AddArray(radiosity);
-  output->GetPointData()->AddArray(brightness);
+  std::vector<glm::dvec3> Irradiance;
+  std::vector<glm::dvec3> Radiosity;
+  std::vector<glm::dvec3> Brightness;
+  /// CoverLampIrradiance (empty without the direct light's nodes).
+  std::vector<glm::dvec3> Lamp;
+  std::vector<glm::dvec3> Incident;
+  sphcover::EnergyBalance Energy;
+};
 
-  const std::vector<glm::dvec3>& incident = propagation.IncidentRadiances();
-  auto regions =
-    vtkNamedArrays::Double(names::IncidentRadiance, 3, static_cast<vtkIdType>(incident.size()));
-  for (size_t e = 0; e < incident.size(); ++e)
-  {
-    regions->SetTuple(static_cast<vtkIdType>(e), &incident[e][0]);
-  }
-  output->GetFieldData()->AddArray(regions);
-  const sphcover::EnergyBalance energy = propagation.Energy();
-  auto balance = vtkNamedArrays::Double(names::EnergyBalance, 3, 2);
-  const glm::dvec3 emitted = watts * energy.Emitted;
-  const glm::dvec3 absorbed = watts * energy.Absorbed;
-  balance->SetTuple(0, &emitted[0]);
-  balance->SetTuple(1, &absorbed[0]);
-  output->GetFieldData()->AddArray(balance);
-  // No time here: a saved solution is the same file for the same input (the seconds per shot
-  // are in the History, output 1, which is not part of a solution).
-  auto statistics = vtkNamedArrays::Double(names::PropagationStatistics, 1, 1);
-  statistics->SetComponentName(0, "Shots");
-  statistics->SetComponent(0, 0, static_cast<double>(shots));
-  output->GetFieldData()->AddArray(statistics);
-}
-
-/// With the nodes of vtkSphericalCoverFilter's DirectIrradiance on the points, the part of the
-/// points' Irradiance that the nodes hold, as the cover carries it (CoverLampIrradiance): the
-/// lamps are the bright emitters among the points, as the cover filter chose them.
-void WriteCoverLampIrradiance(const sphcover::LightPropagation& propagation,
+/// With the nodes of vtkSphericalCoverFilter's DirectIrradiance on the points, which patches are
+/// the lamps (the bright emitters among the points, as the cover filter chose them) and whether
+/// the nodes hold the first bounce: the part of the points' Irradiance that the nodes hold, as
+/// the cover carries it (CoverLampIrradiance). False without the nodes.
+bool LampPatchesOf(vtkPolyData* points,
   const sphcover::SphericalCover& cover,
   const std::vector<sphcover::Material>& materials,
-  vtkPolyData* output)
+  std::vector<bool>& lampPatch,
+  bool& firstBounce)
 {
-  vtkDataArray* surfaceId = output->GetPointData()->GetArray(names::SurfaceId);
-  if (!output->GetPointData()->GetArray(names::DirectIrradiance) || !surfaceId)
+  vtkDataArray* surfaceId = points->GetPointData()->GetArray(names::SurfaceId);
+  if (!points->GetPointData()->GetArray(names::DirectIrradiance) || !surfaceId)
   {
-    return;
+    return false;
   }
-  vtkDataArray* bounceRays = output->GetFieldData()->GetArray(names::DirectBounceRays);
-  const bool firstBounce =
+  vtkDataArray* bounceRays = points->GetFieldData()->GetArray(names::DirectBounceRays);
+  firstBounce =
     bounceRays && bounceRays->GetNumberOfTuples() == 1 && bounceRays->GetComponent(0, 0) > 0.0;
   const std::size_t count = cover.PatchCount();
   std::vector<int> surfaces(count);
@@ -351,18 +340,149 @@ void WriteCoverLampIrradiance(const sphcover::LightPropagation& propagation,
     emission[i] = materials[i].Emission;
   }
   const std::vector<bool> lampSurface = sphcover::BrightEmitters(surfaces, areas, emission);
-  std::vector<bool> lampPatch(count, false);
+  lampPatch.assign(count, false);
   for (std::size_t i = 0; i < count; ++i)
   {
     lampPatch[i] = surfaces[i] >= 0 && lampSurface[static_cast<std::size_t>(surfaces[i])];
   }
-  const std::vector<glm::dvec3> lamp = propagation.LampIrradiance(lampPatch, firstBounce);
-  auto array = vtkNamedArrays::Double(names::CoverLampIrradiance, 3, static_cast<vtkIdType>(count));
+  return true;
+}
+
+/// The results of every patch and region: the propagation's own, or under MPI (collective)
+/// each rank's patches and rows joined in rank order (the ranks' ranges tile the patches).
+PropagationResults ResultsOf(const sphcover::LightPropagation& propagation,
+  const PropagationRanks& ranks,
+  const std::vector<bool>& lampPatch,
+  bool firstBounce)
+{
+  PropagationResults results;
+  const std::size_t count = propagation.PatchCount();
+  const bool lamps = !lampPatch.empty();
+  const std::vector<glm::dvec3> lamp =
+    lamps ? propagation.LampIrradiance(lampPatch, firstBounce) : std::vector<glm::dvec3>();
+  results.Energy = propagation.Energy();
+  const std::size_t first = propagation.OwnedBegin();
+  const std::size_t last = propagation.OwnedEnd();
+  std::vector<glm::dvec3> perPatch; // per own patch: irradiance, radiosity, brightness, lamp
+  for (std::size_t i = first; i < last; ++i)
+  {
+    perPatch.push_back(propagation.Irradiance(i));
+    perPatch.push_back(propagation.ExitantRadiance(i));
+    perPatch.push_back(propagation.Brightness(i));
+    perPatch.push_back(lamps ? lamp[i] : glm::dvec3(0.0));
+  }
+  const std::vector<glm::dvec3>& incident = propagation.IncidentRadiances();
+  std::vector<std::vector<char>> patchBlocks;
+  std::vector<std::vector<char>> regionBlocks;
+  if (ranks.Share.Distributed())
+  {
+    std::vector<char> mine;
+    sphcover::AppendBytes(mine, perPatch.data(), perPatch.size());
+    if (!ranks.Share.Join(mine, true, patchBlocks))
+    {
+      throw sphcover::RankShare::PeerFailure();
+    }
+    mine.clear();
+    sphcover::AppendBytes(mine, incident.data(), incident.size());
+    if (!ranks.Share.Join(mine, true, regionBlocks))
+    {
+      throw sphcover::RankShare::PeerFailure();
+    }
+  }
+  auto append = [](std::vector<glm::dvec3>& values, const std::vector<char>& bytes)
+  {
+    const std::size_t n = bytes.size() / sizeof(glm::dvec3);
+    const std::size_t at = values.size();
+    values.resize(at + n);
+    std::memcpy(values.data() + at, bytes.data(), n * sizeof(glm::dvec3));
+  };
+  if (!ranks.Share.Distributed())
+  {
+    results.Incident = incident;
+  }
+  else
+  {
+    perPatch.clear();
+    for (const std::vector<char>& block : patchBlocks)
+    {
+      append(perPatch, block);
+    }
+    for (const std::vector<char>& block : regionBlocks)
+    {
+      append(results.Incident, block);
+    }
+  }
+  if (perPatch.size() != 4 * count)
+  {
+    throw std::runtime_error("the ranks' results cover " + std::to_string(perPatch.size() / 4) +
+      " of " + std::to_string(count) + " points");
+  }
   for (std::size_t i = 0; i < count; ++i)
   {
-    array->SetTuple(static_cast<vtkIdType>(i), &lamp[i][0]);
+    results.Irradiance.push_back(perPatch[4 * i]);
+    results.Radiosity.push_back(perPatch[4 * i + 1]);
+    results.Brightness.push_back(perPatch[4 * i + 2]);
+    if (lamps)
+    {
+      results.Lamp.push_back(perPatch[4 * i + 3]);
+    }
   }
-  output->GetPointData()->AddArray(array);
+  return results;
+}
+
+/// Output 0's own arrays: per point Irradiance, Radiosity and Brightness (and
+/// CoverLampIrradiance with the direct light's nodes); in field data the regions'
+/// IncidentRadiance, the EnergyBalance (in watts: the powers times `watts`, the square metres
+/// of a squared scene unit) and the PropagationStatistics.
+void WriteIllumination(const PropagationResults& results,
+  int shots,
+  double watts,
+  vtkPolyData* output)
+{
+  const vtkIdType count = output->GetNumberOfPoints();
+  auto irradiance = vtkNamedArrays::Double(names::Irradiance, 3, count);
+  auto radiosity = vtkNamedArrays::Double(names::Radiosity, 3, count);
+  auto brightness = vtkNamedArrays::Double(names::Brightness, 3, count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    irradiance->SetTuple(i, &results.Irradiance[static_cast<size_t>(i)][0]);
+    radiosity->SetTuple(i, &results.Radiosity[static_cast<size_t>(i)][0]);
+    brightness->SetTuple(i, &results.Brightness[static_cast<size_t>(i)][0]);
+  }
+  output->GetPointData()->AddArray(irradiance);
+  output->GetPointData()->AddArray(radiosity);
+  output->GetPointData()->AddArray(brightness);
+  if (!results.Lamp.empty())
+  {
+    auto lamp = vtkNamedArrays::Double(names::CoverLampIrradiance, 3, count);
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      lamp->SetTuple(i, &results.Lamp[static_cast<size_t>(i)][0]);
+    }
+    output->GetPointData()->AddArray(lamp);
+  }
+
+  const std::vector<glm::dvec3>& incident = results.Incident;
+  auto regions =
+    vtkNamedArrays::Double(names::IncidentRadiance, 3, static_cast<vtkIdType>(incident.size()));
+  for (size_t e = 0; e < incident.size(); ++e)
+  {
+    regions->SetTuple(static_cast<vtkIdType>(e), &incident[e][0]);
+  }
+  output->GetFieldData()->AddArray(regions);
+  const sphcover::EnergyBalance& energy = results.Energy;
+  auto balance = vtkNamedArrays::Double(names::EnergyBalance, 3, 2);
+  const glm::dvec3 emitted = watts * energy.Emitted;
+  const glm::dvec3 absorbed = watts * energy.Absorbed;
+  balance->SetTuple(0, &emitted[0]);
+  balance->SetTuple(1, &absorbed[0]);
+  output->GetFieldData()->AddArray(balance);
+  // No time here: a saved solution is the same file for the same input (the seconds per shot
+  // are in the History, output 1, which is not part of a solution).
+  auto statistics = vtkNamedArrays::Double(names::PropagationStatistics, 1, 1);
+  statistics->SetComponentName(0, "Shots");
+  statistics->SetComponent(0, 0, static_cast<double>(shots));
+  output->GetFieldData()->AddArray(statistics);
 }
 
 /// Output 1: one row per shot (shooter, relative change, unshot energy in watts: the propagation's
@@ -413,9 +533,15 @@ vtkLightPropagationFilter::vtkLightPropagationFilter()
   // ParaView's status bar labels progress with this text (vtkStageProgress.h).
   this->SetProgressText("Light Propagation");
   this->SetNumberOfOutputPorts(2);
+  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkLightPropagationFilter::~vtkLightPropagationFilter() = default;
+vtkLightPropagationFilter::~vtkLightPropagationFilter()
+{
+  this->SetController(nullptr);
+}
+
+vtkCxxSetObjectMacro(vtkLightPropagationFilter, Controller, vtkMultiProcessController);
 
 int vtkLightPropagationFilter::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -443,6 +569,16 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
 
   // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
   const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, inputData);
+  // Under MPI the ranks propagate together when every one holds the whole cover (see the
+  // header); the count is collective, so it comes before any rank returns.
+  vtkMultiProcessController* controller = this->Controller;
+  const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  const bool shared = ranks > 1 && this->ShootingOrder == BRIGHTEST_FIRST &&
+    vtkCoverDistribution::Count(controller, role == vtkScenePieces::Role::WholeScene) == ranks;
+  if (shared)
+  {
+    return this->PropagateOnRanks(this->Controller, input, output, history);
+  }
   if (role != vtkScenePieces::Role::WholeScene)
   {
     output->Initialize();
@@ -463,11 +599,37 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     return 0;
   }
 
+  return this->PropagateOnRanks(nullptr, input, output, history);
+}
+
+int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* controller,
+  vtkPolyData* input,
+  vtkPolyData* output,
+  vtkTable* history)
+{
+  // One process, or the ranks together (see the header): every rank reads the same cover and
+  // agrees on each step before the next collective one, so that a failure is one error on every
+  // rank and none waits for ever (vtkCoverDistribution.h).
+  auto agree = [controller](const std::string& problem)
+  { return controller ? vtkCoverDistribution::Agree(controller, problem) : problem; };
+  std::string problem;
+  if (!input)
+  {
+    problem = "the input is not the cover points (vtkPolyData) of vtkSphericalCoverFilter.";
+  }
   sphcover::SphericalCover cover;
   std::vector<sphcover::Material> materials;
   bool named = false;
-  const std::string problem =
-    ReadPropagationInput(input, this->MemoryLimit, cover, materials, named);
+  if (problem.empty())
+  {
+    problem = ReadPropagationInput(input, this->MemoryLimit, cover, materials, named);
+  }
+  double watts = 1.0;
+  if (problem.empty())
+  {
+    SquareMetresPerUnit(input->GetFieldData(), watts, problem);
+  }
+  problem = agree(problem);
   if (!problem.empty())
   {
     vtkErrorMacro(<< "Cannot propagate light: " << problem);
@@ -484,41 +646,62 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
                        "transmitted light absorbed. Rebuild the cover.");
   }
 
-  double watts = 1.0;
-  std::string unitProblem;
-  if (!SquareMetresPerUnit(input->GetFieldData(), watts, unitProblem))
+  PropagationRanks ranks;
+  sphcover::SphericalCover rows;
+  if (controller)
   {
-    vtkErrorMacro(<< "Cannot propagate light: " << unitProblem);
-    return 0;
+    // Rank r shoots into the rows of its receivers: split by their entries, a shot's work.
+    std::vector<double> costs(cover.PatchCount());
+    for (std::size_t i = 0; i < costs.size(); ++i)
+    {
+      costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i));
+    }
+    const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
+      costs, static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+    const std::size_t rank = static_cast<std::size_t>(controller->GetLocalProcessId());
+    ranks.Share = vtkCoverDistribution::ShareOf(controller);
+    ranks.First = bounds[rank];
+    ranks.Last = bounds[rank + 1];
+    rows = cover.RowsOf(ranks.First, ranks.Last);
   }
+  std::vector<bool> lampPatch;
+  bool firstBounce = false;
+  LampPatchesOf(input, cover, materials, lampPatch, firstBounce);
+  PropagationResults results;
   try
   {
-    sphcover::LightPropagation propagation(cover, materials);
-    if (!Propagate(this, cover, input, propagation))
+    sphcover::LightPropagation propagation(controller ? rows : cover, materials);
+    vtkHeldMessages held(controller ? this : nullptr);
+    const bool completed = Propagate(this, cover, input, ranks, propagation);
+    problem = agree(completed ? std::string() : held.First("Light propagation aborted."));
+    if (!problem.empty())
     {
+      if (controller)
+      {
+        vtkErrorMacro(<< problem);
+      }
       return 0;
     }
+    results = ResultsOf(propagation, ranks, lampPatch, firstBounce);
     this->Shots = static_cast<int>(propagation.History().size());
-
-    output->ShallowCopy(input);
-    WriteIllumination(propagation, this->Shots, watts, output);
-    WriteCoverLampIrradiance(propagation, cover, materials, output);
-    if (named)
-    {
-      const std::string figuresProblem = StoreFigures(cover, output);
-      if (!figuresProblem.empty())
-      {
-        output->Initialize();
-        vtkErrorMacro(<< "Cannot sum up the solution: " << figuresProblem);
-        return 0;
-      }
-    }
     WriteShotHistory(propagation.History(), watts, history);
   }
   catch (const std::exception& e)
   {
     vtkErrorMacro(<< "Light propagation failed: " << e.what());
     return 0;
+  }
+  output->ShallowCopy(input);
+  WriteIllumination(results, this->Shots, watts, output);
+  if (named)
+  {
+    const std::string figuresProblem = StoreFigures(cover, output);
+    if (!figuresProblem.empty())
+    {
+      output->Initialize();
+      vtkErrorMacro(<< "Cannot sum up the solution: " << figuresProblem);
+      return 0;
+    }
   }
   this->UpdateProgress(1.0);
   return 1;
@@ -534,4 +717,5 @@ void vtkLightPropagationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BalanceExchanges: " << (this->BalanceExchanges ? "On" : "Off") << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Shots: " << this->Shots << "\n";
+  os << indent << "Controller: " << this->Controller << "\n";
 }

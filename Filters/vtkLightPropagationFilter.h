@@ -44,6 +44,16 @@
  * produces empty outputs without a message; with a non-empty input there, it refuses with an
  * error (a piece of the scene would give a wrong illumination). An empty input on piece 0 is an
  * error, as in serial.
+ *
+ * Processes (Controller, by default the global controller): when every one of K > 1 processes
+ * holds the whole cover (`mpiexec -n K sphcover`, whose cover filter gives every rank the
+ * gathered rows), the K ranks propagate together (LightPropagation::SetRankShare): rank r
+ * shoots into the rows of its range of receivers, split by their entries, and the results are
+ * gathered, so every rank's outputs are the serial ones (the per-patch values and the regions'
+ * incident radiances bit for bit; the energy sums up to the order of addition). FixedOrder, or
+ * processes of which some hold an empty piece (pvbatch, where rank 0 holds the cover), run as
+ * described above. Every process must then update the filter together, as for
+ * vtkSphericalCoverFilter.
  */
 #ifndef vtkLightPropagationFilter_h
 #define vtkLightPropagationFilter_h
@@ -52,6 +62,9 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // for std::string
+
+class vtkMultiProcessController;
+class vtkTable;
 
 class SPHERICALCOVERFILTERS_EXPORT vtkLightPropagationFilter : public vtkPolyDataAlgorithm
 {
@@ -117,6 +130,15 @@ public:
   /// Shots of the last update.
   vtkGetMacro(Shots, int);
 
+  ///@{
+  /**
+   * The processes that propagate together (see above); nullptr or one process: this process
+   * alone. Default is vtkMultiProcessController::GetGlobalController() at construction.
+   */
+  virtual void SetController(vtkMultiProcessController*);
+  vtkGetObjectMacro(Controller, vtkMultiProcessController);
+  ///@}
+
   /**
    * Computes the solution's figures (see above) from the arrays of `illumination`, this
    * filter's output 0 or one read back from a file, and stores them in its field data.
@@ -131,6 +153,12 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// RequestData's work on the whole cover: alone (`controller` null), or together with the
+  /// controller's ranks, each of which holds the whole cover.
+  int PropagateOnRanks(vtkMultiProcessController* controller,
+    vtkPolyData* input,
+    vtkPolyData* output,
+    vtkTable* history);
 
   double ConvergenceTolerance = 1e-5;
   int MaximumShots = 0;
@@ -138,6 +166,7 @@ protected:
   bool BalanceExchanges = true;
   double MemoryLimit = 8192.0;
   int Shots = 0;
+  vtkMultiProcessController* Controller = nullptr;
 
 private:
   vtkLightPropagationFilter(const vtkLightPropagationFilter&) = delete;

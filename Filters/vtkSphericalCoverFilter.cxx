@@ -2,7 +2,7 @@
 #include "vtkSphericalCoverFilter.h"
 
 #include "vtkCoverDistribution.h"
-#include "vtkMessageText.h"
+#include "vtkHeldMessages.h"
 #include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkScenePieces.h"
@@ -24,7 +24,6 @@
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
 
-#include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -648,51 +647,6 @@ void WriteOutputs(vtkSphericalCoverFilter* self,
 }
 
 /**
- * Holds back the errors and warnings of an object while the ranks of a distributed build have
- * not agreed on them (vtkCoverDistribution::Agree): a failing rank would otherwise show its own
- * message and then the agreed one. Observes before any other observer and stops the event.
- */
-class HeldMessages
-{
-public:
-  explicit HeldMessages(vtkObject* object)
-    : Object(object)
-  {
-    this->Callback->SetClientData(this);
-    this->Callback->SetCallback(&HeldMessages::Hold);
-    this->Callback->SetAbortFlagOnExecute(1);
-    this->ErrorTag = object->AddObserver(vtkCommand::ErrorEvent, this->Callback, 1.0f);
-    this->WarningTag = object->AddObserver(vtkCommand::WarningEvent, this->Callback, 1.0f);
-  }
-  ~HeldMessages()
-  {
-    this->Object->RemoveObserver(this->ErrorTag);
-    this->Object->RemoveObserver(this->WarningTag);
-  }
-  HeldMessages(const HeldMessages&) = delete;
-  HeldMessages& operator=(const HeldMessages&) = delete;
-
-  /// The first message held, or `otherwise` when there is none.
-  std::string First(const std::string& otherwise) const
-  {
-    return this->Messages.empty() ? otherwise : this->Messages.front();
-  }
-
-private:
-  static void Hold(vtkObject*, unsigned long, void* clientData, void* callData)
-  {
-    static_cast<HeldMessages*>(clientData)
-      ->Messages.push_back(vtkMessageText::Strip(static_cast<const char*>(callData)));
-  }
-
-  vtkObject* Object;
-  vtkNew<vtkCallbackCommand> Callback;
-  unsigned long ErrorTag = 0;
-  unsigned long WarningTag = 0;
-  std::vector<std::string> Messages;
-};
-
-/**
  * The cover on the controller's K ranks (vtkCoverDistribution.h): every rank prepares the same
  * patches (rank 0's input broadcast when the other ranks hold empty pieces, as under pvbatch),
  * builds the rows of its range of receivers, balanced by Core's cost estimate, and the row
@@ -750,7 +704,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
   // Each step's messages are held until the ranks agree on them (HeldMessages).
   auto step = [self](const std::function<bool()>& body)
   {
-    HeldMessages held(self);
+    vtkHeldMessages held(self);
     return body() ? std::string() : held.First("Spherical cover aborted.");
   };
   // Every rank prepares the same patches; the refinement's hemispheres, the rows and the direct

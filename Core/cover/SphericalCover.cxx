@@ -8,6 +8,7 @@
 #include "subdivision/Patch.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -686,6 +687,63 @@ void SphericalCover::Adopt(Arrays arrays, const SphericalCoverOptions& options)
   this->Filters = std::move(arrays.Filters);
   this->Transmittances = std::move(arrays.Transmittances);
   this->BuildColumns();
+}
+
+SphericalCover SphericalCover::RowsOf(std::size_t first, std::size_t last) const
+{
+  const std::size_t n = this->PatchCount();
+  if (first > last || last > n)
+  {
+    throw std::invalid_argument("SphericalCover::RowsOf: rows [" + std::to_string(first) + ", " +
+      std::to_string(last) + ") of " + std::to_string(n));
+  }
+  const std::size_t entryBegin = n == 0 ? 0 : this->RowOffsets[first];
+  const std::size_t entryEnd = n == 0 ? 0 : this->RowOffsets[last];
+  const std::size_t stripBegin = entryBegin < entryEnd ? this->Entries[entryBegin].FirstStrip : 0;
+  const std::size_t stripEnd = entryBegin < entryEnd ? this->StripEnd(entryEnd - 1) : 0;
+  Arrays kept;
+  kept.ThetaBins = this->Grid().ThetaBins();
+  kept.PhiBins = this->Grid().PhiBins();
+  kept.SamplesTheta = this->Grid().SamplesTheta();
+  kept.SamplesPhi = this->Grid().SamplesPhi();
+  kept.Fill = static_cast<int>(this->BuildOptions.Fill);
+  kept.RowOffsets.resize(n + 1);
+  for (std::size_t i = 0; i <= n; ++i)
+  {
+    const std::size_t offset = this->RowOffsets[std::min(std::max(i, first), last)];
+    kept.RowOffsets[i] = offset - entryBegin;
+  }
+  kept.Entries.assign(this->Entries.begin() + static_cast<std::ptrdiff_t>(entryBegin),
+    this->Entries.begin() + static_cast<std::ptrdiff_t>(entryEnd));
+  for (Entry& entry : kept.Entries)
+  {
+    entry.FirstStrip -= static_cast<uint32_t>(stripBegin);
+  }
+  auto slice = [](const auto& values, std::size_t begin, std::size_t end, std::size_t width)
+  {
+    using Vector = std::decay_t<decltype(values)>;
+    return values.empty() ? Vector()
+                          : Vector(values.begin() + static_cast<std::ptrdiff_t>(begin * width),
+                              values.begin() + static_cast<std::ptrdiff_t>(end * width));
+  };
+  kept.Unoccluded = slice(this->Unoccluded, entryBegin, entryEnd, 1);
+  kept.UnoccludedKnown = this->UnoccludedKnown;
+  kept.Strips = slice(this->Strips, stripBegin, stripEnd, 1);
+  kept.StripDepths = slice(this->StripDepths, stripBegin, stripEnd, 1);
+  kept.Areas = this->Areas;
+  kept.Measures = slice(this->Measures, entryBegin, entryEnd, 1);
+  kept.Layers = slice(this->Layers, entryBegin, entryEnd, 1);
+  kept.Filters = slice(this->Filters, entryBegin, entryEnd, 3);
+  kept.Transmittances = this->Transmittances;
+  const std::string problem = CheckArrays(kept);
+  if (!problem.empty())
+  {
+    throw std::logic_error("SphericalCover::RowsOf: " + problem);
+  }
+  SphericalCover cover;
+  cover.Adopt(std::move(kept), this->BuildOptions);
+  cover.CullingCounts = this->CullingCounts;
+  return cover;
 }
 
 std::vector<double> SphericalCover::EstimateRowCosts(const std::vector<Patch>& patches,

@@ -321,6 +321,14 @@ public:
     const SphericalCoverOptions& options,
     const CullingStatistics& culling);
 
+  /**
+   * A copy that keeps the rows of receivers [first, last) and empties the others (their areas
+   * and the panes' transmittances stay): the part of the cover one rank of a distributed
+   * propagation holds (LightPropagation::SetRankShare). Entry e of the copy is entry
+   * e + EntryBegin(first) of this cover. Throws std::invalid_argument for a bad range.
+   */
+  SphericalCover RowsOf(std::size_t first, std::size_t last) const;
+
   // --- statistics and memory -------------------------------------------------------------------
   /// Candidate culling counts summed over all receivers (projection fill only).
   const CullingStatistics& Culling() const { return this->CullingCounts; }

@@ -36,9 +36,11 @@ namespace sphcover
 class RankShare
 {
 public:
-  /// Every rank's bytes and `ok`, in rank order, on every rank (an all-gather).
+  /// Every rank's bytes and `ok`, in rank order, on every rank (an all-gather); `sameSize`:
+  /// every rank gives as many bytes (one collective suffices).
   using AllGather = std::function<void(const std::vector<char>& mine,
     bool ok,
+    bool sameSize,
     std::vector<std::vector<char>>& all,
     std::vector<char>& oks)>;
 
@@ -105,6 +107,24 @@ public:
   /// gave `ok` false. Collective (see the file comment).
   bool Join(const std::vector<char>& mine, bool ok, std::vector<std::vector<char>>& all) const
   {
+    return this->JoinBytes(mine, ok, false, all);
+  }
+
+  /// Join when every rank gives as many bytes: one collective instead of two (the per-shot
+  /// exchanges of a shared propagation).
+  bool JoinSameSize(const std::vector<char>& mine,
+    bool ok,
+    std::vector<std::vector<char>>& all) const
+  {
+    return this->JoinBytes(mine, ok, true, all);
+  }
+
+private:
+  bool JoinBytes(const std::vector<char>& mine,
+    bool ok,
+    bool sameSize,
+    std::vector<std::vector<char>>& all) const
+  {
     all.clear();
     if (!this->Distributed())
     {
@@ -115,7 +135,7 @@ public:
       return ok;
     }
     std::vector<char> oks;
-    this->Gather(mine, ok, all, oks);
+    this->Gather(mine, ok, sameSize, all, oks);
     for (char rankOk : oks)
     {
       if (!rankOk)
@@ -127,7 +147,6 @@ public:
     return true;
   }
 
-private:
   int ThisRank = 0;
   int RankCount = 1;
   AllGather Gather;
@@ -153,6 +172,7 @@ public:
       static_cast<int>(this->Slots.size()),
       [this, rank](const std::vector<char>& mine,
         bool ok,
+        bool,
         std::vector<std::vector<char>>& all,
         std::vector<char>& oks) { this->Exchange(rank, mine, ok, all, oks); });
   }

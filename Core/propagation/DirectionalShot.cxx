@@ -46,30 +46,41 @@ void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
   this->Reset();
 }
 
-void LightPropagation::MatchTransposedEntries()
+void LightPropagation::MatchTransposedEntries(
+  const std::vector<std::vector<EntryKey>>& remoteRows)
 {
   const SphericalCover& cover = this->Cover;
   // Row j is sorted by (source, layer, filter), column j by receiver and then in the order of
   // the receiver's row, so one merge of the two finds, for every receiver i of column j, the
   // entry (j, i) of row j seen through the same panes (SphericalCover.h, "Panes").
-  auto compare = [&cover](uint32_t a, std::size_t entryA, uint32_t b, std::size_t entryB)
+  auto keyOf = [&cover](std::size_t entry) -> EntryKey
   {
-    return CompareEntryKeys(a,
-      cover.Layer(entryA),
-      glm::vec3(cover.Filter(entryA)),
-      b,
-      cover.Layer(entryB),
-      glm::vec3(cover.Filter(entryB)));
+    return { cover.EntryAt(entry).Source, cover.Layer(entry), glm::vec3(cover.Filter(entry)) };
   };
+  auto compare = [](const EntryKey& a, const EntryKey& b)
+  { return CompareEntryKeys(a.Source, a.Layer, a.Filter, b.Source, b.Layer, b.Filter); };
   this->ColumnBack.assign(cover.EntryCount(), NoEntry);
+  std::vector<EntryKey> local;
   for (std::size_t j = 0; j < this->PatchCount(); ++j)
   {
-    std::size_t e = cover.EntryBegin(j);
-    std::size_t k = cover.ColumnBegin(j);
-    while (e < cover.EntryEnd(j) && k < cover.ColumnEnd(j))
+    const bool remote = j < remoteRows.size() && !remoteRows[j].empty();
+    if (!remote)
     {
-      const int order = compare(
-        cover.EntryAt(e).Source, e, cover.ColumnAt(k).Receiver, cover.ColumnAt(k).EntryIndex);
+      local.clear();
+      for (std::size_t e = cover.EntryBegin(j); e < cover.EntryEnd(j); ++e)
+      {
+        local.push_back(keyOf(e));
+      }
+    }
+    const std::vector<EntryKey>& row = remote ? remoteRows[j] : local;
+    std::size_t e = 0;
+    std::size_t k = cover.ColumnBegin(j);
+    while (e < row.size() && k < cover.ColumnEnd(j))
+    {
+      const SphericalCover::ColumnEntry& item = cover.ColumnAt(k);
+      EntryKey back = keyOf(item.EntryIndex);
+      back.Source = item.Receiver;
+      const int order = compare(row[e], back);
       if (order < 0)
       {
         ++e;
@@ -80,7 +91,7 @@ void LightPropagation::MatchTransposedEntries()
       }
       else
       {
-        this->ColumnBack[k++] = static_cast<uint32_t>(e++ - cover.EntryBegin(j));
+        this->ColumnBack[k++] = static_cast<uint32_t>(e++);
       }
     }
   }

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -118,6 +119,7 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
     this->TotalEmitted += Pi * cover.PatchArea(i) * BandSum(this->Le[i]);
   }
   this->ModelOfPatch.assign(n, -1);
+  this->OwnedLast = n;
   this->Reset();
 }
 
@@ -203,16 +205,36 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   // toward every receiver (§5.2), so it is evaluated once. It is taken out before the column is
   // walked, because the shooter may be in its own column (a concave patch sees itself, h_ii)
   // and then receives part of it back.
-  const glm::dvec3 increment = this->Unshot[shooter];
-  this->Unshot[shooter] = glm::dvec3(0.0);
-  // The directional part of a non-diffuse shooter (see the file comment).
-  const bool directional =
-    this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
+  // Under a share the shooter's owner does this and sends it (ShareShot).
+  const bool owner = shooter >= this->OwnedFirst && shooter < this->OwnedLast;
+  glm::dvec3 increment(0.0);
+  glm::dvec3 mean(0.0);
+  bool directional = false;
   this->LastMeanFallbacks = 0;
   this->LastWeightEvaluations = 0;
   this->GridShot = false;
-  const glm::dvec3 mean = directional ? this->DirectionalShot(shooter) : glm::dvec3(0.0);
-  this->Power[shooter] = this->PowerOf(shooter);
+  if (owner)
+  {
+    increment = this->Unshot[shooter];
+    this->Unshot[shooter] = glm::dvec3(0.0);
+    // The directional part of a non-diffuse shooter (see the file comment).
+    directional = this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
+  }
+  else
+  {
+    // Another rank's shooter: what the scan before the shot brought (JoinScan).
+    increment = this->ScannedIncrement;
+    directional = this->ScannedDirectional;
+  }
+  if (directional)
+  {
+    mean = this->Shared() ? this->ShareDirectionalShot(shooter, owner)
+                          : this->DirectionalShot(shooter);
+  }
+  if (owner)
+  {
+    this->Power[shooter] = this->PowerOf(shooter);
+  }
   const std::size_t begin = this->Cover.ColumnBegin(shooter);
   const std::size_t end = this->Cover.ColumnEnd(shooter);
   std::size_t fallbacks = 0;
@@ -274,11 +296,12 @@ std::size_t LightPropagation::Brightest(double& power, double& total) const
   // One pass for both: this scan is the O(N) part of every shot (file comment). The sum runs
   // in four interleaved partial sums (a fixed order, so deterministic), which keeps the adds
   // from waiting on each other.
+  // Under a share, this rank's own patches (JoinScan joins the ranks').
   std::size_t best = 0;
   power = -1.0;
   double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
-  const std::size_t n = this->Power.size();
-  const double* values = this->Power.data();
+  const std::size_t n = this->OwnedLast - this->OwnedFirst;
+  const double* values = this->Power.data() + this->OwnedFirst;
   std::size_t i = 0;
   for (; i + 4 <= n; i += 4)
   {
@@ -304,7 +327,7 @@ std::size_t LightPropagation::Brightest(double& power, double& total) const
     }
   }
   total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
-  return best;
+  return this->OwnedFirst + best;
 }
 
 bool LightPropagation::Converged(double tolerance) const
@@ -342,12 +365,24 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   const double secondsBefore = this->ElapsedSeconds;
+  const bool shared = this->Shared();
+  if (shared && settings.Order != ShootingOrder::BrightestFirst)
+  {
+    throw std::invalid_argument("LightPropagation: only BrightestFirst is shared among ranks");
+  }
   double largest = 0.0;
   double unshot = 0.0;
   std::size_t brightest = this->Brightest(largest, unshot);
+  if (shared)
+  {
+    this->JoinScan(brightest, largest, unshot, false, nullptr);
+  }
   const double initialUnshot = unshot;
   double reported = 0.0;
   std::size_t shots = 0;
+  // Under a share: this rank's progress asked to stop; the ranks stop together, at the next
+  // scan they join.
+  bool stopping = false;
   // Converged(), from the scan's sum.
   const auto converged = [&]
   {
@@ -362,8 +397,17 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     }
     const std::size_t shooter =
       settings.Order == ShootingOrder::FixedOrder ? this->NextInFixedOrder() : brightest;
+    const double shotPower = largest;
     ShotRecord record = this->ShootAndRecord(shooter);
     brightest = this->Brightest(largest, unshot);
+    bool someRankStops = false;
+    if (shared)
+    {
+      // The shooter's power is known to its owner alone before the shot: the scan's.
+      record.ShotPower = shotPower;
+      record.RelativeChange = shotPower / this->TotalEmitted;
+      someRankStops = !this->JoinScan(brightest, largest, unshot, stopping, &record);
+    }
     if (!std::isfinite(unshot))
     {
       throw std::overflow_error("the unshot energy is no longer finite after shot " +
@@ -376,8 +420,12 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     record.Seconds = this->ElapsedSeconds;
     this->Shots.push_back(record);
     ++shots;
+    if (someRankStops)
+    {
+      return false;
+    }
 
-    if (progress)
+    if (progress && !stopping)
     {
       if (initialUnshot > 0.0)
       {
@@ -385,7 +433,11 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
       }
       if (!progress(reported))
       {
-        return false;
+        if (!shared)
+        {
+          return false;
+        }
+        stopping = true;
       }
     }
   }
@@ -525,6 +577,28 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
         this->ColumnMeasure[k] * this->Filtered(k, this->Le[j]);
     }
   }
+  if (this->Shared())
+  {
+    // Each patch's direct light is known to its owner alone (the others hold 0 for it).
+    std::vector<char> mine;
+    AppendBytes(mine, direct.data() + this->OwnedFirst, this->OwnedLast - this->OwnedFirst);
+    std::vector<std::vector<char>> all;
+    if (!this->Share.Join(mine, true, all))
+    {
+      throw RankShare::PeerFailure();
+    }
+    std::size_t at = 0;
+    for (const std::vector<char>& bytes : all)
+    {
+      const std::size_t values = bytes.size() / sizeof(glm::dvec3);
+      if (at + values > count)
+      {
+        throw std::runtime_error("LightPropagation: the ranks' lamp irradiances are damaged");
+      }
+      std::memcpy(direct.data() + at, bytes.data(), values * sizeof(glm::dvec3));
+      at += values;
+    }
+  }
   std::vector<glm::dvec3> lamp = direct;
   for (std::size_t j = 0; firstBounce && j < count; ++j)
   {
@@ -541,7 +615,7 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
 EnergyBalance LightPropagation::Energy() const
 {
   EnergyBalance balance;
-  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  for (std::size_t i = this->OwnedFirst; i < this->OwnedLast; ++i)
   {
     const double area = this->Cover.PatchArea(i);
     balance.Emitted += Pi * area * this->Le[i];
@@ -557,6 +631,32 @@ EnergyBalance LightPropagation::Energy() const
         const uint32_t k = this->EntryPosition[e];
         balance.Unshot += area * this->UnshotIncident[k] * this->ColumnAlbedoMeasure[k];
       }
+    }
+  }
+  if (this->Shared())
+  {
+    // Every rank's sums, added in rank order.
+    std::vector<char> mine;
+    AppendBytes(mine, &balance.Emitted, 1);
+    AppendBytes(mine, &balance.Absorbed, 1);
+    AppendBytes(mine, &balance.Unshot, 1);
+    std::vector<std::vector<char>> all;
+    if (!this->Share.Join(mine, true, all))
+    {
+      throw RankShare::PeerFailure();
+    }
+    balance = EnergyBalance();
+    for (const std::vector<char>& bytes : all)
+    {
+      glm::dvec3 sums[3];
+      if (bytes.size() != sizeof(sums))
+      {
+        throw std::runtime_error("LightPropagation: a rank's energy sums are damaged");
+      }
+      std::memcpy(sums, bytes.data(), sizeof(sums));
+      balance.Emitted += sums[0];
+      balance.Absorbed += sums[1];
+      balance.Unshot += sums[2];
     }
   }
   for (int b = 0; b < 3; ++b)

@@ -46,6 +46,7 @@
 
 #include "cover/HemisphereGrid.h"
 #include "math/ParallelFor.h"
+#include "math/RankShare.h"
 #include "reflectance/DirectionalReflection.h"
 #include "reflectance/Reflectance.h"
 #include "reflectance/ReflectanceWeights.h"
@@ -194,6 +195,28 @@ public:
   void SetExchangeFactors(const std::vector<double>& entryFactors);
   bool HasExchangeFactors() const { return this->Balanced; }
 
+  /**
+   * Under MPI (math/RankShare.h): the ranks propagate together, each over the rows of its own
+   * receivers [firstOwned, lastOwned), which is all the cover given to the constructor holds
+   * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every shot, the ranks agree
+   * on the shooter (the patch of largest unshot power over all ranks, lowest index on ties:
+   * serial's), its owner sends what it shoots (its unshot radiance; for a non-diffuse shooter
+   * its reflected radiance toward every region of its row and what serves receivers without
+   * one) and each rank updates its own receivers in column order. So every owned patch's state,
+   * and each result of an owned patch (Irradiance, ExitantRadiance, Brightness, the incident
+   * radiances of its row), is the serial one bit for bit; the history's shooters and powers
+   * are serial's, its sums over the ranks (UnshotEnergy, ReceiverUpdates) equal up to the order
+   * of addition. Call after the constructor and SetExchangeFactors (whose factors are then the
+   * kept rows'); collective (the ranks exchange the keys of their non-diffuse rows once). Run
+   * is then collective and BrightestFirst only, Energy and LampIrradiance are collective, the
+   * other results are of owned patches only. Throws std::invalid_argument for a range out of
+   * bounds or a row outside it that is not empty.
+   */
+  void SetRankShare(RankShare share, std::size_t firstOwned, std::size_t lastOwned);
+  /// The patches whose rows and results this rank holds (every patch without a share).
+  std::size_t OwnedBegin() const { return this->OwnedFirst; }
+  std::size_t OwnedEnd() const { return this->OwnedLast; }
+
   /// Back to the start: E = 0, unshot radiance = emission, no history.
   void Reset();
 
@@ -268,6 +291,7 @@ public:
   double UnshotEnergy() const;
   /// Emitted power summed over the bands, W.
   double EmittedPower() const { return this->TotalEmitted; }
+  /// Under a share: collective, the sums over every rank's patches (the same on every rank).
   EnergyBalance Energy() const;
   /**
    * The lamps' light at every point as the cover's regions carry it, per band (W m^-2): the
@@ -301,8 +325,29 @@ private:
   // The non-diffuse shots (DirectionalShot.cxx).
   /// Sets up the non-diffuse machinery (models, weight tables, transposed entries).
   void SetUpModels(const std::vector<Material>& materialOfPatch);
-  /// ColumnBack: for every entry (i, j) of column j the position of (j, i) in row j, if any.
-  void MatchTransposedEntries();
+  /// What orders a row's entries (CompareEntryKeys): for rows another rank holds.
+  struct EntryKey
+  {
+    uint32_t Source;
+    uint32_t Layer;
+    glm::vec3 Filter;
+  };
+  /// ColumnBack: for every entry (i, j) of column j the position of (j, i) in row j, if any;
+  /// row j from `remoteRows[j]` where that is not empty (the keys of another rank's row).
+  void MatchTransposedEntries(const std::vector<std::vector<EntryKey>>& remoteRows = {});
+  // Under a share (SharedPropagation.cxx).
+  /// Every rank's brightest own patch (with its unshot radiance and whether its shot is
+  /// directional), unshot energy, whether it stops and the last shot's counts, joined: the
+  /// shooter, its power and the total unshot energy, the counts summed into `record` (when
+  /// given); false when some rank stops.
+  bool JoinScan(std::size_t& brightest, double& largest, double& unshot, bool stop,
+    ShotRecord* record);
+  /// A non-diffuse shot's data (DirectionalShot's results) from the shooter's owner to every
+  /// rank; returns the mean exitant radiance.
+  glm::dvec3 ShareDirectionalShot(std::size_t shooter, bool owner);
+  /// The values of one rank's scan (JoinScan).
+  static constexpr std::size_t ScanValues = 11;
+  bool Shared() const { return this->Share.Distributed(); }
   /// ColumnAlbedoMeasure: a_e Omega_e of every entry of a non-diffuse row.
   void ComputeAlbedoMeasures();
   /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
@@ -402,6 +447,13 @@ private:
   std::size_t LastWeightEvaluations = 0;
   std::size_t LastFallbacks = 0;
   std::size_t LastMeanFallbacks = 0;
+  /// Under MPI (SetRankShare): the ranks and this rank's receivers.
+  RankShare Share;
+  std::size_t OwnedFirst = 0;
+  std::size_t OwnedLast = 0;
+  /// The shooter's unshot radiance and whether its shot is directional, from the last scan.
+  glm::dvec3 ScannedIncrement{ 0.0 };
+  bool ScannedDirectional = false;
 };
 
 } // namespace sphcover

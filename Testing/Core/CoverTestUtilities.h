@@ -98,6 +98,41 @@ struct CoveredScene
   }
 };
 
+/// The ray fill with every surface's pane transmittance (Material::Transmittance).
+inline sphcover::SphericalCoverOptions PaneOptions(const sphcover::Scene& scene, int theta, int phi)
+{
+  sphcover::SphericalCoverOptions options;
+  options.ThetaBins = theta;
+  options.PhiBins = phi;
+  options.Fill = sphcover::RBufferFill::RayCasting;
+  for (const sphcover::Surface& surface : scene.Surfaces)
+  {
+    options.SurfaceTransmittance.push_back(
+      glm::vec3(scene.Materials[static_cast<size_t>(surface.MaterialIndex)].Transmittance));
+  }
+  return options;
+}
+
+/// A scene with panes split uniformly (SplitScene) and its cover by the ray fill through them.
+struct PaneScene
+{
+  sphcover::Scene Environment;
+  std::vector<sphcover::Patch> Patches;
+  sphcover::SphericalCover Cover;
+  std::vector<sphcover::Material> Materials;
+
+  PaneScene(const sphcover::Scene& scene, int split, int theta = 16, int phi = 64)
+    : Environment(scene)
+    , Patches(SplitScene(scene, split))
+  {
+    if (!this->Cover.Build(this->Patches, PaneOptions(scene, theta, phi), sphcover::ThreadedFor(2)))
+    {
+      throw std::runtime_error("cover not built");
+    }
+    this->Materials = sphcover::LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
+  }
+};
+
 /// The real pipeline at a scene's own settings (as sphcover solve and the filters run it): the
 /// interval subdivision to `maxLevel`, the cover refinement `extraLevels` deeper (receiver side
 /// only unless `hemispheres`), the cover of the refined patches. Throws std::runtime_error when

@@ -27,40 +27,6 @@ using namespace sphcover_test;
 
 namespace
 {
-/// The ray fill with every surface's pane transmittance (Material::Transmittance).
-SphericalCoverOptions PaneOptions(const Scene& scene, int theta, int phi)
-{
-  SphericalCoverOptions options;
-  options.ThetaBins = theta;
-  options.PhiBins = phi;
-  options.Fill = RBufferFill::RayCasting;
-  for (const Surface& surface : scene.Surfaces)
-  {
-    options.SurfaceTransmittance.push_back(
-      glm::vec3(scene.Materials[static_cast<size_t>(surface.MaterialIndex)].Transmittance));
-  }
-  return options;
-}
-
-struct PaneScene
-{
-  Scene Environment;
-  std::vector<Patch> Patches;
-  SphericalCover Cover;
-  std::vector<Material> Materials;
-
-  PaneScene(const Scene& scene, int split, int theta = 16, int phi = 64)
-    : Environment(scene)
-    , Patches(SplitScene(scene, split))
-  {
-    if (!this->Cover.Build(this->Patches, PaneOptions(scene, theta, phi), ThreadedFor(2)))
-    {
-      throw std::runtime_error("cover not built");
-    }
-    this->Materials = LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
-  }
-};
-
 /// Every patch's irradiance at equilibrium.
 std::vector<glm::dvec3> Equilibrium(const PaneScene& setup, bool balanced)
 {

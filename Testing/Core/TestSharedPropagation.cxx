@@ -1,0 +1,279 @@
+// SPDX-License-Identifier: BSD-3-Clause
+// The propagation shared among ranks (LightPropagation::SetRankShare): each rank holds the rows
+// of its own receivers (SphericalCover::RowsOf), the ranks agree on every shooter and its owner
+// sends what it shoots. Every owned patch's results must be the serial ones bit for bit, for
+// Lambertian, mirror, phong and tabulated shooters (strip-pair and grid shots), whatever the
+// number of ranks (run here as threads, InProcessRanks).
+#include "CoverTestUtilities.h"
+#include "cover/BrightEmitters.h"
+#include "cover/HemisphereGrid.h"
+#include "math/RankShare.h"
+#include "propagation/LightPropagation.h"
+#include "scene/SceneLoader.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <string>
+#include <vector>
+
+using namespace sphcover;
+using namespace sphcover_test;
+
+namespace
+{
+
+bool SameBits(const glm::dvec3& a, const glm::dvec3& b)
+{
+  return std::memcmp(&a, &b, sizeof(a)) == 0;
+}
+
+std::vector<HemisphereFrame> FramesOf(const std::vector<Patch>& patches)
+{
+  std::vector<HemisphereFrame> frames;
+  for (const Patch& patch : patches)
+  {
+    frames.push_back(HemisphereFrame::OfPatch(patch));
+  }
+  return frames;
+}
+
+/// What a rank's propagation gives for its own patches, to compare with serial.
+struct RankResult
+{
+  bool Converged = false;
+  std::string Failure;
+  std::size_t First = 0;
+  std::size_t Last = 0;
+  std::vector<ShotRecord> History;
+  std::vector<glm::dvec3> Irradiance;
+  std::vector<glm::dvec3> Brightness;
+  std::vector<glm::dvec3> Toward;
+  std::vector<glm::dvec3> Incident;
+  std::vector<glm::dvec3> Lamp;
+  EnergyBalance Energy;
+};
+
+/// Runs the propagation of `cover` with `materials` serially and on `ranks` ranks, and checks
+/// the ranks' results against the serial ones.
+void ExpectSharedEqualsSerial(const SphericalCover& cover,
+  const std::vector<Patch>& patches,
+  const std::vector<Material>& materials,
+  int ranks,
+  DirectionalMethod method = DirectionalMethod::Automatic)
+{
+  SCOPED_TRACE(testing::Message() << ranks << " ranks");
+  const std::vector<HemisphereFrame> frames = FramesOf(patches);
+  std::vector<glm::dvec3> emission;
+  for (const Material& material : materials)
+  {
+    emission.push_back(material.Emission);
+  }
+  const std::vector<bool> lampSurfaces = BrightEmitters(patches, emission);
+  std::vector<bool> lamps;
+  for (const Patch& patch : patches)
+  {
+    const std::size_t surface = static_cast<std::size_t>(patch.SurfaceIndex);
+    lamps.push_back(surface < lampSurfaces.size() && lampSurfaces[surface]);
+  }
+  const glm::dvec3 oblique = HemisphereGrid::LocalDirection(1.0, 2.0);
+  PropagationSettings settings;
+  settings.ConvergenceTolerance = 1e-6;
+
+  LightPropagation serial(cover, materials);
+  serial.SetFrames(frames);
+  serial.SetDirectionalMethod(method);
+  ASSERT_TRUE(serial.Run(settings));
+  const std::vector<glm::dvec3> serialLamp = serial.LampIrradiance(lamps, true);
+
+  InProcessRanks world(ranks);
+  std::vector<RankResult> results(static_cast<std::size_t>(ranks));
+  world.Run(
+    [&](const RankShare& share, int rank)
+    {
+      RankResult& result = results[static_cast<std::size_t>(rank)];
+      try
+      {
+        const auto range = RankShare::RangeOf(cover.PatchCount(), rank, ranks);
+        result.First = range.first;
+        result.Last = range.second;
+        const SphericalCover rows = cover.RowsOf(range.first, range.second);
+        LightPropagation shared(rows, materials);
+        shared.SetFrames(frames);
+        shared.SetDirectionalMethod(method);
+        shared.SetRankShare(share, range.first, range.second);
+        result.Converged = shared.Run(settings);
+        result.History = shared.History();
+        for (std::size_t i = range.first; i < range.second; ++i)
+        {
+          result.Irradiance.push_back(shared.Irradiance(i));
+          result.Brightness.push_back(shared.Brightness(i));
+          result.Toward.push_back(shared.ExitantRadianceToward(i, oblique));
+        }
+        result.Incident = shared.IncidentRadiances();
+        result.Lamp = shared.LampIrradiance(lamps, true);
+        result.Energy = shared.Energy();
+      }
+      catch (const std::exception& e)
+      {
+        result.Failure = e.what();
+      }
+    });
+
+  const EnergyBalance serialEnergy = serial.Energy();
+  for (int rank = 0; rank < ranks; ++rank)
+  {
+    SCOPED_TRACE(testing::Message() << "rank " << rank);
+    const RankResult& result = results[static_cast<std::size_t>(rank)];
+    ASSERT_EQ(result.Failure, "");
+    EXPECT_TRUE(result.Converged);
+    ASSERT_EQ(result.History.size(), serial.History().size());
+    for (std::size_t s = 0; s < result.History.size(); ++s)
+    {
+      const ShotRecord& a = result.History[s];
+      const ShotRecord& b = serial.History()[s];
+      ASSERT_EQ(a.Shooter, b.Shooter) << "shot " << s;
+      ASSERT_EQ(a.ShotPower, b.ShotPower) << "shot " << s;
+      ASSERT_EQ(a.ReceiverUpdates, b.ReceiverUpdates) << "shot " << s;
+      ASSERT_EQ(a.Fallbacks, b.Fallbacks) << "shot " << s;
+      ASSERT_EQ(a.MeanFallbacks, b.MeanFallbacks) << "shot " << s;
+      ASSERT_EQ(a.GridShot, b.GridShot) << "shot " << s;
+      ASSERT_NEAR(a.UnshotEnergy, b.UnshotEnergy, 1e-12 * b.UnshotEnergy + 1e-300);
+    }
+    for (std::size_t i = result.First; i < result.Last; ++i)
+    {
+      const std::size_t k = i - result.First;
+      ASSERT_TRUE(SameBits(result.Irradiance[k], serial.Irradiance(i))) << "patch " << i;
+      ASSERT_TRUE(SameBits(result.Brightness[k], serial.Brightness(i))) << "patch " << i;
+      ASSERT_TRUE(SameBits(result.Toward[k], serial.ExitantRadianceToward(i, oblique)))
+        << "patch " << i;
+      ASSERT_TRUE(SameBits(result.Lamp[i], serialLamp[i])) << "patch " << i;
+    }
+    // The rows' incident radiances are the serial ones, entry e of the rank's rows being entry
+    // e + EntryBegin(First) of the cover.
+    const std::size_t offset = cover.EntryBegin(result.First);
+    ASSERT_EQ(result.Incident.size(), cover.EntryBegin(result.Last) - offset);
+    const std::vector<glm::dvec3>& serialIncident = serial.IncidentRadiances();
+    for (std::size_t e = 0; e < result.Incident.size(); ++e)
+    {
+      ASSERT_TRUE(SameBits(result.Incident[e], serialIncident[offset + e])) << "entry " << e;
+    }
+    for (int b = 0; b < 3; ++b)
+    {
+      EXPECT_NEAR(result.Energy.Emitted[b], serialEnergy.Emitted[b], 1e-12 * serialEnergy.Emitted[b]);
+      EXPECT_NEAR(
+        result.Energy.Absorbed[b], serialEnergy.Absorbed[b], 1e-12 * serialEnergy.Emitted[b]);
+      EXPECT_NEAR(result.Energy.Unshot[b], serialEnergy.Unshot[b], 1e-12 * serialEnergy.Emitted[b]);
+    }
+  }
+}
+
+Material Mirror(const glm::dvec3& ks)
+{
+  Material m;
+  m.Name = "mirror";
+  m.Type = MaterialType::Mirror;
+  m.Specular = ks;
+  return m;
+}
+
+Material Phong(const glm::dvec3& kd, const glm::dvec3& ks, double n)
+{
+  Material m;
+  m.Name = "phong";
+  m.Type = MaterialType::Phong;
+  m.Diffuse = kd;
+  m.Specular = ks;
+  m.PhongExponent = n;
+  return m;
+}
+
+Material Clay()
+{
+  Material m;
+  m.Name = "clay";
+  m.Type = MaterialType::Tabulated;
+  m.TableFile = std::string(SPHCOVER_DATA_DIR) + "/brdf/clay.brdf.csv";
+  return m;
+}
+
+Material Diffuse(const glm::dvec3& rho, const glm::dvec3& le = glm::dvec3(0.0))
+{
+  Material m;
+  m.Name = "diffuse";
+  m.Type = MaterialType::Diffuse;
+  m.Diffuse = rho;
+  m.Emission = le;
+  return m;
+}
+
+} // namespace
+
+TEST(SharedPropagation, CornellBoxEqualsSerial)
+{
+  const CoveredScene setup("cornell_box.scene", 3);
+  for (const int ranks : { 2, 3 })
+  {
+    ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, ranks);
+  }
+}
+
+// Mirror, phong and tabulated shooters send their row's radiances and in-strips (strip-pair
+// shots) or their grid (grid shots) to the other ranks.
+TEST(SharedPropagation, MixedMaterialsEqualSerial)
+{
+  const CoveredScene setup("furnace_box.scene", 2);
+  const std::vector<Material> ofSurface = { Diffuse(glm::dvec3(0.5), glm::dvec3(1.0, 2.0, 3.0)),
+    Mirror(glm::dvec3(0.9, 0.8, 0.7)),
+    Phong(glm::dvec3(0.3, 0.2, 0.1), glm::dvec3(0.5, 0.4, 0.6), 30.0),
+    Clay(),
+    Diffuse(glm::dvec3(0.7, 0.6, 0.5)),
+    Phong(glm::dvec3(0.1), glm::dvec3(0.8), 5.0) };
+  std::vector<Material> materials;
+  for (const Patch& patch : setup.Patches)
+  {
+    materials.push_back(ofSurface.at(static_cast<size_t>(patch.SurfaceIndex) % ofSurface.size()));
+  }
+  for (const DirectionalMethod method : { DirectionalMethod::StripPairs, DirectionalMethod::Grid })
+  {
+    SCOPED_TRACE(testing::Message() << "method " << static_cast<int>(method));
+    for (const int ranks : { 2, 3 })
+    {
+      ExpectSharedEqualsSerial(setup.Cover, setup.Patches, materials, ranks, method);
+    }
+  }
+}
+
+// Panes (paper §5.4): the transposed entries another rank's receivers match are those seen
+// through the same panes (the keys exchanged by SetRankShare carry layer and filter).
+TEST(SharedPropagation, PanesEqualSerial)
+{
+  std::ifstream file(ScenePath("mixed_box.scene"));
+  nlohmann::json scene = nlohmann::json::parse(file);
+  scene["materials"]["glass"] = { { "type", "diffuse" },
+    { "reflectance", { 0.1, 0.1, 0.1 } },
+    { "transmittance", { 0.7, 0.6, 0.8 } } };
+  scene["surfaces"].push_back({ { "name", "pane" },
+    { "type", "bilinear" },
+    { "material", "glass" },
+    { "points",
+      { { 1.0 / 3.0, 0, 0 }, { 1.0 / 3.0, 1, 0 }, { 1.0 / 3.0, 1, 1 }, { 1.0 / 3.0, 0, 1 } } } });
+  const PaneScene setup(ParseScene(scene.dump(), ScenePath("mixed_box.scene")), 3, 8, 32);
+  ASSERT_TRUE(setup.Cover.HasPanes());
+  ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, 3);
+}
+
+// A rank whose rows are not its own is refused; so is a range out of bounds.
+TEST(SharedPropagation, RefusesRowsOutsideTheRange)
+{
+  const CoveredScene setup("cornell_box.scene", 1);
+  LightPropagation whole(setup.Cover, setup.Materials);
+  InProcessRanks world(2);
+  EXPECT_THROW(whole.SetRankShare(world.Share(0), 0, 3), std::invalid_argument);
+  EXPECT_THROW(whole.SetRankShare(world.Share(0), 3, 2), std::invalid_argument);
+  EXPECT_THROW(
+    whole.SetRankShare(world.Share(0), 0, setup.Cover.PatchCount() + 1), std::invalid_argument);
+}
