@@ -3,6 +3,7 @@
 
 #include "vtkCoverPatches.h"
 #include "vtkIlluminationAdapter.h"
+#include "vtkScenePieces.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
@@ -241,6 +242,20 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
   vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  // Pieces > 0 idle: the whole solution is piece 0 (vtkScenePieces.h), as under
+  // `mpiexec -n K pvbatch --symmetric`.
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, illumination);
+  if (role != vtkScenePieces::Role::WholeScene)
+  {
+    output->Initialize();
+    if (role == vtkScenePieces::Role::PartialScene)
+    {
+      vtkErrorMacro(<< "Cannot build the illumination field: "
+                    << vtkScenePieces::PartialSceneError(outputVector) << ".");
+      return 0;
+    }
+    return 1;
+  }
   if (!illumination || !patchesInput)
   {
     vtkErrorMacro(<< "Cannot build the illumination field: connect the illumination "

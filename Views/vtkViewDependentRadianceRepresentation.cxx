@@ -159,8 +159,15 @@ int vtkViewDependentRadianceRepresentation::RequestData(vtkInformation* request,
   {
     return 1;
   }
+  // An empty piece (a rank other than 0 under `mpiexec pvbatch`, vtkScenePieces.h): nothing to
+  // show, and nothing wrong.
+  vtkDataObject* data = vtkDataObject::GetData(inputVector[0], 0);
+  if (!data || data->GetNumberOfElements(vtkDataObject::POINT) == 0)
+  {
+    return 1;
+  }
   std::string problem;
-  if (!CanShow(vtkDataObject::GetData(inputVector[0], 0), problem))
+  if (!CanShow(data, problem))
   {
     vtkErrorMacro(<< "View-Dependent Radiance cannot show this data: " << problem
                   << ". Showing it without the view-dependent radiance.");
