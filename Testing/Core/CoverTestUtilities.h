@@ -23,6 +23,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -132,6 +133,20 @@ struct PaneScene
     this->Materials = sphcover::LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
   }
 };
+
+/// Adds to mixed_box.scene's JSON a pane across the box at x = 1/3 (on the walls' patch
+/// boundaries at split 3), diffuse 0.1, transmittance (0.7, 0.6, 0.8).
+inline void AddPaneAcrossMixedBox(nlohmann::json& scene)
+{
+  scene["materials"]["glass"] = { { "type", "diffuse" },
+    { "reflectance", { 0.1, 0.1, 0.1 } },
+    { "transmittance", { 0.7, 0.6, 0.8 } } };
+  scene["surfaces"].push_back({ { "name", "pane" },
+    { "type", "bilinear" },
+    { "material", "glass" },
+    { "points",
+      { { 1.0 / 3.0, 0, 0 }, { 1.0 / 3.0, 1, 0 }, { 1.0 / 3.0, 1, 1 }, { 1.0 / 3.0, 0, 1 } } } });
+}
 
 /// The real pipeline at a scene's own settings (as sphcover solve and the filters run it): the
 /// interval subdivision to `maxLevel`, the cover refinement `extraLevels` deeper (receiver side

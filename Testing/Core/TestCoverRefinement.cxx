@@ -311,6 +311,24 @@ TEST(CoverRefinement, ClosedScenesStayClosed)
   }
 }
 
+namespace
+{
+/// The same patch list, rectangle for rectangle (exactly).
+void ExpectSamePatches(const std::vector<Patch>& a, const std::vector<Patch>& b)
+{
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k)
+  {
+    ASSERT_EQ(a[k].SurfaceIndex, b[k].SurfaceIndex) << "patch " << k;
+    ASSERT_EQ(a[k].Domain.U0, b[k].Domain.U0) << "patch " << k;
+    ASSERT_EQ(a[k].Domain.U1, b[k].Domain.U1) << "patch " << k;
+    ASSERT_EQ(a[k].Domain.V0, b[k].Domain.V0) << "patch " << k;
+    ASSERT_EQ(a[k].Domain.V1, b[k].Domain.V1) << "patch " << k;
+    ASSERT_EQ(a[k].Level, b[k].Level) << "patch " << k;
+  }
+}
+}
+
 TEST(CoverRefinement, DeterministicWhateverTheThreads)
 {
   const Scene scene = FurnaceBoxWithOccluder();
@@ -320,19 +338,8 @@ TEST(CoverRefinement, DeterministicWhateverTheThreads)
   CoverRefinement threaded(scene, before, pipeline.Refinement);
   ASSERT_TRUE(sequential.Run(nullptr, SequentialFor));
   ASSERT_TRUE(threaded.Run(nullptr, ThreadedFor(3)));
-  const std::vector<Patch> a = sequential.Patches();
-  const std::vector<Patch> b = threaded.Patches();
-  ASSERT_EQ(a.size(), b.size());
-  ASSERT_GT(a.size(), before.size());
-  for (size_t k = 0; k < a.size(); ++k)
-  {
-    ASSERT_EQ(a[k].SurfaceIndex, b[k].SurfaceIndex);
-    ASSERT_EQ(a[k].Domain.U0, b[k].Domain.U0);
-    ASSERT_EQ(a[k].Domain.U1, b[k].Domain.U1);
-    ASSERT_EQ(a[k].Domain.V0, b[k].Domain.V0);
-    ASSERT_EQ(a[k].Domain.V1, b[k].Domain.V1);
-    ASSERT_EQ(a[k].Level, b[k].Level);
-  }
+  ASSERT_GT(sequential.Patches().size(), before.size());
+  ExpectSamePatches(threaded.Patches(), sequential.Patches());
   EXPECT_EQ(sequential.Statistics().RowsAnalysed, threaded.Statistics().RowsAnalysed);
   EXPECT_EQ(sequential.Statistics().LimitedRequests, threaded.Statistics().LimitedRequests);
 }
@@ -368,17 +375,7 @@ TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
     for (int rank = 0; rank < ranks; ++rank)
     {
       SCOPED_TRACE(testing::Message() << "rank " << rank << " of " << ranks);
-      const std::vector<Patch>& b = results[static_cast<std::size_t>(rank)];
-      ASSERT_EQ(b.size(), expected.size());
-      for (size_t k = 0; k < b.size(); ++k)
-      {
-        ASSERT_EQ(b[k].SurfaceIndex, expected[k].SurfaceIndex);
-        ASSERT_EQ(b[k].Domain.U0, expected[k].Domain.U0);
-        ASSERT_EQ(b[k].Domain.U1, expected[k].Domain.U1);
-        ASSERT_EQ(b[k].Domain.V0, expected[k].Domain.V0);
-        ASSERT_EQ(b[k].Domain.V1, expected[k].Domain.V1);
-        ASSERT_EQ(b[k].Level, expected[k].Level);
-      }
+      ExpectSamePatches(results[static_cast<std::size_t>(rank)], expected);
       const RefinementStatistics& s = statistics[static_cast<std::size_t>(rank)];
       EXPECT_EQ(s.Rounds, serial.Statistics().Rounds);
       EXPECT_EQ(s.RowsAnalysed, serial.Statistics().RowsAnalysed);

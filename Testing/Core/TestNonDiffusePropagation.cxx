@@ -8,6 +8,7 @@
 #include "propagation/LightPropagation.h"
 
 #include "CoverTestUtilities.h"
+#include "MaterialTestUtilities.h"
 #include "cover/HemisphereGrid.h"
 #include "cover/SphericalCover.h"
 #include "math/Constants.h"
@@ -63,51 +64,6 @@ struct CoveredPatches : CoveredScene
     return MaterialsPerPatch(this->Patches, ofSurface);
   }
 };
-
-Material Mirror(const glm::dvec3& ks, const glm::dvec3& le = glm::dvec3(0.0))
-{
-  Material m;
-  m.Name = "mirror";
-  m.Type = MaterialType::Mirror;
-  m.Specular = ks;
-  m.Emission = le;
-  return m;
-}
-
-Material Phong(const glm::dvec3& kd,
-  const glm::dvec3& ks,
-  double n,
-  const glm::dvec3& le = glm::dvec3(0.0))
-{
-  Material m;
-  m.Name = "phong";
-  m.Type = MaterialType::Phong;
-  m.Diffuse = kd;
-  m.Specular = ks;
-  m.PhongExponent = n;
-  m.Emission = le;
-  return m;
-}
-
-Material Clay(const glm::dvec3& le = glm::dvec3(0.0))
-{
-  Material m;
-  m.Name = "clay";
-  m.Type = MaterialType::Tabulated;
-  m.TableFile = std::string(SPHCOVER_DATA_DIR) + "/brdf/clay.brdf.csv";
-  m.Emission = le;
-  return m;
-}
-
-Material Diffuse(const glm::dvec3& rho, const glm::dvec3& le = glm::dvec3(0.0))
-{
-  Material m;
-  m.Name = "diffuse";
-  m.Type = MaterialType::Diffuse;
-  m.Diffuse = rho;
-  m.Emission = le;
-  return m;
-}
 
 /// The largest relative deviation from `expected` of the incident radiance of the cover's
 /// entries (every region of every hemisphere).

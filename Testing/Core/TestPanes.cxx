@@ -314,14 +314,7 @@ TEST(Panes, ClosedSceneOfEveryReflectanceKindWithAPaneAbsorbsWhatItEmits)
     EXPECT_TRUE(propagation.Run(settings));
     return propagation.Energy().RelativeImbalance;
   }();
-  scene["materials"]["glass"] = { { "type", "diffuse" },
-    { "reflectance", { 0.1, 0.1, 0.1 } },
-    { "transmittance", { 0.7, 0.6, 0.8 } } };
-  scene["surfaces"].push_back({ { "name", "pane" },
-    { "type", "bilinear" },
-    { "material", "glass" },
-    { "points",
-      { { 1.0 / 3.0, 0, 0 }, { 1.0 / 3.0, 1, 0 }, { 1.0 / 3.0, 1, 1 }, { 1.0 / 3.0, 0, 1 } } } });
+  AddPaneAcrossMixedBox(scene);
   const PaneScene setup(ParseScene(scene.dump(), ScenePath("mixed_box.scene")), 3);
   ASSERT_TRUE(setup.Cover.HasPanes());
   LightPropagation propagation(setup.Cover, setup.Materials);

@@ -5,6 +5,7 @@
 // Lambertian, mirror, phong and tabulated shooters (strip-pair and grid shots), whatever the
 // number of ranks (run here as threads, InProcessRanks).
 #include "CoverTestUtilities.h"
+#include "MaterialTestUtilities.h"
 #include "cover/BrightEmitters.h"
 #include "cover/HemisphereGrid.h"
 #include "math/RankShare.h"
@@ -171,45 +172,6 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
   }
 }
 
-Material Mirror(const glm::dvec3& ks)
-{
-  Material m;
-  m.Name = "mirror";
-  m.Type = MaterialType::Mirror;
-  m.Specular = ks;
-  return m;
-}
-
-Material Phong(const glm::dvec3& kd, const glm::dvec3& ks, double n)
-{
-  Material m;
-  m.Name = "phong";
-  m.Type = MaterialType::Phong;
-  m.Diffuse = kd;
-  m.Specular = ks;
-  m.PhongExponent = n;
-  return m;
-}
-
-Material Clay()
-{
-  Material m;
-  m.Name = "clay";
-  m.Type = MaterialType::Tabulated;
-  m.TableFile = std::string(SPHCOVER_DATA_DIR) + "/brdf/clay.brdf.csv";
-  return m;
-}
-
-Material Diffuse(const glm::dvec3& rho, const glm::dvec3& le = glm::dvec3(0.0))
-{
-  Material m;
-  m.Name = "diffuse";
-  m.Type = MaterialType::Diffuse;
-  m.Diffuse = rho;
-  m.Emission = le;
-  return m;
-}
-
 } // namespace
 
 TEST(SharedPropagation, CornellBoxEqualsSerial)
@@ -253,14 +215,7 @@ TEST(SharedPropagation, PanesEqualSerial)
 {
   std::ifstream file(ScenePath("mixed_box.scene"));
   nlohmann::json scene = nlohmann::json::parse(file);
-  scene["materials"]["glass"] = { { "type", "diffuse" },
-    { "reflectance", { 0.1, 0.1, 0.1 } },
-    { "transmittance", { 0.7, 0.6, 0.8 } } };
-  scene["surfaces"].push_back({ { "name", "pane" },
-    { "type", "bilinear" },
-    { "material", "glass" },
-    { "points",
-      { { 1.0 / 3.0, 0, 0 }, { 1.0 / 3.0, 1, 0 }, { 1.0 / 3.0, 1, 1 }, { 1.0 / 3.0, 0, 1 } } } });
+  AddPaneAcrossMixedBox(scene);
   const PaneScene setup(ParseScene(scene.dump(), ScenePath("mixed_box.scene")), 3, 8, 32);
   ASSERT_TRUE(setup.Cover.HasPanes());
   ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, 3);
