@@ -566,6 +566,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkTable* history = vtkTable::GetData(outputVector, 1);
   this->Shots = 0;
+  this->RankFigures.clear();
 
   // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
   const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, inputData);
@@ -683,6 +684,27 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       return 0;
     }
     results = ResultsOf(propagation, ranks, lampPatch, firstBounce);
+    if (controller)
+    {
+      // What each rank held and did (GetRankFigures), gathered in rank order.
+      const double mine[4] = { static_cast<double>(ranks.Last - ranks.First),
+        static_cast<double>(rows.EntryCount()),
+        static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)),
+        propagation.History().empty() ? 0.0 : propagation.History().back().Seconds };
+      std::vector<char> bytes;
+      sphcover::AppendBytes(bytes, mine, 4);
+      std::vector<std::vector<char>> all;
+      if (!ranks.Share.JoinSameSize(bytes, true, all))
+      {
+        throw sphcover::RankShare::PeerFailure();
+      }
+      for (const std::vector<char>& block : all)
+      {
+        double theirs[4];
+        std::memcpy(theirs, block.data(), sizeof(theirs));
+        this->RankFigures.insert(this->RankFigures.end(), theirs, theirs + 4);
+      }
+    }
     this->Shots = static_cast<int>(propagation.History().size());
     WriteShotHistory(propagation.History(), watts, history);
   }

@@ -62,6 +62,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // for std::string
+#include <vector> // for std::vector
 
 class vtkMultiProcessController;
 class vtkTable;
@@ -130,6 +131,14 @@ public:
   /// Shots of the last update.
   vtkGetMacro(Shots, int);
 
+  /**
+   * When the last update propagated on K > 1 ranks: per rank, in rank order, 4 values: its
+   * receivers, the entries of its rows, the estimated bytes of its propagation state
+   * (LightPropagation::EstimateBytes of its rows) and the seconds of its shooting. Empty
+   * otherwise. Measurements, not part of the output.
+   */
+  const std::vector<double>& GetRankFigures() const { return this->RankFigures; }
+
   ///@{
   /**
    * The processes that propagate together (see above); nullptr or one process: this process
@@ -167,6 +176,7 @@ protected:
   double MemoryLimit = 8192.0;
   int Shots = 0;
   vtkMultiProcessController* Controller = nullptr;
+  std::vector<double> RankFigures;
 
 private:
   vtkLightPropagationFilter(const vtkLightPropagationFilter&) = delete;

@@ -149,6 +149,21 @@ nlohmann::json SolutionReport(Solution& solution)
           { "bytes", static_cast<long long>(ranks->GetComponent(r, 2)) } });
     }
   }
+  // The ranks the propagation ran on (vtkLightPropagationFilter::GetRankFigures): per rank its
+  // receivers, the entries of its rows, the bytes of its propagation state and its seconds.
+  const std::vector<double>& shooting = solution.Propagation->GetRankFigures();
+  if (shooting.size() >= 4)
+  {
+    report["propagation_ranks"] = nlohmann::json::array();
+    for (std::size_t r = 0; r + 4 <= shooting.size(); r += 4)
+    {
+      report["propagation_ranks"].push_back(
+        { { "receivers", static_cast<long long>(shooting[r]) },
+          { "entries", static_cast<long long>(shooting[r + 1]) },
+          { "state_bytes", static_cast<long long>(shooting[r + 2]) },
+          { "seconds", shooting[r + 3] } });
+    }
+  }
   // What the solution holds: the cover (its strips, entries and rows, paper §3.3, stored as the
   // cover output's field arrays) and the propagation's state of one incident radiance per
   // region h_ij (§5.1). The stages' working memory (R-buffers, weight tables) comes and goes.

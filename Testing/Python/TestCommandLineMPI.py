@@ -72,6 +72,20 @@ def compare(serial, parallel, ranks):
         failures.append(f"{ranks} ranks: cover_ranks {rows}")
     elif sum(r["receivers"] for r in rows) != serial["counts"]["characteristic_points"]:
         failures.append(f"{ranks} ranks: the ranks' receivers do not add up: {rows}")
+    # The propagation on the ranks: each rank's receivers and rows, whose state is its own
+    # share (memory per rank falls with K), and the serial shots.
+    shooting = parallel.get("propagation_ranks", [])
+    if parallel["counts"]["shots"] != serial["counts"]["shots"]:
+        failures.append(f"{ranks} ranks: {parallel['counts']['shots']} shots, serial "
+                        f"{serial['counts']['shots']}")
+    if len(shooting) != ranks or any(r["receivers"] <= 0 or r["state_bytes"] <= 0
+                                     for r in shooting):
+        failures.append(f"{ranks} ranks: propagation_ranks {shooting}")
+    elif sum(r["receivers"] for r in shooting) != serial["counts"]["characteristic_points"]:
+        failures.append(f"{ranks} ranks: the propagation's receivers do not add up: {shooting}")
+    elif max(r["state_bytes"] for r in shooting) > 0.8 * sum(r["state_bytes"] for r in shooting):
+        failures.append(f"{ranks} ranks: one rank holds most of the propagation's state: "
+                        f"{shooting}")
 
 
 with tempfile.TemporaryDirectory() as folder:
