@@ -1,10 +1,13 @@
-"""sphcover under mpiexec (issue 19): the spherical cover's rows built on 2 and 3 ranks give the
-serial solution, and a failure is one clear error with a non-zero exit, without a hang.
+"""sphcover under mpiexec (issue 19): the solve (the cover's rows, the direct light, the propagation)
+on 2 and 3 ranks gives the serial solution, and a failure is one clear error with a non-zero exit,
+without a hang.
 
 - `sphcover render` of the Cornell box (small grid and subdivision) serially and under
   `mpiexec -n 2` and `-n 3` (3 ranks oversubscribe a 2-core machine): the reports' form factors
   and mean radiances equal the serial ones to 1e-12 relative (they are in fact the same bits),
   the images are equal byte for byte, and the report says "ranks" and each rank's rows;
+- a walk through a solved scene under `mpiexec -n 2`: the serial walk's three frames, byte for
+  byte;
 - a scene that does not load, under `mpiexec -n 2`: a non-zero exit within the timeout and one
   `sphcover: error:` line (rank 0 speaks; every rank fails alike).
 Without mpiexec on the PATH the test is skipped (exit 77) with a message.
@@ -99,6 +102,28 @@ with tempfile.TemporaryDirectory() as folder:
         compare(serial, parallel, ranks)
         if image != serial_image:
             failures.append(f"{ranks} ranks: the image differs from the serial one")
+
+    # A walk through a solution under mpiexec -n 2: the serial walk's frames, byte for byte.
+    solution = os.path.join(folder, "solution.vtm")
+    solved = run([sphcover, "solve", SCENE, "-o", solution, *SMALL[:6], "-q"])
+    if solved.returncode != 0:
+        failures.append(f"solve for the walk: exit {solved.returncode}: {solved.stderr.strip()}")
+    else:
+        frames = {}
+        for ranks in (0, 2):
+            out = os.path.join(folder, f"walk{ranks}")
+            launcher = [mpiexec, "-n", str(ranks)] if ranks else []
+            walked = run(launcher + [sphcover, "walk", solution, "--orbit", "3", "-o", out,
+                                     "--size", "48x48", "-q"])
+            if walked.returncode != 0:
+                failures.append(f"walk on {ranks} ranks: exit {walked.returncode}: "
+                                f"{walked.stderr.strip()}")
+                continue
+            names = sorted(os.listdir(out))
+            frames[ranks] = [open(os.path.join(out, name), "rb").read() for name in names]
+        if len(frames) == 2 and (len(frames[0]) != 3 or frames[0] != frames[2]):
+            failures.append(f"the walk on 2 ranks gave {len(frames[2])} frames, not the serial "
+                            f"walk's {len(frames[0])} frames byte for byte")
 
     bad = os.path.join(folder, "bad.scene")
     with open(bad, "w", encoding="utf-8") as file:
