@@ -1,6 +1,6 @@
-"""sphcover under mpiexec (issue 19): the solve (the cover's rows, the direct light, the propagation)
-on 2 and 3 ranks gives the serial solution, and a failure is one clear error with a non-zero exit,
-without a hang.
+"""sphcover under mpiexec (issue 19): the solve (the cover's rows, the direct light and the
+propagation) on 2 and 3 ranks gives the serial solution, and a failure is one clear error with a
+non-zero exit, without a hang.
 
 - `sphcover render` of the Cornell box (small grid and subdivision) serially and under
   `mpiexec -n 2` and `-n 3` (3 ranks oversubscribe a 2-core machine): the reports' form factors
