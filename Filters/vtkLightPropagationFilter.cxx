@@ -649,28 +649,28 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
 
   PropagationRanks ranks;
   sphcover::SphericalCover rows;
-  if (controller)
-  {
-    // Rank r shoots into the rows of its receivers: split by their entries, a shot's work.
-    std::vector<double> costs(cover.PatchCount());
-    for (std::size_t i = 0; i < costs.size(); ++i)
-    {
-      costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i));
-    }
-    const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
-      costs, static_cast<std::size_t>(controller->GetNumberOfProcesses()));
-    const std::size_t rank = static_cast<std::size_t>(controller->GetLocalProcessId());
-    ranks.Share = vtkCoverDistribution::ShareOf(controller);
-    ranks.First = bounds[rank];
-    ranks.Last = bounds[rank + 1];
-    rows = cover.RowsOf(ranks.First, ranks.Last);
-  }
   std::vector<bool> lampPatch;
   bool firstBounce = false;
-  LampPatchesOf(input, cover, materials, lampPatch, firstBounce);
   PropagationResults results;
   try
   {
+    LampPatchesOf(input, cover, materials, lampPatch, firstBounce);
+    if (controller)
+    {
+      // Rank r shoots into the rows of its receivers: split by their entries, a shot's work.
+      std::vector<double> costs(cover.PatchCount());
+      for (std::size_t i = 0; i < costs.size(); ++i)
+      {
+        costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i));
+      }
+      const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
+        costs, static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+      const std::size_t rank = static_cast<std::size_t>(controller->GetLocalProcessId());
+      ranks.Share = vtkCoverDistribution::ShareOf(controller);
+      ranks.First = bounds[rank];
+      ranks.Last = bounds[rank + 1];
+      rows = cover.RowsOf(ranks.First, ranks.Last);
+    }
     sphcover::LightPropagation propagation(controller ? rows : cover, materials);
     vtkHeldMessages held(controller ? this : nullptr);
     const bool completed = Propagate(this, cover, input, ranks, propagation);
