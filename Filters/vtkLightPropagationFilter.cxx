@@ -33,7 +33,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <exception>
 #include <sstream>
 #include <string>
@@ -371,47 +370,10 @@ PropagationResults ResultsOf(const sphcover::LightPropagation& propagation,
     perPatch.push_back(propagation.Brightness(i));
     perPatch.push_back(lamps ? lamp[i] : glm::dvec3(0.0));
   }
+  // Under MPI each rank's patches and rows, in rank order (RankShare.h); alone, its own.
+  perPatch = sphcover::JoinValues(ranks.Share, perPatch.data(), perPatch.size());
   const std::vector<glm::dvec3>& incident = propagation.IncidentRadiances();
-  std::vector<std::vector<char>> patchBlocks;
-  std::vector<std::vector<char>> regionBlocks;
-  if (ranks.Share.Distributed())
-  {
-    std::vector<char> mine;
-    sphcover::AppendBytes(mine, perPatch.data(), perPatch.size());
-    if (!ranks.Share.Join(mine, true, patchBlocks))
-    {
-      throw sphcover::RankShare::PeerFailure();
-    }
-    mine.clear();
-    sphcover::AppendBytes(mine, incident.data(), incident.size());
-    if (!ranks.Share.Join(mine, true, regionBlocks))
-    {
-      throw sphcover::RankShare::PeerFailure();
-    }
-  }
-  auto append = [](std::vector<glm::dvec3>& values, const std::vector<char>& bytes)
-  {
-    const std::size_t n = bytes.size() / sizeof(glm::dvec3);
-    const std::size_t at = values.size();
-    values.resize(at + n);
-    std::memcpy(values.data() + at, bytes.data(), n * sizeof(glm::dvec3));
-  };
-  if (!ranks.Share.Distributed())
-  {
-    results.Incident = incident;
-  }
-  else
-  {
-    perPatch.clear();
-    for (const std::vector<char>& block : patchBlocks)
-    {
-      append(perPatch, block);
-    }
-    for (const std::vector<char>& block : regionBlocks)
-    {
-      append(results.Incident, block);
-    }
-  }
+  results.Incident = sphcover::JoinValues(ranks.Share, incident.data(), incident.size());
   if (perPatch.size() != 4 * count)
   {
     throw std::runtime_error("the ranks' results cover " + std::to_string(perPatch.size() / 4) +
@@ -691,19 +653,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
         static_cast<double>(rows.EntryCount()),
         static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)),
         propagation.History().empty() ? 0.0 : propagation.History().back().Seconds };
-      std::vector<char> bytes;
-      sphcover::AppendBytes(bytes, mine, 4);
-      std::vector<std::vector<char>> all;
-      if (!ranks.Share.JoinSameSize(bytes, true, all))
-      {
-        throw sphcover::RankShare::PeerFailure();
-      }
-      for (const std::vector<char>& block : all)
-      {
-        double theirs[4];
-        std::memcpy(theirs, block.data(), sizeof(theirs));
-        this->RankFigures.insert(this->RankFigures.end(), theirs, theirs + 4);
-      }
+      this->RankFigures = sphcover::JoinValues(ranks.Share, mine, 4, true);
     }
     this->Shots = static_cast<int>(propagation.History().size());
     WriteShotHistory(propagation.History(), watts, history);

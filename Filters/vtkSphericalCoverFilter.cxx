@@ -701,11 +701,21 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
   std::vector<char> bytes;
   vtkCoverDistribution::RankFigures mine;
   const sphcover::RankShare share = vtkCoverDistribution::ShareOf(controller);
-  // Each step's messages are held until the ranks agree on them (HeldMessages).
+  // Each step's messages are held until the ranks agree on them (vtkHeldMessages); an exception
+  // is the step's error.
   auto step = [self](const std::function<bool()>& body)
   {
     vtkHeldMessages held(self);
-    return body() ? std::string() : held.First("Spherical cover aborted.");
+    bool done = false;
+    try
+    {
+      done = body();
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorWithObjectMacro(self, << "Spherical cover failed: " << e.what());
+    }
+    return done ? std::string() : held.First("Spherical cover aborted.");
   };
   // Every rank prepares the same patches; the refinement's hemispheres, the rows and the direct
   // light's nodes are then shared among the ranks, each step collective, with an Agree after
@@ -735,24 +745,16 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
         const auto start = std::chrono::steady_clock::now();
         sphcover::SphericalCover::Arrays block;
         sphcover::CullingStatistics culling;
-        try
+        if (!sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
+              prepared.Options,
+              first,
+              last,
+              block,
+              culling,
+              vtkSMPParallelFor::Make(),
+              [&progress](double fraction) { return progress(fraction); }))
         {
-          if (!sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
-                prepared.Options,
-                first,
-                last,
-                block,
-                culling,
-                vtkSMPParallelFor::Make(),
-                [&progress](double fraction) { return progress(fraction); }))
-          {
-            vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
-            return false;
-          }
-        }
-        catch (const std::exception& e)
-        {
-          vtkErrorWithObjectMacro(self, << "Spherical cover failed: " << e.what());
+          vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
           return false;
         }
         mine.Seconds = SecondsSince(start);

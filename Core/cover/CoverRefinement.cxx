@@ -6,11 +6,11 @@
 #include "cover/HiddenPartAnalysis.h"
 #include "cover/HorizonSplit.h"
 #include "cover/RBuffer.h"
+#include "math/ByteBuffer.h"
 
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <cstring>
 #include <exception>
 #include <memory>
 #include <stdexcept>
@@ -338,6 +338,7 @@ bool CoverRefinement::AnalyseRound(const HemisphereGrid& grid,
   disconnected.assign(count, 0);
   const std::vector<size_t> mine = this->Share.MyItems(receivers.size());
   std::vector<char> myVerdicts; // under MPI: node, visible nodes, per analysed hemisphere
+  ByteWriter verdicts(myVerdicts);
   std::size_t limited = 0;
   auto merge = [&](const HemisphereAnalysis& analysis, size_t receiver)
   {
@@ -361,9 +362,8 @@ bool CoverRefinement::AnalyseRound(const HemisphereGrid& grid,
     limited += analysis.Limited;
     if (this->Share.Distributed())
     {
-      const int32_t header[2] = { static_cast<int32_t>(node), static_cast<int32_t>(visible.size()) };
-      AppendBytes(myVerdicts, header, 2);
-      AppendBytes(myVerdicts, visible.data(), visible.size());
+      verdicts.Value(static_cast<uint64_t>(node));
+      verdicts.Array(visible);
     }
   };
   bool completed = true;
@@ -425,11 +425,12 @@ void CoverRefinement::JoinVerdicts(std::vector<char>& myVerdicts,
 {
   // Every rank's verdicts: its hidden and disconnected flags, its limited requests and the
   // visible nodes of the hemispheres it analysed.
-  const uint64_t myLimited = limited;
-  std::vector<char> mine(hidden.begin(), hidden.end());
-  mine.insert(mine.end(), disconnected.begin(), disconnected.end());
-  AppendBytes(mine, &myLimited, 1);
-  mine.insert(mine.end(), myVerdicts.begin(), myVerdicts.end());
+  std::vector<char> mine;
+  ByteWriter out(mine);
+  out.Array(hidden);
+  out.Array(disconnected);
+  out.Value(static_cast<uint64_t>(limited));
+  out.Values(myVerdicts.data(), myVerdicts.size());
   myVerdicts = std::vector<char>();
   std::vector<std::vector<char>> all;
   const bool everyRankOk = this->Share.Join(mine, ok, all);
@@ -441,45 +442,35 @@ void CoverRefinement::JoinVerdicts(std::vector<char>& myVerdicts,
   {
     throw RankShare::PeerFailure();
   }
-  const size_t count = hidden.size();
   limited = 0;
+  std::vector<char> flags[2];
   for (size_t r = 0; r < all.size(); ++r)
   {
-    const std::vector<char>& bytes = all[r];
-    size_t at = 2 * count + sizeof(uint64_t);
-    if (bytes.size() < at)
-    {
-      throw std::runtime_error("CoverRefinement: rank " + std::to_string(r) + "'s verdicts are short");
-    }
-    for (size_t k = 0; k < count; ++k)
-    {
-      hidden[k] = static_cast<char>(hidden[k] | bytes[k]);
-      disconnected[k] = static_cast<char>(disconnected[k] | bytes[count + k]);
-    }
+    ByteReader in(all[r]);
     uint64_t rankLimited = 0;
-    std::memcpy(&rankLimited, bytes.data() + 2 * count, sizeof(uint64_t));
-    limited += static_cast<size_t>(rankLimited);
-    while (at < bytes.size())
+    bool read = in.Array(flags[0]) && in.Array(flags[1]) && in.Value(rankLimited) &&
+      flags[0].size() == hidden.size() && flags[1].size() == disconnected.size();
+    for (size_t k = 0; read && k < hidden.size(); ++k)
     {
-      int32_t header[2] = { 0, 0 };
-      if (bytes.size() - at < sizeof(header))
+      hidden[k] = static_cast<char>(hidden[k] | flags[0][k]);
+      disconnected[k] = static_cast<char>(disconnected[k] | flags[1][k]);
+    }
+    limited += static_cast<size_t>(rankLimited);
+    while (read && !in.AtEnd())
+    {
+      uint64_t node = 0;
+      std::vector<int> visible;
+      read = in.Value(node) && node < this->Nodes.size() && in.Array(visible);
+      if (read)
       {
-        throw std::runtime_error("CoverRefinement: rank " + std::to_string(r) + "'s verdicts are short");
+        this->Analysed[static_cast<size_t>(node)] = true;
+        this->VisibleNodes[static_cast<size_t>(node)] = std::move(visible);
       }
-      std::memcpy(header, bytes.data() + at, sizeof(header));
-      at += sizeof(header);
-      const size_t node = static_cast<size_t>(header[0]);
-      const size_t visibleCount = static_cast<size_t>(header[1]);
-      if (header[0] < 0 || header[1] < 0 || node >= this->Nodes.size() ||
-        (bytes.size() - at) / sizeof(int32_t) < visibleCount)
-      {
-        throw std::runtime_error("CoverRefinement: rank " + std::to_string(r) + "'s verdicts are damaged");
-      }
-      this->Analysed[node] = true;
-      std::vector<int>& visible = this->VisibleNodes[node];
-      visible.resize(visibleCount);
-      std::memcpy(visible.data(), bytes.data() + at, visibleCount * sizeof(int32_t));
-      at += visibleCount * sizeof(int32_t);
+    }
+    if (!read)
+    {
+      throw std::runtime_error(
+        "CoverRefinement: rank " + std::to_string(r) + "'s verdicts are damaged");
     }
   }
 }

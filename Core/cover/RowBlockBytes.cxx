@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "cover/RowBlockBytes.h"
 
+#include "math/ByteBuffer.h"
+
 #include <cstdint>
-#include <cstring>
-#include <type_traits>
 
 namespace sphcover
 {
@@ -11,80 +11,6 @@ namespace
 {
 constexpr uint32_t Tag = 0x53524231; // "SRB1"
 constexpr uint32_t Version = 2;
-
-/// Appends raw values to the buffer.
-class Writer
-{
-public:
-  explicit Writer(std::vector<char>& bytes)
-    : Bytes(bytes)
-  {
-  }
-  template<typename T>
-  void Value(const T& value)
-  {
-    static_assert(std::is_trivially_copyable<T>::value, "raw bytes only");
-    const char* raw = reinterpret_cast<const char*>(&value);
-    this->Bytes.insert(this->Bytes.end(), raw, raw + sizeof(T));
-  }
-  template<typename T>
-  void Array(const std::vector<T>& values)
-  {
-    static_assert(std::is_trivially_copyable<T>::value, "raw bytes only");
-    this->Value(static_cast<uint64_t>(values.size()));
-    const char* raw = reinterpret_cast<const char*>(values.data());
-    this->Bytes.insert(this->Bytes.end(), raw, raw + values.size() * sizeof(T));
-  }
-
-private:
-  std::vector<char>& Bytes;
-};
-
-/// Reads raw values from the buffer; false once a value would run past its end.
-class Reader
-{
-public:
-  Reader(const char* bytes, std::size_t size)
-    : Next(bytes)
-    , Left(size)
-  {
-  }
-  template<typename T>
-  bool Value(T& value)
-  {
-    if (this->Left < sizeof(T))
-    {
-      return false;
-    }
-    std::memcpy(&value, this->Next, sizeof(T));
-    this->Next += sizeof(T);
-    this->Left -= sizeof(T);
-    return true;
-  }
-  template<typename T>
-  bool Array(std::vector<T>& values)
-  {
-    uint64_t count = 0;
-    if (!this->Value(count) || count > this->Left / sizeof(T))
-    {
-      return false;
-    }
-    values.resize(static_cast<std::size_t>(count));
-    if (count == 0)
-    {
-      return true; // an empty vector's data() may be null, which memcpy must not get
-    }
-    std::memcpy(values.data(), this->Next, values.size() * sizeof(T));
-    this->Next += values.size() * sizeof(T);
-    this->Left -= values.size() * sizeof(T);
-    return true;
-  }
-  bool AtEnd() const { return this->Left == 0; }
-
-private:
-  const char* Next;
-  std::size_t Left;
-};
 }
 
 std::vector<char> PackRowBlock(const SphericalCover::Arrays& block,
@@ -94,7 +20,7 @@ std::vector<char> PackRowBlock(const SphericalCover::Arrays& block,
   bytes.reserve(128 + block.RowOffsets.size() * sizeof(uint64_t) +
     block.Entries.size() * (sizeof(SphericalCover::Entry) + 2 * sizeof(float)) +
     block.Strips.size() * SphericalCover::BytesPerStrip + block.Areas.size() * sizeof(double));
-  Writer out(bytes);
+  ByteWriter out(bytes);
   out.Value(Tag);
   out.Value(Version);
   for (const int value :
@@ -132,7 +58,7 @@ std::string UnpackRowBlock(const char* bytes,
 {
   block = SphericalCover::Arrays();
   culling = CullingStatistics();
-  Reader in(bytes, size);
+  ByteReader in(bytes, size);
   uint32_t tag = 0;
   uint32_t version = 0;
   if (!in.Value(tag) || !in.Value(version) || tag != Tag || version != Version)

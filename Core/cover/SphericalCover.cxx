@@ -8,7 +8,6 @@
 #include "subdivision/Patch.h"
 
 #include <algorithm>
-#include <type_traits>
 #include <cmath>
 #include <iomanip>
 #include <limits>
@@ -16,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace sphcover
 {

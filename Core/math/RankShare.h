@@ -2,9 +2,10 @@
 /**
  * @file RankShare.h
  * @brief The hook through which Core's engines share independent items among the K processes
- * (MPI ranks) of one solve without depending on MPI or VTK: each rank computes a consecutive
- * range of the items, and Join gives every rank every rank's results, in rank order. An engine
- * that merges the joined results in item order gives the serial result bit for bit whatever K.
+ * (MPI ranks) of one solve without depending on MPI or VTK: each rank computes its share of
+ * the items (MyItems, or a range the engine chooses), and Join gives every rank every rank's
+ * results, in rank order. An engine that merges the joined results in item order gives the
+ * serial result bit for bit whatever K.
  * The VTK filters give a RankShare over their vtkMultiProcessController (vtkCoverDistribution);
  * Core's tests and benchmarks run K ranks as threads (InProcessRanks).
  *
@@ -16,12 +17,12 @@
 #ifndef SPHCOVER_RANKSHARE_H
 #define SPHCOVER_RANKSHARE_H
 
+#include "math/ByteBuffer.h"
+
 #include <condition_variable>
 #include <cstddef>
-#include <cstring>
 #include <exception>
 #include <functional>
-#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -75,19 +76,6 @@ public:
   int Rank() const { return this->ThisRank; }
   int Ranks() const { return this->RankCount; }
   bool Distributed() const { return this->RankCount > 1; }
-
-  /// The consecutive range [first, second) of `count` items that rank `rank` computes: the
-  /// ranks' ranges tile [0, count) in rank order, their sizes differing by at most one.
-  static std::pair<std::size_t, std::size_t> RangeOf(std::size_t count, int rank, int ranks)
-  {
-    const std::size_t r = static_cast<std::size_t>(rank);
-    const std::size_t k = static_cast<std::size_t>(ranks);
-    return { count * r / k, count * (r + 1) / k };
-  }
-  std::pair<std::size_t, std::size_t> MyRange(std::size_t count) const
-  {
-    return RangeOf(count, this->ThisRank, this->RankCount);
-  }
 
   /// The items of [0, count) this rank computes: k = Rank(), Rank() + K, ... Interleaved, so
   /// that neighbouring items, whose costs are alike (nodes of one patch, patches of one
@@ -233,13 +221,39 @@ private:
   std::size_t Generation = 0;
 };
 
-/// Appends `count` trivially copyable values' bytes to `bytes`.
-template <typename T>
-void AppendBytes(std::vector<char>& bytes, const T* values, std::size_t count)
+/**
+ * Every rank's `count` values, concatenated in rank order, on every rank (`sameSize`: every
+ * rank gives as many, one collective). Collective; throws RankShare::PeerFailure when a rank
+ * failed, std::runtime_error when a rank's bytes are not whole values. One process: a copy.
+ */
+template <typename Value>
+std::vector<Value> JoinValues(const RankShare& share,
+  const Value* values,
+  std::size_t count,
+  bool sameSize = false)
 {
-  static_assert(std::is_trivially_copyable<T>::value, "AppendBytes copies values as bytes");
-  const char* first = reinterpret_cast<const char*>(values);
-  bytes.insert(bytes.end(), first, first + count * sizeof(T));
+  std::vector<char> mine;
+  ByteWriter(mine).Values(values, count);
+  std::vector<std::vector<char>> all;
+  const bool joined =
+    sameSize ? share.JoinSameSize(mine, true, all) : share.Join(mine, true, all);
+  if (!joined)
+  {
+    throw RankShare::PeerFailure();
+  }
+  std::vector<Value> joinedValues;
+  for (const std::vector<char>& bytes : all)
+  {
+    if (bytes.size() % sizeof(Value) != 0)
+    {
+      throw std::runtime_error("JoinValues: a rank sent " + std::to_string(bytes.size()) +
+        " bytes, not whole values");
+    }
+    const std::size_t at = joinedValues.size();
+    joinedValues.resize(at + bytes.size() / sizeof(Value));
+    ByteReader(bytes).Values(joinedValues.data() + at, bytes.size() / sizeof(Value));
+  }
+  return joinedValues;
 }
 
 /**
@@ -272,13 +286,10 @@ bool ShareItems(const RankShare& share,
     failure = std::current_exception();
   }
   std::vector<char> mine;
-  if (ok)
+  ByteWriter writer(mine);
+  for (std::size_t k = 0; ok && k < items.size(); ++k)
   {
-    mine.resize(items.size() * sizeof(Value));
-    for (std::size_t k = 0; k < items.size(); ++k)
-    {
-      std::memcpy(mine.data() + k * sizeof(Value), &values[items[k]], sizeof(Value));
-    }
+    writer.Value(values[items[k]]);
   }
   std::vector<std::vector<char>> all;
   const bool everyRankOk = share.Join(mine, ok, all);
@@ -297,15 +308,14 @@ bool ShareItems(const RankShare& share,
   const std::size_t ranks = static_cast<std::size_t>(share.Ranks());
   for (std::size_t r = 0; r < ranks; ++r)
   {
-    std::size_t k = 0;
-    for (std::size_t item = r; item < count; item += ranks, ++k)
+    ByteReader reader(all[r]);
+    for (std::size_t item = r; item < count; item += ranks)
     {
-      if ((k + 1) * sizeof(Value) > all[r].size())
+      if (!reader.Value(values[item]))
       {
         throw std::runtime_error("ShareItems: rank " + std::to_string(r) + " sent " +
           std::to_string(all[r].size()) + " bytes, fewer than its items' values");
       }
-      std::memcpy(&values[item], all[r].data() + k * sizeof(Value), sizeof(Value));
     }
   }
   return true;

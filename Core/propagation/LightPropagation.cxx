@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -205,7 +204,8 @@ std::size_t LightPropagation::Shoot(std::size_t shooter)
   // toward every receiver (§5.2), so it is evaluated once. It is taken out before the column is
   // walked, because the shooter may be in its own column (a concave patch sees itself, h_ii)
   // and then receives part of it back.
-  // Under a share the shooter's owner does this and sends it (ShareShot).
+  // Under a share the shooter's owner does this; the other ranks have it from the scan before
+  // the shot (JoinScan) and, for a directional shot, from the owner (ShareDirectionalShot).
   const bool owner = shooter >= this->OwnedFirst && shooter < this->OwnedLast;
   glm::dvec3 increment(0.0);
   glm::dvec3 mean(0.0);
@@ -579,24 +579,13 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
   }
   if (this->Shared())
   {
-    // Each patch's direct light is known to its owner alone (the others hold 0 for it).
-    std::vector<char> mine;
-    AppendBytes(mine, direct.data() + this->OwnedFirst, this->OwnedLast - this->OwnedFirst);
-    std::vector<std::vector<char>> all;
-    if (!this->Share.Join(mine, true, all))
+    // Each patch's direct light is known to its owner alone; the ranks' own patches tile the
+    // patches in rank order.
+    direct = JoinValues(
+      this->Share, direct.data() + this->OwnedFirst, this->OwnedLast - this->OwnedFirst);
+    if (direct.size() != count)
     {
-      throw RankShare::PeerFailure();
-    }
-    std::size_t at = 0;
-    for (const std::vector<char>& bytes : all)
-    {
-      const std::size_t values = bytes.size() / sizeof(glm::dvec3);
-      if (at + values > count)
-      {
-        throw std::runtime_error("LightPropagation: the ranks' lamp irradiances are damaged");
-      }
-      std::memcpy(direct.data() + at, bytes.data(), values * sizeof(glm::dvec3));
-      at += values;
+      throw std::runtime_error("LightPropagation: the ranks' lamp irradiances are damaged");
     }
   }
   std::vector<glm::dvec3> lamp = direct;
@@ -636,27 +625,14 @@ EnergyBalance LightPropagation::Energy() const
   if (this->Shared())
   {
     // Every rank's sums, added in rank order.
-    std::vector<char> mine;
-    AppendBytes(mine, &balance.Emitted, 1);
-    AppendBytes(mine, &balance.Absorbed, 1);
-    AppendBytes(mine, &balance.Unshot, 1);
-    std::vector<std::vector<char>> all;
-    if (!this->Share.Join(mine, true, all))
-    {
-      throw RankShare::PeerFailure();
-    }
+    const glm::dvec3 mine[3] = { balance.Emitted, balance.Absorbed, balance.Unshot };
+    const std::vector<glm::dvec3> sums = JoinValues(this->Share, mine, 3, true);
     balance = EnergyBalance();
-    for (const std::vector<char>& bytes : all)
+    for (std::size_t k = 0; k + 3 <= sums.size(); k += 3)
     {
-      glm::dvec3 sums[3];
-      if (bytes.size() != sizeof(sums))
-      {
-        throw std::runtime_error("LightPropagation: a rank's energy sums are damaged");
-      }
-      std::memcpy(sums, bytes.data(), sizeof(sums));
-      balance.Emitted += sums[0];
-      balance.Absorbed += sums[1];
-      balance.Unshot += sums[2];
+      balance.Emitted += sums[k];
+      balance.Absorbed += sums[k + 1];
+      balance.Unshot += sums[k + 2];
     }
   }
   for (int b = 0; b < 3; ++b)

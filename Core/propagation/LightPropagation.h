@@ -198,8 +198,8 @@ public:
   /**
    * Under MPI (math/RankShare.h): the ranks propagate together, each over the rows of its own
    * receivers [firstOwned, lastOwned), which is all the cover given to the constructor holds
-   * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every shot, the ranks agree
-   * on the shooter (the patch of largest unshot power over all ranks, lowest index on ties:
+   * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every shot,
+   * the ranks agree on the shooter (the patch of largest unshot power over all ranks, lowest index on ties:
    * serial's), its owner sends what it shoots (its unshot radiance; for a non-diffuse shooter
    * its reflected radiance toward every region of its row and what serves receivers without
    * one) and each rank updates its own receivers in column order. So every owned patch's state,

@@ -8,8 +8,8 @@
 #include "propagation/LightPropagation.h"
 
 #include "cover/SphericalCover.h"
+#include "math/ByteBuffer.h"
 
-#include <cstring>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -21,57 +21,13 @@ namespace sphcover
 namespace
 {
 
-/// Reads values of a trivially copyable type from a byte block, checking its length.
-class ByteReader
+/// A read of another rank's bytes that must succeed (ByteReader's false: they are damaged).
+void Expect(bool read, const char* what)
 {
-public:
-  explicit ByteReader(const std::vector<char>& bytes)
-    : Bytes(bytes)
+  if (!read)
   {
+    throw std::runtime_error(std::string("LightPropagation: a rank's ") + what + " are damaged");
   }
-
-  template <typename T>
-  void Read(T* values, std::size_t count)
-  {
-    if ((this->Bytes.size() - this->At) / sizeof(T) < count)
-    {
-      throw std::runtime_error("LightPropagation: a rank's shot data are damaged");
-    }
-    if (count > 0)
-    {
-      std::memcpy(values, this->Bytes.data() + this->At, count * sizeof(T));
-    }
-    this->At += count * sizeof(T);
-  }
-
-  bool Done() const { return this->At == this->Bytes.size(); }
-
-  template <typename T>
-  T Read()
-  {
-    T value{};
-    this->Read(&value, 1);
-    return value;
-  }
-
-  template <typename T>
-  void ReadVector(std::vector<T>& values)
-  {
-    values.resize(static_cast<std::size_t>(this->Read<uint64_t>()));
-    this->Read(values.data(), values.size());
-  }
-
-private:
-  const std::vector<char>& Bytes;
-  std::size_t At = 0;
-};
-
-template <typename T>
-void AppendVector(std::vector<char>& bytes, const std::vector<T>& values)
-{
-  const uint64_t count = values.size();
-  AppendBytes(bytes, &count, 1);
-  AppendBytes(bytes, values.data(), values.size());
 }
 
 } // namespace
@@ -104,6 +60,7 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
   // receivers of the other ranks find theirs by the position of (j, i) in row j, matched once
   // here from the keys of every rank's non-diffuse rows.
   std::vector<char> mine;
+  ByteWriter out(mine);
   for (std::size_t j = firstOwned; j < lastOwned; ++j)
   {
     if (this->ModelOfPatch[j] < 0)
@@ -117,9 +74,8 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
         this->Cover.Layer(e),
         glm::vec3(this->Cover.Filter(e)) });
     }
-    const uint64_t row = j;
-    AppendBytes(mine, &row, 1);
-    AppendVector(mine, keys);
+    out.Value(static_cast<uint64_t>(j));
+    out.Array(keys);
   }
   std::vector<std::vector<char>> all;
   if (!this->Share.Join(mine, true, all))
@@ -133,15 +89,12 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
     {
       continue;
     }
-    ByteReader reader(all[r]);
-    while (!reader.Done())
+    ByteReader in(all[r]);
+    while (!in.AtEnd())
     {
-      const uint64_t row = reader.Read<uint64_t>();
-      if (row >= n)
-      {
-        throw std::runtime_error("LightPropagation: a rank's row keys are damaged");
-      }
-      reader.ReadVector(remoteRows[static_cast<std::size_t>(row)]);
+      uint64_t row = 0;
+      Expect(in.Value(row) && row < n && in.Array(remoteRows[static_cast<std::size_t>(row)]),
+        "row keys");
     }
   }
   this->MatchTransposedEntries(remoteRows);
@@ -171,26 +124,15 @@ bool LightPropagation::JoinScan(std::size_t& brightest,
     increment.y,
     increment.z,
     directional ? 1.0 : 0.0 };
-  std::vector<char> bytes;
-  AppendBytes(bytes, mine, ScanValues);
-  std::vector<std::vector<char>> all;
-  if (!this->Share.JoinSameSize(bytes, true, all))
-  {
-    throw RankShare::PeerFailure();
-  }
+  const std::vector<double> scans = JoinValues(this->Share, mine, ScanValues, true);
   // The largest power over the ranks, the lowest index on ties: the serial scan's choice.
   bool someRankStops = false;
   largest = -1.0;
   unshot = 0.0;
   double counts[3] = { 0.0, 0.0, 0.0 };
-  for (const std::vector<char>& rankBytes : all)
+  for (std::size_t at = 0; at + ScanValues <= scans.size(); at += ScanValues)
   {
-    double theirs[ScanValues];
-    if (rankBytes.size() != sizeof(theirs))
-    {
-      throw std::runtime_error("LightPropagation: a rank's scan is damaged");
-    }
-    std::memcpy(theirs, rankBytes.data(), sizeof(theirs));
+    const double* theirs = scans.data() + at;
     const std::size_t index = static_cast<std::size_t>(theirs[1]);
     if (theirs[0] > largest || (theirs[0] == largest && index < brightest))
     {
@@ -228,22 +170,21 @@ glm::dvec3 LightPropagation::ShareDirectionalShot(std::size_t shooter, bool owne
     try
     {
       mean = this->DirectionalShot(shooter);
-      const uint8_t grid = this->GridShot ? 1 : 0;
-      const uint64_t evaluations = this->LastWeightEvaluations;
-      AppendBytes(bytes, &mean, 1);
-      AppendBytes(bytes, &grid, 1);
-      AppendBytes(bytes, &evaluations, 1);
-      AppendVector(bytes, this->DirectionalOut);
+      ByteWriter out(bytes);
+      out.Value(mean);
+      out.Value(static_cast<uint8_t>(this->GridShot ? 1 : 0));
+      out.Value(static_cast<uint64_t>(this->LastWeightEvaluations));
+      out.Array(this->DirectionalOut);
       if (this->GridShot)
       {
-        AppendVector(bytes, this->GridOut);
+        out.Array(this->GridOut);
       }
       else
       {
         for (std::size_t row = 0; row < this->DirectionalIn.size(); ++row)
         {
-          AppendVector(bytes, this->DirectionalIn[row]);
-          AppendVector(bytes, this->DirectionalCoupled[row]);
+          out.Array(this->DirectionalIn[row]);
+          out.Array(this->DirectionalCoupled[row]);
         }
       }
     }
@@ -279,14 +220,16 @@ glm::dvec3 LightPropagation::ShareDirectionalShot(std::size_t shooter, bool owne
   {
     throw std::runtime_error("LightPropagation: no rank owns the shooter");
   }
-  ByteReader reader(*theirs);
-  mean = reader.Read<glm::dvec3>();
-  this->GridShot = reader.Read<uint8_t>() != 0;
-  this->LastWeightEvaluations = static_cast<std::size_t>(reader.Read<uint64_t>());
-  reader.ReadVector(this->DirectionalOut);
+  ByteReader in(*theirs);
+  uint8_t grid = 0;
+  uint64_t evaluations = 0;
+  bool read = in.Value(mean) && in.Value(grid) && in.Value(evaluations) &&
+    in.Array(this->DirectionalOut);
+  this->GridShot = grid != 0;
+  this->LastWeightEvaluations = static_cast<std::size_t>(evaluations);
   if (this->GridShot)
   {
-    reader.ReadVector(this->GridOut);
+    read = read && in.Array(this->GridOut);
   }
   else
   {
@@ -295,10 +238,10 @@ glm::dvec3 LightPropagation::ShareDirectionalShot(std::size_t shooter, bool owne
     this->DirectionalCoupled.resize(rows);
     for (std::size_t row = 0; row < rows; ++row)
     {
-      reader.ReadVector(this->DirectionalIn[row]);
-      reader.ReadVector(this->DirectionalCoupled[row]);
+      read = read && in.Array(this->DirectionalIn[row]) && in.Array(this->DirectionalCoupled[row]);
     }
   }
+  Expect(read, "shot data");
   return mean;
 }
 

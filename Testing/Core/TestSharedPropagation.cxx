@@ -98,17 +98,19 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
       RankResult& result = results[static_cast<std::size_t>(rank)];
       try
       {
-        const auto range = RankShare::RangeOf(cover.PatchCount(), rank, ranks);
-        result.First = range.first;
-        result.Last = range.second;
-        const SphericalCover rows = cover.RowsOf(range.first, range.second);
+        // Equal counts of rows (the filter splits by entries; any tiling in rank order does).
+        const std::vector<std::size_t> bounds = SphericalCover::PartitionRows(
+          std::vector<double>(cover.PatchCount(), 1.0), static_cast<std::size_t>(ranks));
+        result.First = bounds[static_cast<std::size_t>(rank)];
+        result.Last = bounds[static_cast<std::size_t>(rank) + 1];
+        const SphericalCover rows = cover.RowsOf(result.First, result.Last);
         LightPropagation shared(rows, materials);
         shared.SetFrames(frames);
         shared.SetDirectionalMethod(method);
-        shared.SetRankShare(share, range.first, range.second);
+        shared.SetRankShare(share, result.First, result.Last);
         result.Converged = shared.Run(settings);
         result.History = shared.History();
-        for (std::size_t i = range.first; i < range.second; ++i)
+        for (std::size_t i = result.First; i < result.Last; ++i)
         {
           result.Irradiance.push_back(shared.Irradiance(i));
           result.Brightness.push_back(shared.Brightness(i));
