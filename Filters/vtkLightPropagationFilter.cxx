@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -82,9 +83,32 @@ std::string ReadSurfaces(vtkPolyData* points, sphcover::PointIllumination& illum
   return std::string();
 }
 
-/// Computes the figures of the solution `points` holds (with `cover`, its cover) and adds them
-/// to its field data; "" or the problem.
-std::string StoreFigures(const sphcover::SphericalCover& cover, vtkPolyData* points)
+/// The cover's part of the figures (the form factors between `points`' named surfaces), into
+/// `figures`; "" or the problem.
+std::string CoverFiguresOf(const sphcover::SphericalCover& cover,
+  vtkPolyData* points,
+  sphcover::CoverFigures& figures)
+{
+  sphcover::PointIllumination illumination;
+  const std::string problem = ReadSurfaces(points, illumination);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  try
+  {
+    figures = sphcover::ComputeCoverFigures(cover, illumination);
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  return std::string();
+}
+
+/// Computes the figures of the solution `points` holds (with `cover`, its cover's part) and adds
+/// them to its field data; "" or the problem.
+std::string StoreFigures(const sphcover::CoverFigures& cover, vtkPolyData* points)
 {
   sphcover::PointIllumination illumination;
   const std::string problem = ReadSurfaces(points, illumination);
@@ -158,6 +182,26 @@ std::string StoreFigures(const sphcover::SphericalCover& cover, vtkPolyData* poi
 /// The cover, materials and surface names of the cover points `input`, checked before the
 /// propagation: "" or the problem. The figures are per named surface: a point that names none
 /// is refused before the propagation, not after it.
+/// "" when the propagation of `rows` fits in `memoryLimit` MiB, else the problem.
+std::string MemoryProblem(const sphcover::SphericalCover& rows,
+  const std::vector<sphcover::Material>& materials,
+  double memoryLimit)
+{
+  const double needed =
+    static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)) /
+    (1024.0 * 1024.0);
+  if (needed > memoryLimit)
+  {
+    std::ostringstream text;
+    text << "it would need about " << static_cast<int>(needed) << " MiB (state of "
+         << rows.EntryCount() << " regions and weight tables of a " << rows.Options().ThetaBins
+         << " x " << rows.Options().PhiBins << " grid), more than MemoryLimit (" << memoryLimit
+         << " MiB); use a coarser grid or fewer patches.";
+    return text.str();
+  }
+  return std::string();
+}
+
 std::string ReadPropagationInput(vtkPolyData* input,
   double memoryLimit,
   sphcover::SphericalCover& cover,
@@ -185,19 +229,7 @@ std::string ReadPropagationInput(vtkPolyData* input,
       return surfaceProblem;
     }
   }
-  const double needed =
-    static_cast<double>(sphcover::LightPropagation::EstimateBytes(cover, materials)) /
-    (1024.0 * 1024.0);
-  if (needed > memoryLimit)
-  {
-    std::ostringstream text;
-    text << "it would need about " << static_cast<int>(needed) << " MiB (state of "
-         << cover.EntryCount() << " regions and weight tables of a " << cover.Options().ThetaBins
-         << " x " << cover.Options().PhiBins << " grid), more than MemoryLimit (" << memoryLimit
-         << " MiB); use a coarser grid or fewer patches.";
-    return text.str();
-  }
-  return std::string();
+  return MemoryProblem(cover, materials, memoryLimit);
 }
 
 /// Under MPI: the ranks that propagate together and this rank's receivers.
@@ -208,13 +240,43 @@ struct PropagationRanks
   std::size_t Last = 0;
 };
 
-/// The progressive shooting of paper §5.1 (up to 95% of the progress), after the exchange
-/// balance if asked for (the first 5%; of the whole `cover`, whose rows [First, Last) are
-/// `propagation`'s under MPI); false, with a warning, when aborted.
-bool Propagate(vtkLightPropagationFilter* self,
+/// The exchange balance of the whole `cover` (ExchangeBalance.h; the first 5% of the
+/// progress): its factors, under MPI those of this rank's rows [First, Last). False, with a
+/// warning, when aborted.
+bool BalanceFactors(vtkLightPropagationFilter* self,
   const sphcover::SphericalCover& cover,
+  const PropagationRanks& ranks,
+  std::vector<double>& factors)
+{
+  // The balance is a few passes over the entries (~1 s for the Cornell box's 6.5M).
+  vtkStageProgress progress(self, "Light Propagation: balancing", 0.0, 0.05);
+  bool aborted = false;
+  sphcover::ExchangeBalance balance(cover,
+    {},
+    [&progress, &aborted](double fraction)
+    {
+      aborted = !progress(fraction);
+      return !aborted;
+    });
+  if (aborted)
+  {
+    vtkWarningWithObjectMacro(self, "Light propagation aborted.");
+    return false;
+  }
+  const std::vector<double>& all = balance.EntryFactors();
+  factors = !ranks.Share.Distributed()
+    ? all
+    : std::vector<double>(all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.First)),
+        all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.Last)));
+  return true;
+}
+
+/// The progressive shooting of paper §5.1 (5% to 95% of the progress), with the exchange
+/// balance's `factors` when there are some; false, with a warning, when aborted.
+bool Propagate(vtkLightPropagationFilter* self,
   vtkPolyData* input,
   const PropagationRanks& ranks,
+  const std::vector<double>& factors,
   sphcover::LightPropagation& propagation)
 {
   sphcover::PropagationSettings settings;
@@ -230,34 +292,15 @@ bool Propagate(vtkLightPropagationFilter* self,
   {
     propagation.SetFrames(std::move(frames));
   }
-  bool aborted = false;
-  // The balance is a few passes over the entries (~1 s for the Cornell box's 6.5M): the
-  // first 5% of the progress.
   if (self->GetBalanceExchanges())
   {
-    vtkStageProgress progress(self, "Light Propagation: balancing", 0.0, 0.05);
-    const sphcover::ExchangeBalance balance(cover,
-      {},
-      [&progress, &aborted](double fraction)
-      {
-        aborted = !progress(fraction);
-        return !aborted;
-      });
-    if (aborted)
-    {
-      vtkWarningWithObjectMacro(self, "Light propagation aborted.");
-      return false;
-    }
-    const std::vector<double>& factors = balance.EntryFactors();
-    propagation.SetExchangeFactors(!ranks.Share.Distributed()
-        ? factors
-        : std::vector<double>(factors.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.First)),
-            factors.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.Last))));
+    propagation.SetExchangeFactors(factors);
   }
   if (ranks.Share.Distributed())
   {
     propagation.SetRankShare(ranks.Share, ranks.First, ranks.Last);
   }
+  bool aborted = false;
   vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
   propagation.Run(settings,
     [&progress, &aborted](double fraction)
@@ -486,8 +529,13 @@ std::string vtkLightPropagationFilter::AddSolutionFigures(vtkPolyData* illuminat
     return "no illumination";
   }
   sphcover::SphericalCover cover;
-  const std::string problem = vtkSphericalCoverArrays::Load(illumination, cover);
-  return problem.empty() ? StoreFigures(cover, illumination) : problem;
+  sphcover::CoverFigures figures;
+  std::string problem = vtkSphericalCoverArrays::Load(illumination, cover);
+  if (problem.empty())
+  {
+    problem = CoverFiguresOf(cover, illumination, figures);
+  }
+  return problem.empty() ? StoreFigures(figures, illumination) : problem;
 }
 
 vtkLightPropagationFilter::vtkLightPropagationFilter()
@@ -585,7 +633,12 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   bool named = false;
   if (problem.empty())
   {
-    problem = ReadPropagationInput(input, this->MemoryLimit, cover, materials, named);
+    // Under MPI a rank propagates its rows: their state must fit, checked when they are known.
+    problem = ReadPropagationInput(input,
+      controller ? std::numeric_limits<double>::infinity() : this->MemoryLimit,
+      cover,
+      materials,
+      named);
   }
   double watts = 1.0;
   if (problem.empty())
@@ -613,10 +666,22 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   sphcover::SphericalCover rows;
   std::vector<bool> lampPatch;
   bool firstBounce = false;
+  sphcover::CoverFigures figures;
   PropagationResults results;
   try
   {
     LampPatchesOf(input, cover, materials, lampPatch, firstBounce);
+    if (named)
+    {
+      // The cover's part of the figures now: under MPI the cover is let go before the
+      // propagation (below). Every rank reads the same cover, so all fail alike.
+      problem = CoverFiguresOf(cover, input, figures);
+      if (!problem.empty())
+      {
+        vtkErrorMacro(<< "Cannot sum up the solution: " << problem);
+        return 0;
+      }
+    }
     if (controller)
     {
       // Rank r shoots into the rows of its receivers: split by their entries, a shot's work.
@@ -631,11 +696,38 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       ranks.Share = vtkCoverDistribution::ShareOf(controller);
       ranks.First = bounds[rank];
       ranks.Last = bounds[rank + 1];
+    }
+    std::vector<double> factors;
+    {
+      vtkHeldMessages held(controller ? this : nullptr);
+      const bool balanced = !this->BalanceExchanges || BalanceFactors(this, cover, ranks, factors);
+      problem = agree(balanced ? std::string() : held.First("Light propagation aborted."));
+    }
+    if (!problem.empty())
+    {
+      if (controller)
+      {
+        vtkErrorMacro(<< problem);
+      }
+      return 0;
+    }
+    if (controller)
+    {
+      // A rank keeps its rows and lets the whole cover go before the propagation's state
+      // exists (the cover's arrays stay in the input): the memory that falls with the ranks.
+      // Its state must fit MemoryLimit, not the whole cover's.
       rows = cover.RowsOf(ranks.First, ranks.Last);
+      cover = sphcover::SphericalCover();
+      problem = agree(MemoryProblem(rows, materials, this->MemoryLimit));
+      if (!problem.empty())
+      {
+        vtkErrorMacro(<< "Cannot propagate light: " << problem);
+        return 0;
+      }
     }
     sphcover::LightPropagation propagation(controller ? rows : cover, materials);
     vtkHeldMessages held(controller ? this : nullptr);
-    const bool completed = Propagate(this, cover, input, ranks, propagation);
+    const bool completed = Propagate(this, input, ranks, factors, propagation);
     problem = agree(completed ? std::string() : held.First("Light propagation aborted."));
     if (!problem.empty())
     {
@@ -667,7 +759,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   WriteIllumination(results, this->Shots, watts, output);
   if (named)
   {
-    const std::string figuresProblem = StoreFigures(cover, output);
+    const std::string figuresProblem = StoreFigures(figures, output);
     if (!figuresProblem.empty())
     {
       output->Initialize();

@@ -60,6 +60,22 @@ struct SolutionFigures
   std::size_t Strips = 0;
 };
 
+/// What the figures take from the cover (the form factors between the named surfaces and the
+/// counts), computed apart so that a caller can let the cover go before it solves.
+struct CoverFigures
+{
+  std::vector<double> FormFactors;
+  std::size_t CharacteristicPoints = 0;
+  std::size_t Strips = 0;
+};
+/// The cover's part of the figures, for the points' surfaces (`illumination`'s SurfaceOfPoint
+/// and SurfaceCount; the other vectors are not read). Throws std::invalid_argument when the
+/// cover has not one point per surface index or a point's surface is out of range.
+CoverFigures ComputeCoverFigures(const SphericalCover& cover,
+  const PointIllumination& illumination);
+/// The figures of an equilibrium from the cover's part. Throws std::invalid_argument as below.
+SolutionFigures ComputeSolutionFigures(const CoverFigures& cover,
+  const PointIllumination& illumination);
 /// max over the bands that emit of |emitted - absorbed| / emitted (0 if none emits).
 double RelativeImbalance(const glm::dvec3& emitted, const glm::dvec3& absorbed);
 
