@@ -11,7 +11,10 @@
 
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
+#include <vtkMultiProcessController.h>
 #include <vtkUnstructuredGrid.h>
+
+#include <sys/resource.h>
 
 #include <ctime>
 #include <stdexcept>
@@ -114,6 +117,18 @@ void Solution::Solve(const Options& options)
     Run(this->Propagation, this->Errors);
     this->PropagateCpuSeconds = ProcessorSeconds() - cpuStart;
     this->PropagateSeconds = bar.Seconds();
+  }
+  // Every rank's peak resident memory so far, in rank order (under mpiexec a collective: every
+  // rank reaches it, the stages having agreed on success).
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const double peak = static_cast<double>(usage.ru_maxrss) * 1024.0; // ru_maxrss is in KiB
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  this->PeakResidentBytes.assign(1, peak);
+  if (controller && controller->GetNumberOfProcesses() > 1)
+  {
+    this->PeakResidentBytes.resize(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+    controller->AllGather(&peak, this->PeakResidentBytes.data(), 1);
   }
 }
 

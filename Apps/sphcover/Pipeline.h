@@ -59,6 +59,8 @@ struct Solution
   double SubdivideCpuSeconds = 0.0;
   double CoverCpuSeconds = 0.0;
   double PropagateCpuSeconds = 0.0;
+  /// After Solve: each rank's peak resident bytes (getrusage), in rank order (one alone).
+  std::vector<double> PeakResidentBytes;
 
   /// Reads the scene (its surfaces, cameras, settings and fingerprint in field data).
   void Read(const Options& options, bool progress = true);

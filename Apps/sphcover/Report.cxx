@@ -164,6 +164,13 @@ nlohmann::json SolutionReport(Solution& solution)
           { "seconds", shooting[r + 3] } });
     }
   }
+  // The processes' peak resident memory up to the equilibrium, per rank (the rendering after it
+  // is rank 0's alone): what each machine of a cluster must hold.
+  report["peak_resident_bytes"] = nlohmann::json::array();
+  for (double bytes : solution.PeakResidentBytes)
+  {
+    report["peak_resident_bytes"].push_back(static_cast<long long>(bytes));
+  }
   // What the solution holds: the cover (its strips, entries and rows, paper §3.3, stored as the
   // cover output's field arrays) and the propagation's state of one incident radiance per
   // region h_ij (§5.1). The stages' working memory (R-buffers, weight tables) comes and goes.

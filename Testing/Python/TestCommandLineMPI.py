@@ -89,12 +89,18 @@ def compare(serial, parallel, ranks):
     elif max(r["state_bytes"] for r in shooting) > 0.8 * sum(r["state_bytes"] for r in shooting):
         failures.append(f"{ranks} ranks: one rank holds most of the propagation's state: "
                         f"{shooting}")
+    # Every rank's peak resident memory, in rank order (what each machine must hold).
+    peaks = parallel.get("peak_resident_bytes", [])
+    if len(peaks) != ranks or any(not isinstance(b, int) or b <= 0 for b in peaks):
+        failures.append(f"{ranks} ranks: peak_resident_bytes {peaks}")
 
 
 with tempfile.TemporaryDirectory() as folder:
     serial, serial_image = render(folder, 0)
     if serial is not None and serial.get("ranks") != 1:
         failures.append(f"serial: the report says ranks {serial.get('ranks')}")
+    if serial is not None and len(serial.get("peak_resident_bytes", [])) != 1:
+        failures.append(f"serial: peak_resident_bytes {serial.get('peak_resident_bytes')}")
     for ranks in (2, 3):
         parallel, image = render(folder, ranks)
         if serial is None or parallel is None:
