@@ -127,17 +127,15 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
   // of the time.
   const double receiverShare = this->Settings.AnalyseHemispheres ? 0.05 : 1.0;
   const double probeShare = this->Settings.SplitHorizons ? 0.8 * receiverShare : receiverShare;
-  // Steps 1 and 2 run whole on every rank (RankShare.h); a rank that fails there still takes
-  // part in one join, so that the others learn it and none waits in Step 3's joins.
+  // Step 1 runs whole on every rank; a rank that fails there still takes part in one join, so
+  // that the others learn it and none waits in the later steps' joins. Step 2's leaves and
+  // Step 3's hemispheres are shared among the ranks (RankShare.h), joined every round.
   bool completed = true;
   std::exception_ptr failure;
   try
   {
-    completed = (!this->Settings.SplitEnclosureBoundaries ||
-                  this->SplitAcrossEnclosures(progress, run, probeShare)) &&
-      (!this->Settings.SplitHorizons ||
-        this->SplitAcrossHorizons(
-          progress, run, this->Settings.SplitEnclosureBoundaries ? probeShare : 0.0, receiverShare));
+    completed = !this->Settings.SplitEnclosureBoundaries ||
+      this->SplitAcrossEnclosures(progress, run, probeShare);
   }
   catch (...)
   {
@@ -156,7 +154,10 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
   {
     std::rethrow_exception(failure);
   }
-  if (!completed)
+  if (!completed ||
+    (this->Settings.SplitHorizons &&
+      !this->SplitAcrossHorizons(
+        progress, run, this->Settings.SplitEnclosureBoundaries ? probeShare : 0.0, receiverShare)))
   {
     return false;
   }
@@ -252,21 +253,30 @@ bool CoverRefinement::SplitAcrossHorizons(const ProgressCallback& progress,
   // by one level, so there are at most MaxLevel + 1 rounds).
   for (int round = 0; round <= this->Settings.MaxLevel; ++round)
   {
+    // Each rank tests its share of the leaves; the verdicts are joined in leaf order.
     const size_t count = this->Leaves.size();
     std::vector<char> split(count, 0);
-    const bool finished = ForEachInBatches(
+    const bool finished = ShareItems(this->Share,
       count,
-      run,
-      [&](size_t k)
+      split,
+      [&](const std::vector<std::size_t>& mine)
       {
-        const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
-        split[k] =
-          leaf.Level < this->Settings.MaxLevel && horizons.Across(leaf, this->Nodes, this->Leaves);
-      },
-      [&](size_t done)
-      {
-        const double share = (round + double(done) / count) / (this->Settings.MaxLevel + 1);
-        return !progress || progress(progressStart + (progressEnd - progressStart) * share);
+        return ForEachInBatches(
+          mine.size(),
+          run,
+          [&](size_t n)
+          {
+            const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[mine[n]])];
+            split[mine[n]] = leaf.Level < this->Settings.MaxLevel &&
+              horizons.Across(leaf, this->Nodes, this->Leaves);
+          },
+          [&](size_t done)
+          {
+            const double share =
+              (round + double(done) / double(std::max<std::size_t>(1, mine.size()))) /
+              (this->Settings.MaxLevel + 1);
+            return !progress || progress(progressStart + (progressEnd - progressStart) * share);
+          });
       });
     if (!finished)
     {

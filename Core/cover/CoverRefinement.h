@@ -94,10 +94,11 @@ public:
   void SetProbeExtents(std::vector<UVRect> extents, std::vector<int> groups);
 
   /**
-   * Under MPI: the ranks analyse the hemispheres of each round of Step 3 in turn and join their
-   * verdicts (RankShare.h), so every rank refines alike, to the serial result bit for bit. Run
-   * is then collective, and throws RankShare::PeerFailure when another rank failed. Steps 1
-   * and 2 (cheap, per leaf) run whole on every rank.
+   * Under MPI: the ranks test the leaves of each round of Step 2 and analyse the hemispheres
+   * of each round of Step 3 in turn and join their verdicts (RankShare.h), so every rank
+   * refines alike, to the serial result bit for bit. Run is then collective, and throws
+   * RankShare::PeerFailure when another rank failed. Step 1 (per leaf, its pieces split
+   * recursively) runs whole on every rank.
    */
   void SetRankShare(RankShare share) { this->Share = std::move(share); }
 

@@ -344,8 +344,9 @@ TEST(CoverRefinement, DeterministicWhateverTheThreads)
   EXPECT_EQ(sequential.Statistics().LimitedRequests, threaded.Statistics().LimitedRequests);
 }
 
-// Under MPI the ranks analyse each round's hemispheres in turn and join their verdicts
-// (RankShare.h): every rank refines to the serial patches, with the serial statistics.
+// Under MPI the ranks test each round's leaves (Step 2) and analyse each round's hemispheres
+// (Step 3) in turn and join their verdicts (RankShare.h): every rank refines to the serial
+// patches, with the serial statistics.
 TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
 {
   const Scene scene = FurnaceBoxWithOccluder();
@@ -356,6 +357,8 @@ TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
   ASSERT_TRUE(serial.Run(nullptr, ThreadedFor(2)));
   const std::vector<Patch> expected = serial.Patches();
   ASSERT_GT(serial.Statistics().Rounds, 1);
+  // Step 2's leaves are shared too: the scene has horizons to split across.
+  ASSERT_GT(serial.Statistics().HorizonSplits, 0u);
   for (const int ranks : { 2, 3 })
   {
     InProcessRanks world(ranks);
@@ -380,6 +383,7 @@ TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
       EXPECT_EQ(s.Rounds, serial.Statistics().Rounds);
       EXPECT_EQ(s.RowsAnalysed, serial.Statistics().RowsAnalysed);
       EXPECT_EQ(s.Splits, serial.Statistics().Splits);
+      EXPECT_EQ(s.HorizonSplits, serial.Statistics().HorizonSplits);
       EXPECT_EQ(s.LimitedRequests, serial.Statistics().LimitedRequests);
     }
   }
