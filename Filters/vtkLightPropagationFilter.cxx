@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -240,6 +241,16 @@ struct PropagationRanks
   std::size_t Last = 0;
 };
 
+/// Core's progress callback through `progress`, noting in `aborted` that the user stopped it.
+std::function<bool(double)> NotingAbort(vtkStageProgress& progress, bool& aborted)
+{
+  return [&progress, &aborted](double fraction)
+  {
+    aborted = !progress(fraction);
+    return !aborted;
+  };
+}
+
 /// The exchange balance of the whole `cover` (ExchangeBalance.h; the first 5% of the
 /// progress): its factors, under MPI those of this rank's rows [First, Last). False, with a
 /// warning, when aborted.
@@ -251,13 +262,7 @@ bool BalanceFactors(vtkLightPropagationFilter* self,
   // The balance is a few passes over the entries (~1 s for the Cornell box's 6.5M).
   vtkStageProgress progress(self, "Light Propagation: balancing", 0.0, 0.05);
   bool aborted = false;
-  sphcover::ExchangeBalance balance(cover,
-    {},
-    [&progress, &aborted](double fraction)
-    {
-      aborted = !progress(fraction);
-      return !aborted;
-    });
+  const sphcover::ExchangeBalance balance(cover, {}, NotingAbort(progress, aborted));
   if (aborted)
   {
     vtkWarningWithObjectMacro(self, "Light propagation aborted.");
@@ -302,12 +307,7 @@ bool Propagate(vtkLightPropagationFilter* self,
   }
   bool aborted = false;
   vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
-  propagation.Run(settings,
-    [&progress, &aborted](double fraction)
-    {
-      aborted = !progress(fraction);
-      return !aborted;
-    });
+  propagation.Run(settings, NotingAbort(progress, aborted));
   if (aborted)
   {
     vtkWarningWithObjectMacro(self, "Light propagation aborted.");
