@@ -8,6 +8,8 @@ non-zero exit, without a hang.
   the images are equal byte for byte, and the report says "ranks" and each rank's rows;
 - a walk through a solved scene under `mpiexec -n 2`: the serial walk's three frames, byte for
   byte;
+- a solve whose propagation state exceeds --memory-limit in one process (refused, one error)
+  fits on 2 ranks, each of which holds its share (memory per rank falls with K);
 - a scene that does not load, under `mpiexec -n 2`: a non-zero exit within the timeout and one
   `sphcover: error:` line (rank 0 speaks; every rank fails alike).
 Without mpiexec on the PATH the test is skipped (exit 77) with a message.
@@ -101,6 +103,7 @@ with tempfile.TemporaryDirectory() as folder:
         failures.append(f"serial: the report says ranks {serial.get('ranks')}")
     if serial is not None and len(serial.get("peak_resident_bytes", [])) != 1:
         failures.append(f"serial: peak_resident_bytes {serial.get('peak_resident_bytes')}")
+    states = []
     for ranks in (2, 3):
         parallel, image = render(folder, ranks)
         if serial is None or parallel is None:
@@ -108,6 +111,22 @@ with tempfile.TemporaryDirectory() as folder:
         compare(serial, parallel, ranks)
         if image != serial_image:
             failures.append(f"{ranks} ranks: the image differs from the serial one")
+        if ranks == 2:
+            states = [r["state_bytes"] for r in parallel.get("propagation_ranks", [])]
+
+    # A limit between one rank's propagation state and the whole state: one process is refused
+    # (the whole state is about the two ranks' sum), two ranks solve it.
+    if len(states) == 2:
+        limit = f"{1.3 * max(states) / 2**20:.2f}"
+        alone = run([sphcover, "solve", SCENE, *SMALL[:8], "-q", "--memory-limit", limit])
+        if alone.returncode == 0 or "MemoryLimit" not in alone.stderr:
+            failures.append(f"--memory-limit {limit} MiB on one process: exit {alone.returncode}, "
+                            f"not the propagation's MemoryLimit error: {alone.stderr.strip()}")
+        shared = run([mpiexec, "-n", "2", sphcover, "solve", SCENE, *SMALL[:8], "-q",
+                      "--memory-limit", limit])
+        if shared.returncode != 0:
+            failures.append(f"--memory-limit {limit} MiB on 2 ranks: exit {shared.returncode}: "
+                            f"{shared.stderr.strip()}")
 
     # A walk through a solution under mpiexec -n 2: the serial walk's frames, byte for byte.
     solution = os.path.join(folder, "solution.vtm")
