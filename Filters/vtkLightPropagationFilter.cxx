@@ -36,6 +36,7 @@
 #include <exception>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -390,44 +391,61 @@ bool LampPatchesOf(vtkPolyData* points,
   return true;
 }
 
-/// The results of every patch and region: the propagation's own, or under MPI (collective)
-/// each rank's patches and rows joined in rank order (the ranks' ranges tile the patches).
-PropagationResults ResultsOf(const sphcover::LightPropagation& propagation,
-  const PropagationRanks& ranks,
+/// This rank's part of the results: per own patch its irradiance, radiosity, brightness and lamp
+/// irradiance, the incident radiance of its rows' regions, and the energy. Collective under
+/// MPI (the lamps' irradiance and the energy join inside).
+struct OwnResults
+{
+  std::vector<glm::dvec3> PerPatch;
+  std::vector<glm::dvec3> Incident;
+  sphcover::EnergyBalance Energy;
+  std::size_t Count = 0;
+  bool Lamps = false;
+};
+
+OwnResults OwnResultsOf(const sphcover::LightPropagation& propagation,
   const std::vector<bool>& lampPatch,
   bool firstBounce)
 {
-  PropagationResults results;
-  const std::size_t count = propagation.PatchCount();
-  const bool lamps = !lampPatch.empty();
-  const std::vector<glm::dvec3> lamp =
-    lamps ? propagation.LampIrradiance(lampPatch, firstBounce) : std::vector<glm::dvec3>();
-  results.Energy = propagation.Energy();
-  const std::size_t first = propagation.OwnedBegin();
-  const std::size_t last = propagation.OwnedEnd();
-  std::vector<glm::dvec3> perPatch; // per own patch: irradiance, radiosity, brightness, lamp
-  for (std::size_t i = first; i < last; ++i)
+  OwnResults own;
+  own.Count = propagation.PatchCount();
+  own.Lamps = !lampPatch.empty();
+  const std::vector<glm::dvec3> lamp = own.Lamps
+    ? propagation.LampIrradiance(lampPatch, firstBounce)
+    : std::vector<glm::dvec3>();
+  own.Energy = propagation.Energy();
+  for (std::size_t i = propagation.OwnedBegin(); i < propagation.OwnedEnd(); ++i)
   {
-    perPatch.push_back(propagation.Irradiance(i));
-    perPatch.push_back(propagation.ExitantRadiance(i));
-    perPatch.push_back(propagation.Brightness(i));
-    perPatch.push_back(lamps ? lamp[i] : glm::dvec3(0.0));
+    own.PerPatch.push_back(propagation.Irradiance(i));
+    own.PerPatch.push_back(propagation.ExitantRadiance(i));
+    own.PerPatch.push_back(propagation.Brightness(i));
+    own.PerPatch.push_back(own.Lamps ? lamp[i] : glm::dvec3(0.0));
   }
-  // Under MPI each rank's patches and rows, in rank order (RankShare.h); alone, its own.
-  perPatch = sphcover::JoinValues(ranks.Share, perPatch.data(), perPatch.size());
-  const std::vector<glm::dvec3>& incident = propagation.IncidentRadiances();
-  results.Incident = sphcover::JoinValues(ranks.Share, incident.data(), incident.size());
-  if (perPatch.size() != 4 * count)
+  own.Incident = propagation.IncidentRadiances();
+  return own;
+}
+
+/// The results of every patch and region: this rank's own alone, or under MPI (collective)
+/// each rank's patches and rows joined in rank order (the ranks' ranges tile the patches).
+PropagationResults JoinResults(const PropagationRanks& ranks, OwnResults own)
+{
+  PropagationResults results;
+  results.Energy = own.Energy;
+  const std::vector<glm::dvec3> perPatch =
+    sphcover::JoinValues(ranks.Share, own.PerPatch.data(), own.PerPatch.size());
+  own.PerPatch = std::vector<glm::dvec3>();
+  results.Incident = sphcover::JoinValues(ranks.Share, own.Incident.data(), own.Incident.size());
+  if (perPatch.size() != 4 * own.Count)
   {
     throw std::runtime_error("the ranks' results cover " + std::to_string(perPatch.size() / 4) +
-      " of " + std::to_string(count) + " points");
+      " of " + std::to_string(own.Count) + " points");
   }
-  for (std::size_t i = 0; i < count; ++i)
+  for (std::size_t i = 0; i < own.Count; ++i)
   {
     results.Irradiance.push_back(perPatch[4 * i]);
     results.Radiosity.push_back(perPatch[4 * i + 1]);
     results.Brightness.push_back(perPatch[4 * i + 2]);
-    if (lamps)
+    if (own.Lamps)
     {
       results.Lamp.push_back(perPatch[4 * i + 3]);
     }
@@ -725,9 +743,10 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
         return 0;
       }
     }
-    sphcover::LightPropagation propagation(controller ? rows : cover, materials);
+    auto propagation =
+      std::make_unique<sphcover::LightPropagation>(controller ? rows : cover, materials);
     vtkHeldMessages held(controller ? this : nullptr);
-    const bool completed = Propagate(this, input, ranks, factors, propagation);
+    const bool completed = Propagate(this, input, ranks, factors, *propagation);
     problem = agree(completed ? std::string() : held.First("Light propagation aborted."));
     if (!problem.empty())
     {
@@ -737,18 +756,25 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       }
       return 0;
     }
-    results = ResultsOf(propagation, ranks, lampPatch, firstBounce);
+    OwnResults own = OwnResultsOf(*propagation, lampPatch, firstBounce);
+    const std::vector<sphcover::ShotRecord>& shots = propagation->History();
     if (controller)
     {
       // What each rank held and did (GetRankFigures), gathered in rank order.
       const double mine[4] = { static_cast<double>(ranks.Last - ranks.First),
         static_cast<double>(rows.EntryCount()),
         static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)),
-        propagation.History().empty() ? 0.0 : propagation.History().back().Seconds };
+        shots.empty() ? 0.0 : shots.back().Seconds };
       this->RankFigures = sphcover::JoinValues(ranks.Share, mine, 4, true);
     }
-    this->Shots = static_cast<int>(propagation.History().size());
-    WriteShotHistory(propagation.History(), watts, history);
+    this->Shots = static_cast<int>(shots.size());
+    WriteShotHistory(shots, watts, history);
+    // The propagation's state goes before the ranks' results are joined: the join holds every
+    // rank's regions, and beside the state it was each rank's peak memory.
+    propagation.reset();
+    rows = sphcover::SphericalCover();
+    cover = sphcover::SphericalCover();
+    results = JoinResults(ranks, std::move(own));
   }
   catch (const std::exception& e)
   {
