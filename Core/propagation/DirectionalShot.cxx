@@ -7,9 +7,7 @@
 #include "propagation/LightPropagation.h"
 
 #include "cover/SphericalCover.h"
-#include "math/ByteBuffer.h"
 
-#include <exception>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -125,51 +123,19 @@ void LightPropagation::ComputeAlbedoMeasures()
   }
 }
 
-LightPropagation::RowRegions LightPropagation::RegionsOf(std::size_t patch) const
-{
-  RowRegions row;
-  const SphericalCover& cover = this->Cover;
-  if (patch < this->RemoteRows.size() && !this->RemoteRows[patch].Entries.empty())
-  {
-    const RemoteRow& remote = this->RemoteRows[patch];
-    row.Entries = remote.Entries.data();
-    row.Count = remote.Entries.size();
-    row.Strips = remote.Strips.data();
-    row.StripsEnd = remote.Strips.size();
-    row.Omega = remote.Omega.data();
-    return row;
-  }
-  const std::size_t rowBegin = cover.EntryBegin(patch);
-  const std::size_t rowEnd = cover.EntryEnd(patch);
-  if (rowEnd > rowBegin)
-  {
-    row.Entries = &cover.EntryAt(rowBegin);
-    row.Count = rowEnd - rowBegin;
-    row.Strips = &cover.StripAt(0);
-    row.StripsEnd = cover.StripEnd(rowEnd - 1);
-    row.Omega = this->EntryOmega.data() + rowBegin;
-  }
-  return row;
-}
-
 glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
 {
-  this->TakeUnshotInStrips(shooter);
-  return this->ReflectInStrips(shooter);
-}
-
-glm::dvec3 LightPropagation::ReflectInStrips(std::size_t shooter)
-{
-  const HemisphereGrid& grid = this->Cover.Grid();
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
   const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
-  const RowRegions row = this->RegionsOf(shooter);
-  const std::size_t pairs = this->CoupleInRows(row, table);
+  this->TakeUnshotInStrips(shooter);
+  const std::size_t pairs = this->CoupleInRows(shooter, table);
   this->GridShot = this->Method == DirectionalMethod::Grid ||
     (this->Method == DirectionalMethod::Automatic &&
       static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount()));
-  this->DirectionalOut.assign(row.Count, glm::dvec3(0.0));
-  return this->GridShot ? this->ShotByGrid(row, table)
-                        : this->ShotByStripPairs(row, table, pairs);
+  this->DirectionalOut.assign(cover.EntryEnd(shooter) - cover.EntryBegin(shooter), glm::dvec3(0.0));
+  return this->GridShot ? this->ShotByGrid(shooter, table)
+                        : this->ShotByStripPairs(shooter, table, pairs);
 }
 
 void LightPropagation::TakeUnshotInStrips(std::size_t shooter)
@@ -207,9 +173,10 @@ void LightPropagation::TakeUnshotInStrips(std::size_t shooter)
   this->DirectionalUnshot[shooter] = 0.0;
 }
 
-std::size_t LightPropagation::CoupleInRows(const RowRegions& row, const ReflectanceWeights& table)
+std::size_t LightPropagation::CoupleInRows(std::size_t shooter, const ReflectanceWeights& table)
 {
-  const int rows = this->Cover.Grid().ThetaBins();
+  const SphericalCover& cover = this->Cover;
+  const int rows = cover.Grid().ThetaBins();
   const std::size_t rowCount = static_cast<std::size_t>(rows);
   const std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
   std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
@@ -232,225 +199,120 @@ std::size_t LightPropagation::CoupleInRows(const RowRegions& row, const Reflecta
     }
   }
   // The strip pairs of the strip-pair sum: its cost, against the grid's (file comment).
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
   std::size_t pairs = 0;
-  if (row.Count > 0)
+  if (rowEnd > rowBegin)
   {
-    for (std::size_t k = row.StripBegin(0); k < row.StripsEnd; ++k)
+    for (std::size_t k = cover.StripBegin(rowBegin); k < cover.StripEnd(rowEnd - 1); ++k)
     {
-      pairs += coupledStrips[row.Strips[k].Row];
+      pairs += coupledStrips[cover.StripAt(k).Row];
     }
   }
   return pairs;
 }
 
-glm::dvec3 LightPropagation::ShotByStripPairs(const RowRegions& row,
+glm::dvec3 LightPropagation::ShotByStripPairs(std::size_t shooter,
   const ReflectanceWeights& table,
   std::size_t pairs)
 {
-  const HemisphereGrid& grid = this->Cover.Grid();
-  const std::size_t rows = static_cast<std::size_t>(grid.ThetaBins());
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
   const std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
   const std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
-  const std::size_t firstStrip = row.Count > 0 ? row.StripBegin(0) : 0;
-  // This rank's out rows (all of them alone): each whole out row's flux, for the mean over the
-  // hemisphere, and the flux of each of the row's strips in them.
-  std::vector<char> mine;
-  std::exception_ptr failure;
-  try
+  // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
+  glm::dvec3 meanFlux(0.0);
+  for (int rowOut = 0; rowOut < grid.ThetaBins(); ++rowOut)
   {
-  this->RowFlux.assign(rows, glm::dvec3(0.0));
-  this->StripFlux.assign(row.StripsEnd - firstStrip, glm::dvec3(0.0));
-  for (std::size_t rowOut = 0; rowOut < rows; ++rowOut)
-  {
-    if (!this->MyOutRow(rowOut))
-    {
-      continue;
-    }
     glm::dvec3 rowFlux(0.0);
-    for (int rowIn : coupled[rowOut])
+    for (int rowIn : coupled[static_cast<std::size_t>(rowOut)])
     {
-      const glm::dvec3 weight = table.RowWeight(static_cast<int>(rowOut), rowIn);
+      const glm::dvec3 weight = table.RowWeight(rowOut, rowIn);
       for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
       {
         rowFlux += static_cast<double>(strip.End - strip.Begin) * weight * strip.Radiance;
       }
     }
-    this->RowFlux[rowOut] = rowFlux;
-  }
-  for (std::size_t k = firstStrip; k < row.StripsEnd; ++k)
-  {
-    const SphericalCover::Strip& out = row.Strips[k];
-    if (!this->MyOutRow(out.Row))
-    {
-      continue;
-    }
-    glm::dvec3 stripFlux(0.0);
-    for (int rowIn : coupled[out.Row])
-    {
-      for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
-      {
-        stripFlux +=
-          table.StripPairWeight(out.Row, out.PhiBegin, out.PhiEnd, rowIn, strip.Begin, strip.End) *
-          strip.Radiance;
-      }
-    }
-    this->StripFlux[k - firstStrip] = stripFlux;
-  }
-  // Under a share, each rank's rows' fluxes, then its strips' in strip order, joined: every
-  // rank then holds what one rank alone computes.
-  if (this->Shared())
-  {
-    ByteWriter out(mine);
-    for (std::size_t r = 0; r < rows; ++r)
-    {
-      if (this->MyOutRow(r))
-      {
-        out.Value(this->RowFlux[r]);
-      }
-    }
-    for (std::size_t k = firstStrip; k < row.StripsEnd; ++k)
-    {
-      if (this->MyOutRow(row.Strips[k].Row))
-      {
-        out.Value(this->StripFlux[k - firstStrip]);
-      }
-    }
-  }
-  }
-  catch (...)
-  {
-    failure = std::current_exception();
-  }
-  if (this->Shared() || failure)
-  {
-    const std::vector<std::vector<char>> all = this->JoinOutRows(mine, failure);
-    const std::size_t ranks = all.size();
-    for (std::size_t rank = 0; rank < ranks; ++rank)
-    {
-      ByteReader theirs(all[rank]);
-      bool read = true;
-      for (std::size_t r = rank; r < rows; r += ranks)
-      {
-        read = read && theirs.Value(this->RowFlux[r]);
-      }
-      for (std::size_t k = firstStrip; k < row.StripsEnd; ++k)
-      {
-        if (row.Strips[k].Row % ranks == rank)
-        {
-          read = read && theirs.Value(this->StripFlux[k - firstStrip]);
-        }
-      }
-      if (!read || !theirs.AtEnd())
-      {
-        throw std::runtime_error("LightPropagation: a rank's out-row fluxes are damaged");
-      }
-    }
+    meanFlux += grid.CellMeasure(rowOut) * rowFlux;
   }
 
-  // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
-  glm::dvec3 meanFlux(0.0);
-  for (std::size_t rowOut = 0; rowOut < rows; ++rowOut)
-  {
-    meanFlux += grid.CellMeasure(static_cast<int>(rowOut)) * this->RowFlux[rowOut];
-  }
   // The exitant radiance averaged over every region h_ji of the shooter's row.
-  for (std::size_t r = 0; r < row.Count; ++r)
+  for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
     glm::dvec3 flux(0.0);
-    for (std::size_t k = row.StripBegin(r); k < row.StripEnd(r); ++k)
+    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
     {
-      flux += grid.CellMeasure(row.Strips[k].Row) * this->StripFlux[k - firstStrip];
+      const SphericalCover::Strip& out = cover.StripAt(k);
+      glm::dvec3 stripFlux(0.0);
+      for (int rowIn : coupled[out.Row])
+      {
+        for (const InStrip& strip : in[static_cast<std::size_t>(rowIn)])
+        {
+          stripFlux += table.StripPairWeight(
+                         out.Row, out.PhiBegin, out.PhiEnd, rowIn, strip.Begin, strip.End) *
+            strip.Radiance;
+        }
+      }
+      flux += grid.CellMeasure(out.Row) * stripFlux;
     }
-    if (row.Omega[r] > 0.0)
+    if (this->EntryOmega[e] > 0.0)
     {
-      this->DirectionalOut[r] = flux / row.Omega[r];
+      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
     }
   }
   this->LastWeightEvaluations = pairs;
   return meanFlux / grid.TotalMeasure();
 }
 
-glm::dvec3 LightPropagation::ShotByGrid(const RowRegions& row, const ReflectanceWeights& table)
+glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWeights& table)
 {
-  const HemisphereGrid& grid = this->Cover.Grid();
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
   const std::size_t rows = static_cast<std::size_t>(grid.ThetaBins());
   const std::size_t columns = static_cast<std::size_t>(grid.PhiBins());
   // The unshot incident radiance per cell (each cell of the row belongs to one entry).
   this->GridIn.assign(rows * columns, glm::dvec3(0.0));
-  for (std::size_t r = 0; r < rows; ++r)
+  for (std::size_t row = 0; row < rows; ++row)
   {
-    for (const InStrip& strip : this->DirectionalIn[r])
+    for (const InStrip& strip : this->DirectionalIn[row])
     {
       for (int c = strip.Begin; c < strip.End; ++c)
       {
-        this->GridIn[r * columns + static_cast<std::size_t>(c)] += strip.Radiance;
+        this->GridIn[row * columns + static_cast<std::size_t>(c)] += strip.Radiance;
       }
     }
   }
-  // I(o) toward every cell of this rank's out rows (all of them alone), joined; then per out
-  // row the prefix sums of I over the columns, so that a strip of out cells costs O(1).
-  const std::size_t ranks = static_cast<std::size_t>(this->Share.Ranks());
-  std::vector<char> mine;
-  std::exception_ptr failure;
-  try
-  {
-    table.Reflect(this->GridIn,
-      this->GridOut,
-      this->ReflectScratch,
-      static_cast<std::size_t>(this->Share.Rank()),
-      ranks);
-    ByteWriter out(mine);
-    for (std::size_t r = static_cast<std::size_t>(this->Share.Rank()); r < rows && ranks > 1;
-         r += ranks)
-    {
-      out.Values(this->GridOut.data() + r * columns, columns);
-    }
-  }
-  catch (...)
-  {
-    failure = std::current_exception();
-  }
-  if (this->Shared() || failure)
-  {
-    const std::vector<std::vector<char>> all = this->JoinOutRows(mine, failure);
-    for (std::size_t rank = 0; rank < all.size(); ++rank)
-    {
-      ByteReader theirs(all[rank]);
-      bool read = true;
-      for (std::size_t r = rank; r < rows; r += ranks)
-      {
-        read = read && theirs.Values(this->GridOut.data() + r * columns, columns);
-      }
-      if (!read || !theirs.AtEnd())
-      {
-        throw std::runtime_error("LightPropagation: a rank's reflected rows are damaged");
-      }
-    }
-  }
+  // I(o) toward every cell, then per out row the prefix sums of I over the columns, so that
+  // a strip of out cells costs O(1).
+  table.Reflect(this->GridIn, this->GridOut, this->ReflectScratch);
   this->GridPrefix.resize(rows * (columns + 1));
   glm::dvec3 meanFlux(0.0);
-  for (std::size_t r = 0; r < rows; ++r)
+  for (std::size_t row = 0; row < rows; ++row)
   {
-    glm::dvec3* prefix = this->GridPrefix.data() + r * (columns + 1);
+    glm::dvec3* prefix = this->GridPrefix.data() + row * (columns + 1);
     prefix[0] = glm::dvec3(0.0);
     for (std::size_t c = 0; c < columns; ++c)
     {
-      prefix[c + 1] = prefix[c] + this->GridOut[r * columns + c];
+      prefix[c + 1] = prefix[c] + this->GridOut[row * columns + c];
     }
-    meanFlux += grid.CellMeasure(static_cast<int>(r)) * prefix[columns];
+    meanFlux += grid.CellMeasure(static_cast<int>(row)) * prefix[columns];
   }
-  for (std::size_t e = 0; e < row.Count; ++e)
+  const std::size_t rowBegin = cover.EntryBegin(shooter);
+  const std::size_t rowEnd = cover.EntryEnd(shooter);
+  for (std::size_t e = rowBegin; e < rowEnd; ++e)
   {
     glm::dvec3 flux(0.0);
-    for (std::size_t k = row.StripBegin(e); k < row.StripEnd(e); ++k)
+    for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
     {
-      const SphericalCover::Strip& out = row.Strips[k];
+      const SphericalCover::Strip& out = cover.StripAt(k);
       const glm::dvec3* prefix = this->GridPrefix.data() + out.Row * (columns + 1);
       flux += grid.CellMeasure(out.Row) * (prefix[out.PhiEnd] - prefix[out.PhiBegin]);
     }
-    if (row.Omega[e] > 0.0)
+    if (this->EntryOmega[e] > 0.0)
     {
-      this->DirectionalOut[e] = flux / row.Omega[e];
+      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
     }
   }
   this->LastWeightEvaluations = 0;

@@ -45,7 +45,6 @@
 #define SPHCOVER_LIGHTPROPAGATION_H
 
 #include "cover/HemisphereGrid.h"
-#include "cover/SphericalCover.h"
 #include "math/ParallelFor.h"
 #include "math/RankShare.h"
 #include "reflectance/DirectionalReflection.h"
@@ -202,15 +201,13 @@ public:
    * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every shot,
    * the ranks agree on the shooter (the patch of largest unshot power over all ranks, lowest index on ties:
    * serial's), its owner sends what it shoots (its unshot radiance; for a non-diffuse shooter
-   * its unshot in-strips, which every rank then reflects toward its share of the out rows of
-   * the hemisphere, the ranks joining the reflected rows) and each rank updates its own
-   * receivers in column order. So every owned patch's state,
+   * its reflected radiance toward every region of its row and what serves receivers without
+   * one) and each rank updates its own receivers in column order. So every owned patch's state,
    * and each result of an owned patch (Irradiance, ExitantRadiance, Brightness, the incident
    * radiances of its row), is the serial one bit for bit; the history's shooters and powers
    * are serial's, its sums over the ranks (UnshotEnergy, ReceiverUpdates) equal up to the order
    * of addition. Call after the constructor and SetExchangeFactors (whose factors are then the
-   * kept rows'); collective (the ranks exchange their non-diffuse rows' keys and regions once:
-   * every rank then holds the strips of every non-diffuse row). Run
+   * kept rows'); collective (the ranks exchange the keys of their non-diffuse rows once). Run
    * is then collective and BrightestFirst only, Energy and LampIrradiance are collective, the
    * other results are of owned patches only. Throws std::invalid_argument for a range out of
    * bounds or a row outside it that is not empty.
@@ -345,66 +342,26 @@ private:
   /// given); false when some rank stops.
   bool JoinScan(std::size_t& brightest, double& largest, double& unshot, bool stop,
     ShotRecord* record);
-  /// A non-diffuse shot on every rank: the shooter's owner takes its unshot in-strips and
-  /// sends them, then each rank reflects its share of the out rows (ReflectInStrips); returns
-  /// the mean exitant radiance.
+  /// A non-diffuse shot's data (DirectionalShot's results) from the shooter's owner to every
+  /// rank; returns the mean exitant radiance.
   glm::dvec3 ShareDirectionalShot(std::size_t shooter, bool owner);
-  /// Every rank's `mine` (the results of its out rows, MyOutRow), joined; rethrows `failure`
-  /// (this rank's, after joining with its flag down), throws PeerFailure when another rank
-  /// failed.
-  std::vector<std::vector<char>> JoinOutRows(const std::vector<char>& mine,
-    std::exception_ptr failure) const;
   /// The values of one rank's scan (JoinScan).
   static constexpr std::size_t ScanValues = 11;
   bool Shared() const { return this->Share.Distributed(); }
   /// ColumnAlbedoMeasure: a_e Omega_e of every entry of a non-diffuse row.
   void ComputeAlbedoMeasures();
-  /// A non-diffuse row's regions as a directional shot reads them: per entry its strips and
-  /// Omega_e; the cover's own row, or another rank's row copied by SetRankShare (RemoteRows).
-  struct RowRegions
-  {
-    const SphericalCover::Entry* Entries = nullptr;
-    std::size_t Count = 0;
-    /// Indexed by Entry::FirstStrip; the row's strips end at StripsEnd.
-    const SphericalCover::Strip* Strips = nullptr;
-    std::size_t StripsEnd = 0;
-    const double* Omega = nullptr;
-    std::size_t StripBegin(std::size_t r) const { return this->Entries[r].FirstStrip; }
-    std::size_t StripEnd(std::size_t r) const
-    {
-      return r + 1 < this->Count ? this->Entries[r + 1].FirstStrip : this->StripsEnd;
-    }
-  };
-  /// Another rank's non-diffuse row (its strips from 0).
-  struct RemoteRow
-  {
-    std::vector<SphericalCover::Entry> Entries;
-    std::vector<SphericalCover::Strip> Strips;
-    std::vector<double> Omega;
-  };
-  RowRegions RegionsOf(std::size_t patch) const;
   /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
   /// row j, into DirectionalOut, by the cheaper method; returns the mean over the hemisphere.
   glm::dvec3 DirectionalShot(std::size_t shooter);
   /// Moves the shooter's unshot dE into DirectionalIn, as in-strips by row.
   void TakeUnshotInStrips(std::size_t shooter);
-  /// DirectionalShot after TakeUnshotInStrips, on every rank of a share alike.
-  glm::dvec3 ReflectInStrips(std::size_t shooter);
   /// DirectionalCoupled from DirectionalIn; returns the strip pairs of a strip-pair shot.
-  std::size_t CoupleInRows(const RowRegions& row, const ReflectanceWeights& table);
-  /// Whether this rank reflects out row `row` of a shot: all of them alone, every K-th under a
-  /// share (rows interleaved, as RankShare::MyItems).
-  bool MyOutRow(std::size_t row) const
-  {
-    return row % static_cast<std::size_t>(this->Share.Ranks()) ==
-      static_cast<std::size_t>(this->Share.Rank());
-  }
-  /// The two methods of DirectionalShot, on the in-strips it collected; each rank reflects
-  /// its out rows and the ranks join them.
-  glm::dvec3 ShotByStripPairs(const RowRegions& row,
+  std::size_t CoupleInRows(std::size_t shooter, const ReflectanceWeights& table);
+  /// The two methods of DirectionalShot, on the in-strips it collected.
+  glm::dvec3 ShotByStripPairs(std::size_t shooter,
     const ReflectanceWeights& table,
     std::size_t pairs);
-  glm::dvec3 ShotByGrid(const RowRegions& row, const ReflectanceWeights& table);
+  glm::dvec3 ShotByGrid(std::size_t shooter, const ReflectanceWeights& table);
   /// The exitant radiance of the current directional shot toward a receiver without h_ji, whose
   /// ColumnBack code is `code`.
   glm::dvec3 TowardReceiver(std::size_t shooter, uint32_t code, const glm::dvec3& mean);
@@ -476,9 +433,6 @@ private:
   };
   std::vector<std::vector<InStrip>> DirectionalIn;
   std::vector<std::vector<int>> DirectionalCoupled;
-  /// Scratch of ShotByStripPairs: the flux of each out row, and of each strip of the row.
-  std::vector<glm::dvec3> RowFlux;
-  std::vector<glm::dvec3> StripFlux;
   /// Scratch of ShotByGrid: unshot incident radiance per cell, exitant radiance per cell, and
   /// per row the prefix sums of the exitant radiance over the columns.
   std::vector<glm::dvec3> GridIn;
@@ -497,9 +451,6 @@ private:
   RankShare Share;
   std::size_t OwnedFirst = 0;
   std::size_t OwnedLast = 0;
-  /// The other ranks' non-diffuse rows, by patch (empty elsewhere): every rank reflects a
-  /// share of a shot's out rows and forms the shooter's radiance toward its regions.
-  std::vector<RemoteRow> RemoteRows;
   /// The shooter's unshot radiance and whether its shot is directional, from the last scan.
   glm::dvec3 ScannedIncrement{ 0.0 };
   bool ScannedDirectional = false;

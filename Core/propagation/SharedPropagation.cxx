@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // LightPropagation under MPI (SetRankShare in LightPropagation.h; the class is declared
-// there): the ranks' rows, the once-only exchange of their non-diffuse rows (keys and regions),
-// the scan joined every shot, and a non-diffuse shot divided among the ranks. Communication per
-// shot: one all-gather of K x 89 bytes (the scan, with what a Lambertian shot sends); for a
-// non-diffuse shooter two joins more, the owner's unshot in-strips and then each rank's
-// reflected out rows (DirectionalShot.cxx; Documentation/notes/distributed-solve.md).
+// there): the ranks' rows, the once-only exchange of the keys of their non-diffuse rows, the
+// scan joined every shot, and the shot's data sent by the shooter's owner. Communication per
+// shot: one all-gather of K x 89 bytes (the scan, with what a Lambertian shot sends), and for a
+// non-diffuse shooter a second join of its row's radiances and its unshot in-strips or its
+// grid (Documentation/notes/distributed-solve.md).
 #include "propagation/LightPropagation.h"
 
 #include "cover/SphericalCover.h"
@@ -56,10 +56,9 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
   {
     return;
   }
-  // Every rank reflects a share of a non-diffuse shot's out rows and forms the shooter's
-  // radiance toward each region of its row (ReflectInStrips): every rank gets every
-  // non-diffuse row's regions (strips and Omega_e) once, here. The receivers of the other
-  // ranks find theirs by the position of (j, i) in row j, matched from the rows' keys.
+  // A non-diffuse shooter's owner sends its radiance toward each region of its row; the
+  // receivers of the other ranks find theirs by the position of (j, i) in row j, matched once
+  // here from the keys of every rank's non-diffuse rows.
   std::vector<char> mine;
   ByteWriter out(mine);
   for (std::size_t j = firstOwned; j < lastOwned; ++j)
@@ -68,30 +67,22 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
     {
       continue;
     }
-    const RowRegions row = this->RegionsOf(j);
-    const std::size_t firstStrip = row.Count > 0 ? row.StripBegin(0) : 0;
     std::vector<EntryKey> keys;
-    std::vector<SphericalCover::Entry> entries;
     for (std::size_t e = this->Cover.EntryBegin(j); e < this->Cover.EntryEnd(j); ++e)
     {
-      const SphericalCover::Entry& entry = this->Cover.EntryAt(e);
-      keys.push_back({ entry.Source, this->Cover.Layer(e), glm::vec3(this->Cover.Filter(e)) });
-      entries.push_back({ entry.Source, static_cast<uint32_t>(entry.FirstStrip - firstStrip) });
+      keys.push_back({ this->Cover.EntryAt(e).Source,
+        this->Cover.Layer(e),
+        glm::vec3(this->Cover.Filter(e)) });
     }
     out.Value(static_cast<uint64_t>(j));
     out.Array(keys);
-    out.Array(entries);
-    out.Array(std::vector<SphericalCover::Strip>(
-      row.Strips + firstStrip, row.Strips + (row.Count > 0 ? row.StripsEnd : firstStrip)));
-    out.Array(std::vector<double>(row.Omega, row.Omega + row.Count));
   }
   std::vector<std::vector<char>> all;
   if (!this->Share.Join(mine, true, all))
   {
     throw RankShare::PeerFailure();
   }
-  std::vector<std::vector<EntryKey>> remoteKeys(n);
-  this->RemoteRows.assign(n, RemoteRow());
+  std::vector<std::vector<EntryKey>> remoteRows(n);
   for (std::size_t r = 0; r < all.size(); ++r)
   {
     if (static_cast<int>(r) == this->Share.Rank())
@@ -101,24 +92,12 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
     ByteReader in(all[r]);
     while (!in.AtEnd())
     {
-      uint64_t j = 0;
-      Expect(in.Value(j) && j < n, "rows");
-      RemoteRow& row = this->RemoteRows[static_cast<std::size_t>(j)];
-      Expect(in.Array(remoteKeys[static_cast<std::size_t>(j)]) && in.Array(row.Entries) &&
-          in.Array(row.Strips) && in.Array(row.Omega),
-        "rows");
-      bool consistent = row.Entries.size() == remoteKeys[static_cast<std::size_t>(j)].size() &&
-        row.Omega.size() == row.Entries.size();
-      for (std::size_t e = 0; consistent && e < row.Entries.size(); ++e)
-      {
-        const std::size_t end =
-          e + 1 < row.Entries.size() ? row.Entries[e + 1].FirstStrip : row.Strips.size();
-        consistent = row.Entries[e].FirstStrip <= end && end <= row.Strips.size();
-      }
-      Expect(consistent, "rows");
+      uint64_t row = 0;
+      Expect(in.Value(row) && row < n && in.Array(remoteRows[static_cast<std::size_t>(row)]),
+        "row keys");
     }
   }
-  this->MatchTransposedEntries(remoteKeys);
+  this->MatchTransposedEntries(remoteRows);
   this->EncodeFallbacks();
 }
 
@@ -180,60 +159,43 @@ bool LightPropagation::JoinScan(std::size_t& brightest,
 
 glm::dvec3 LightPropagation::ShareDirectionalShot(std::size_t shooter, bool owner)
 {
-  // The owner takes its unshot in-strips (its row's state) and sends them; the others find
-  // them as the one non-empty block. Every rank then reflects its out rows (ReflectInStrips).
+  // The owner computes the shot (DirectionalShot, as serial) and packs it; the others send
+  // nothing and find the owner's data as the one non-empty block.
+  glm::dvec3 mean(0.0);
   std::vector<char> bytes;
+  bool ok = true;
   std::exception_ptr failure;
   if (owner)
   {
     try
     {
-      this->TakeUnshotInStrips(shooter);
+      mean = this->DirectionalShot(shooter);
       ByteWriter out(bytes);
-      out.Value(static_cast<uint8_t>(1));
-      for (const std::vector<InStrip>& strips : this->DirectionalIn)
+      out.Value(mean);
+      out.Value(static_cast<uint8_t>(this->GridShot ? 1 : 0));
+      out.Value(static_cast<uint64_t>(this->LastWeightEvaluations));
+      out.Array(this->DirectionalOut);
+      if (this->GridShot)
       {
-        out.Array(strips);
+        out.Array(this->GridOut);
+      }
+      else
+      {
+        for (std::size_t row = 0; row < this->DirectionalIn.size(); ++row)
+        {
+          out.Array(this->DirectionalIn[row]);
+          out.Array(this->DirectionalCoupled[row]);
+        }
       }
     }
     catch (...)
     {
       failure = std::current_exception();
+      ok = false;
     }
   }
-  const std::vector<std::vector<char>> all = this->JoinOutRows(bytes, failure);
-  if (!owner)
-  {
-    const std::vector<char>* theirs = nullptr;
-    for (const std::vector<char>& rankBytes : all)
-    {
-      if (!rankBytes.empty())
-      {
-        theirs = &rankBytes;
-      }
-    }
-    if (!theirs)
-    {
-      throw std::runtime_error("LightPropagation: no rank owns the shooter");
-    }
-    ByteReader in(*theirs);
-    uint8_t marker = 0;
-    bool read = in.Value(marker);
-    this->DirectionalIn.resize(static_cast<std::size_t>(this->Cover.Grid().ThetaBins()));
-    for (std::vector<InStrip>& strips : this->DirectionalIn)
-    {
-      read = read && in.Array(strips);
-    }
-    Expect(read && in.AtEnd(), "in-strips");
-  }
-  return this->ReflectInStrips(shooter);
-}
-
-std::vector<std::vector<char>> LightPropagation::JoinOutRows(const std::vector<char>& mine,
-  std::exception_ptr failure) const
-{
   std::vector<std::vector<char>> all;
-  const bool everyRankOk = this->Share.Join(mine, !failure, all);
+  const bool everyRankOk = this->Share.Join(bytes, ok, all);
   if (failure)
   {
     std::rethrow_exception(failure);
@@ -242,7 +204,45 @@ std::vector<std::vector<char>> LightPropagation::JoinOutRows(const std::vector<c
   {
     throw RankShare::PeerFailure();
   }
-  return all;
+  if (owner)
+  {
+    return mean;
+  }
+  const std::vector<char>* theirs = nullptr;
+  for (const std::vector<char>& rankBytes : all)
+  {
+    if (!rankBytes.empty())
+    {
+      theirs = &rankBytes;
+    }
+  }
+  if (!theirs)
+  {
+    throw std::runtime_error("LightPropagation: no rank owns the shooter");
+  }
+  ByteReader in(*theirs);
+  uint8_t grid = 0;
+  uint64_t evaluations = 0;
+  bool read = in.Value(mean) && in.Value(grid) && in.Value(evaluations) &&
+    in.Array(this->DirectionalOut);
+  this->GridShot = grid != 0;
+  this->LastWeightEvaluations = static_cast<std::size_t>(evaluations);
+  if (this->GridShot)
+  {
+    read = read && in.Array(this->GridOut);
+  }
+  else
+  {
+    const std::size_t rows = static_cast<std::size_t>(this->Cover.Grid().ThetaBins());
+    this->DirectionalIn.resize(rows);
+    this->DirectionalCoupled.resize(rows);
+    for (std::size_t row = 0; row < rows; ++row)
+    {
+      read = read && in.Array(this->DirectionalIn[row]) && in.Array(this->DirectionalCoupled[row]);
+    }
+  }
+  Expect(read, "shot data");
+  return mean;
 }
 
 } // namespace sphcover

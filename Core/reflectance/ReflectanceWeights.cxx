@@ -487,14 +487,8 @@ void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
 
 void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
   std::vector<glm::dvec3>& exitant,
-  Scratch& scratch,
-  std::size_t firstRow,
-  std::size_t rowStep) const
+  Scratch& scratch) const
 {
-  if (rowStep == 0)
-  {
-    throw std::invalid_argument("ReflectanceWeights::Reflect: a row step of 0");
-  }
   const std::size_t rows = static_cast<std::size_t>(this->Rows);
   const std::size_t columns = static_cast<std::size_t>(this->Columns);
   const std::size_t length = static_cast<std::size_t>(this->SpectrumLength);
@@ -531,7 +525,7 @@ void ReflectanceWeights::Reflect(const std::vector<glm::dvec3>& incident,
   }
   std::vector<std::complex<double>>& sum = scratch.Sum;
   sum.resize(3 * length);
-  for (std::size_t ro = firstRow; ro < rows; ro += rowStep)
+  for (std::size_t ro = 0; ro < rows; ++ro)
   {
     glm::dvec3* out = exitant.data() + ro * columns;
     bool spectral = false;

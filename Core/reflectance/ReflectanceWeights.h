@@ -81,14 +81,9 @@ public:
     std::vector<std::complex<double>> In;
     std::vector<std::complex<double>> Sum;
   };
-  /// With `firstRow` and `rowStep`: only the out rows firstRow, firstRow + rowStep, ... (each
-  /// computed as the whole reflection computes it), the others 0. Ranks that share a shot each
-  /// reflect their rows (LightPropagation's SetRankShare).
   void Reflect(const std::vector<glm::dvec3>& incident,
     std::vector<glm::dvec3>& exitant,
-    Scratch& scratch,
-    std::size_t firstRow = 0,
-    std::size_t rowStep = 1) const;
+    Scratch& scratch) const;
   /// False when w vanishes between the two rows (the mirror's off-diagonal rows).
   bool RowsCoupled(int rowOut, int rowIn) const
   {

@@ -374,32 +374,6 @@ TEST(ReflectanceWeights, ReflectEqualsTheCellSum)
       EXPECT_GT(largest, 0.0);
       EXPECT_LT(worst, 1e-12 * largest)
         << MaterialTypeName(material.Type) << " " << grid.ThetaBins() << "x" << grid.PhiBins();
-      // K ranks each reflecting every K-th out row (a shared shot) give the whole reflection's
-      // rows bit for bit, and zeros elsewhere.
-      for (std::size_t ranks : { 2u, 3u, 5u })
-      {
-        ReflectanceWeights::Scratch scratch;
-        std::vector<glm::dvec3> joined(cells, glm::dvec3(0.0));
-        for (std::size_t rank = 0; rank < ranks; ++rank)
-        {
-          std::vector<glm::dvec3> part;
-          table.Reflect(incident, part, scratch, rank, ranks);
-          ASSERT_EQ(part.size(), cells);
-          for (std::size_t o = 0; o < cells; ++o)
-          {
-            const std::size_t row = static_cast<std::size_t>(grid.RowOfCell(static_cast<int>(o)));
-            if (row % ranks == rank)
-            {
-              joined[o] = part[o];
-            }
-            else
-            {
-              EXPECT_EQ(part[o], glm::dvec3(0.0));
-            }
-          }
-        }
-        EXPECT_EQ(joined, fast) << ranks << " ranks, " << MaterialTypeName(material.Type);
-      }
     }
   }
 }
