@@ -154,3 +154,28 @@ std::string vtkSphericalCoverArrays::Load(vtkDataSet* input, sphcover::Spherical
   }
   return cover.ImportArrays(std::move(arrays));
 }
+
+bool vtkSphericalCoverArrays::IsCoverArray(const char* name)
+{
+  if (!name)
+  {
+    return false;
+  }
+  for (const char* cover : { names::CoverGrid,
+         names::CoverRowOffsets,
+         names::CoverEntries,
+         names::CoverUnoccluded,
+         names::CoverStrips,
+         names::CoverStripDepths,
+         names::CoverMeasures,
+         names::CoverLayers,
+         names::CoverFilters,
+         names::CoverTransmittances })
+  {
+    if (std::strcmp(name, cover) == 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}

@@ -31,6 +31,9 @@ public:
 
   /// Reads the cover of `input`; returns what is missing or inconsistent ("" on success).
   static std::string Load(vtkDataSet* input, sphcover::SphericalCover& cover);
+
+  /// Whether `name` is one of the field arrays Store adds (nullptr: no).
+  static bool IsCoverArray(const char* name);
 };
 
 #endif

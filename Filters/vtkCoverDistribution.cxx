@@ -6,6 +6,7 @@
 #include <vtkMultiProcessController.h>
 #include <vtkSmartPointer.h>
 
+#include <exception>
 #include <string>
 
 namespace vtkCoverDistribution
@@ -110,6 +111,54 @@ int Count(vtkMultiProcessController* controller, bool flag)
 void BroadcastFromFirst(vtkMultiProcessController* controller, vtkDataSet* data)
 {
   controller->Broadcast(data, 0);
+}
+
+std::vector<char> DealFromFirst(vtkMultiProcessController* controller,
+  const std::function<std::vector<char>(int rank)>& blockOf)
+{
+  // A length of -1 says rank 0 failed to make the block.
+  constexpr int LengthTag = 19001;
+  constexpr int BlockTag = 19002;
+  const int ranks = controller->GetNumberOfProcesses();
+  if (controller->GetLocalProcessId() != 0)
+  {
+    vtkIdType length = -1;
+    controller->Receive(&length, 1, 0, LengthTag);
+    if (length < 0)
+    {
+      throw sphcover::RankShare::PeerFailure();
+    }
+    std::vector<char> block(static_cast<std::size_t>(length));
+    controller->Receive(block.data(), length, 0, BlockTag);
+    return block;
+  }
+  std::exception_ptr failure;
+  for (int r = 1; r < ranks; ++r)
+  {
+    std::vector<char> block;
+    if (!failure)
+    {
+      try
+      {
+        block = blockOf(r);
+      }
+      catch (...)
+      {
+        failure = std::current_exception();
+      }
+    }
+    const vtkIdType length = failure ? -1 : static_cast<vtkIdType>(block.size());
+    controller->Send(&length, 1, r, LengthTag);
+    if (!failure)
+    {
+      controller->Send(block.data(), length, r, BlockTag);
+    }
+  }
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  return std::vector<char>();
 }
 
 std::vector<RankFigures> GatherFigures(vtkMultiProcessController* controller,

@@ -19,6 +19,7 @@
 #include "math/RankShare.h"
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,16 @@ int Count(vtkMultiProcessController* controller, bool flag);
 
 /// Rank 0's dataset, copied into `data` on the other ranks (an instance of the same class).
 void BroadcastFromFirst(vtkMultiProcessController* controller, vtkDataSet* data);
+
+/**
+ * Rank 0 deals every other rank its own bytes: it calls `blockOf(r)` for r = 1, ..., K - 1 in
+ * turn and sends each block before making the next (so it holds one at a time), and returns an
+ * empty block; every other rank returns the block rank 0 made for it. When `blockOf` throws on
+ * rank 0, the ranks still waiting get a failure instead of a block and throw
+ * sphcover::RankShare::PeerFailure, and rank 0 rethrows: no rank waits forever.
+ */
+std::vector<char> DealFromFirst(vtkMultiProcessController* controller,
+  const std::function<std::vector<char>(int rank)>& blockOf);
 
 /// What each rank did: its rows, the wall seconds it took to build them and their bytes.
 struct RankFigures

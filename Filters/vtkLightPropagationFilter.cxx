@@ -12,17 +12,21 @@
 
 #include "cover/BrightEmitters.h"
 #include "cover/HemisphereGrid.h"
+#include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
+#include "math/ByteBuffer.h"
 #include "propagation/ExchangeBalance.h"
 #include "propagation/LightPropagation.h"
 #include "propagation/SolutionFigures.h"
 #include "scene/Material.h"
 
+#include <vtkAbstractArray.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkMultiProcessController.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -39,6 +43,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace names = vtkSphericalCoverArrayNames;
 
@@ -85,21 +90,15 @@ std::string ReadSurfaces(vtkPolyData* points, sphcover::PointIllumination& illum
   return std::string();
 }
 
-/// The cover's part of the figures (the form factors between `points`' named surfaces), into
-/// `figures`; "" or the problem.
+/// The cover's part of the figures (the form factors between the named surfaces of
+/// `surfaces`, ReadSurfaces'), into `figures`; "" or the problem.
 std::string CoverFiguresOf(const sphcover::SphericalCover& cover,
-  vtkPolyData* points,
+  const sphcover::PointIllumination& surfaces,
   sphcover::CoverFigures& figures)
 {
-  sphcover::PointIllumination illumination;
-  const std::string problem = ReadSurfaces(points, illumination);
-  if (!problem.empty())
-  {
-    return problem;
-  }
   try
   {
-    figures = sphcover::ComputeCoverFigures(cover, illumination);
+    figures = sphcover::ComputeCoverFigures(cover, surfaces);
   }
   catch (const std::exception& e)
   {
@@ -108,16 +107,13 @@ std::string CoverFiguresOf(const sphcover::SphericalCover& cover,
   return std::string();
 }
 
-/// Computes the figures of the solution `points` holds (with `cover`, its cover's part) and adds
-/// them to its field data; "" or the problem.
-std::string StoreFigures(const sphcover::CoverFigures& cover, vtkPolyData* points)
+/// Computes the figures of the solution `points` holds (with `cover`, its cover's part, and
+/// `surfaces`, its points' named surfaces as ReadSurfaces read them) and adds them to its field
+/// data; "" or the problem.
+std::string StoreFigures(const sphcover::CoverFigures& cover,
+  sphcover::PointIllumination illumination,
+  vtkPolyData* points)
 {
-  sphcover::PointIllumination illumination;
-  const std::string problem = ReadSurfaces(points, illumination);
-  if (!problem.empty())
-  {
-    return problem;
-  }
   vtkDataArray* irradiance = points->GetPointData()->GetArray(names::Irradiance);
   vtkDataArray* radiance = points->GetPointData()->GetArray(names::Radiosity);
   vtkDataArray* balance = points->GetFieldData()->GetArray(names::EnergyBalance);
@@ -181,9 +177,6 @@ std::string StoreFigures(const sphcover::CoverFigures& cover, vtkPolyData* point
   return std::string();
 }
 
-/// The cover, materials and surface names of the cover points `input`, checked before the
-/// propagation: "" or the problem. The figures are per named surface: a point that names none
-/// is refused before the propagation, not after it.
 /// "" when the propagation of `rows` fits in `memoryLimit` MiB, else the problem.
 std::string MemoryProblem(const sphcover::SphericalCover& rows,
   const std::vector<sphcover::Material>& materials,
@@ -204,13 +197,19 @@ std::string MemoryProblem(const sphcover::SphericalCover& rows,
   return std::string();
 }
 
+/// The cover (`withCover`: else only the points' own arrays), materials and (`named`, when the
+/// points name them) surfaces of the cover points `input`, checked before the propagation: ""
+/// or the problem. The figures are per named surface: a point that names none is refused
+/// before the propagation, not after it.
 std::string ReadPropagationInput(vtkPolyData* input,
+  bool withCover,
   double memoryLimit,
   sphcover::SphericalCover& cover,
   std::vector<sphcover::Material>& materials,
-  bool& named)
+  bool& named,
+  sphcover::PointIllumination& surfaces)
 {
-  const std::string problem = vtkSphericalCoverArrays::Load(input, cover);
+  const std::string problem = withCover ? vtkSphericalCoverArrays::Load(input, cover) : "";
   if (!problem.empty())
   {
     return problem;
@@ -221,22 +220,24 @@ std::string ReadPropagationInput(vtkPolyData* input,
   {
     return materialProblem;
   }
-  named = HasSurfaceNames(input);
+  named = withCover && HasSurfaceNames(input);
   if (named)
   {
-    sphcover::PointIllumination surfaces;
     const std::string surfaceProblem = ReadSurfaces(input, surfaces);
     if (!surfaceProblem.empty())
     {
       return surfaceProblem;
     }
   }
-  return MemoryProblem(cover, materials, memoryLimit);
+  return withCover ? MemoryProblem(cover, materials, memoryLimit) : std::string();
 }
 
-/// Under MPI: the ranks that propagate together and this rank's receivers.
+/// Under MPI: the ranks that propagate together, this rank's receivers, and whether every rank
+/// writes the solution (else rank 0 alone, and the results are gathered there).
 struct PropagationRanks
 {
+  vtkMultiProcessController* Controller = nullptr;
+  bool EveryRankWrites = true;
   sphcover::RankShare Share;
   std::size_t First = 0;
   std::size_t Last = 0;
@@ -253,11 +254,9 @@ std::function<bool(double)> NotingAbort(vtkStageProgress& progress, bool& aborte
 }
 
 /// The exchange balance of the whole `cover` (ExchangeBalance.h; the first 5% of the
-/// progress): its factors, under MPI those of this rank's rows [First, Last). False, with a
-/// warning, when aborted.
+/// progress): its factors, by entry. False, with a warning, when aborted.
 bool BalanceFactors(vtkLightPropagationFilter* self,
   const sphcover::SphericalCover& cover,
-  const PropagationRanks& ranks,
   std::vector<double>& factors)
 {
   // The balance is a few passes over the entries (~1 s for the Cornell box's 6.5M).
@@ -269,16 +268,127 @@ bool BalanceFactors(vtkLightPropagationFilter* self,
     vtkWarningWithObjectMacro(self, "Light propagation aborted.");
     return false;
   }
-  const std::vector<double>& all = balance.EntryFactors();
-  factors = !ranks.Share.Distributed()
-    ? all
-    : std::vector<double>(all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.First)),
-        all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(ranks.Last)));
+  factors = balance.EntryFactors();
   return true;
 }
 
+/// The factors of the rows of receivers [first, last) of `cover` among `all` (by entry; none
+/// stay none).
+std::vector<double> FactorsOfRows(const std::vector<double>& all,
+  const sphcover::SphericalCover& cover,
+  std::size_t first,
+  std::size_t last)
+{
+  if (all.empty())
+  {
+    return all;
+  }
+  return std::vector<double>(all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(first)),
+    all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(last)));
+}
+
+/// Rank r's receivers [bounds[r], bounds[r + 1]) of `cover`, split by their entries (a shot's
+/// work per receiver), for the controller's K ranks.
+std::vector<std::size_t> ReceiverBounds(const sphcover::SphericalCover& cover, int ranks)
+{
+  std::vector<double> costs(cover.PatchCount());
+  for (std::size_t i = 0; i < costs.size(); ++i)
+  {
+    costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i));
+  }
+  return sphcover::SphericalCover::PartitionRows(costs, static_cast<std::size_t>(ranks));
+}
+
+/// What one rank propagates: its receivers [First, Last), their rows (SphericalCover::RowsOf)
+/// and the rows' exchange factors.
+struct RankRows
+{
+  std::size_t First = 0;
+  std::size_t Last = 0;
+  sphcover::SphericalCover Rows;
+  std::vector<double> Factors;
+};
+
+/// Rank `rank`'s receivers of `bounds`, their rows of `cover` and their factors among `all`.
+RankRows RowsOfRank(const sphcover::SphericalCover& cover,
+  const std::vector<double>& all,
+  const std::vector<std::size_t>& bounds,
+  std::size_t rank)
+{
+  RankRows rows;
+  rows.First = bounds[rank];
+  rows.Last = bounds[rank + 1];
+  rows.Rows = cover.RowsOf(rows.First, rows.Last);
+  rows.Factors = FactorsOfRows(all, cover, rows.First, rows.Last);
+  return rows;
+}
+
+/**
+ * Rank 0 holds the whole `cover` and its exchange factors `allFactors` (by entry), keeps its
+ * own rows and deals every other rank its rows and their factors
+ * (vtkCoverDistribution::DealFromFirst), one rank at a time; the other ranks hold neither and
+ * receive theirs. Collective; throws what the bytes' reading finds wrong.
+ */
+RankRows DealRows(vtkMultiProcessController* controller,
+  const sphcover::SphericalCover& cover,
+  const std::vector<double>& allFactors)
+{
+  const bool dealer = controller->GetLocalProcessId() == 0;
+  const std::vector<std::size_t> bounds = dealer
+    ? ReceiverBounds(cover, controller->GetNumberOfProcesses())
+    : std::vector<std::size_t>();
+  const std::vector<char> bytes = vtkCoverDistribution::DealFromFirst(controller,
+    [&](int rank)
+    {
+      // One copy of the rank's rows at a time beside the cover (they are a K-th of it).
+      std::vector<char> block;
+      {
+        RankRows rows = RowsOfRank(cover, allFactors, bounds, static_cast<std::size_t>(rank));
+        sphcover::ByteWriter out(block);
+        out.Value(static_cast<uint64_t>(rows.First));
+        out.Value(static_cast<uint64_t>(rows.Last));
+        out.Array(rows.Factors);
+        sphcover::SphericalCover::Arrays arrays = rows.Rows.ExportArrays();
+        rows = RankRows();
+        const std::vector<char> packed = sphcover::PackRowBlock(arrays, {});
+        arrays = sphcover::SphericalCover::Arrays();
+        out.Array(packed);
+      }
+      return block;
+    });
+  if (dealer)
+  {
+    return RowsOfRank(cover, allFactors, bounds, 0);
+  }
+  RankRows mine;
+  sphcover::ByteReader in(bytes);
+  uint64_t first = 0;
+  uint64_t last = 0;
+  std::vector<char> rows;
+  if (!(in.Value(first) && in.Value(last) && in.Array(mine.Factors) && in.Array(rows) &&
+        in.AtEnd()))
+  {
+    throw std::runtime_error("the rows dealt to this rank are damaged");
+  }
+  sphcover::SphericalCover::Arrays arrays;
+  sphcover::CullingStatistics culling;
+  std::string problem = sphcover::UnpackRowBlock(rows.data(), rows.size(), arrays, culling);
+  if (problem.empty())
+  {
+    problem = mine.Rows.ImportArrays(std::move(arrays));
+  }
+  if (!problem.empty() || first > last || last > mine.Rows.PatchCount())
+  {
+    throw std::runtime_error("the rows dealt to this rank are damaged: " + problem);
+  }
+  mine.First = static_cast<std::size_t>(first);
+  mine.Last = static_cast<std::size_t>(last);
+  return mine;
+}
+
 /// The progressive shooting of paper §5.1 (5% to 95% of the progress), with the exchange
-/// balance's `factors` when there are some; false, with a warning, when aborted.
+/// balance's `factors` when there are some (none: the cover's exchange as built); false, with a
+/// warning, when aborted.
 bool Propagate(vtkLightPropagationFilter* self,
   vtkPolyData* input,
   const PropagationRanks& ranks,
@@ -298,7 +408,7 @@ bool Propagate(vtkLightPropagationFilter* self,
   {
     propagation.SetFrames(std::move(frames));
   }
-  if (self->GetBalanceExchanges())
+  if (!factors.empty())
   {
     propagation.SetExchangeFactors(factors);
   }
@@ -429,12 +539,38 @@ OwnResults OwnResultsOf(const sphcover::LightPropagation& propagation,
 /// each rank's patches and rows joined in rank order (the ranks' ranges tile the patches).
 PropagationResults JoinResults(const PropagationRanks& ranks, OwnResults own)
 {
+  // Every rank's values in rank order, on every rank or on rank 0 alone.
+  const auto join = [&ranks](const std::vector<glm::dvec3>& values)
+  {
+    if (ranks.EveryRankWrites || !ranks.Controller)
+    {
+      return sphcover::JoinValues(ranks.Share, values.data(), values.size());
+    }
+    std::vector<char> bytes;
+    sphcover::ByteWriter(bytes).Values(values.data(), values.size());
+    std::vector<glm::dvec3> joined;
+    for (const std::vector<char>& block :
+      vtkCoverDistribution::GatherBytes(ranks.Controller, bytes, false))
+    {
+      const std::size_t at = joined.size();
+      joined.resize(at + block.size() / sizeof(glm::dvec3));
+      if (!sphcover::ByteReader(block).Values(joined.data() + at, joined.size() - at))
+      {
+        throw std::runtime_error("a rank's results are damaged");
+      }
+    }
+    return joined;
+  };
   PropagationResults results;
   results.Energy = own.Energy;
-  const std::vector<glm::dvec3> perPatch =
-    sphcover::JoinValues(ranks.Share, own.PerPatch.data(), own.PerPatch.size());
+  const std::vector<glm::dvec3> perPatch = join(own.PerPatch);
   own.PerPatch = std::vector<glm::dvec3>();
-  results.Incident = sphcover::JoinValues(ranks.Share, own.Incident.data(), own.Incident.size());
+  results.Incident = join(own.Incident);
+  own.Incident = std::vector<glm::dvec3>();
+  if (!ranks.EveryRankWrites && ranks.Controller->GetLocalProcessId() != 0)
+  {
+    return results; // rank 0 writes the solution
+  }
   if (perPatch.size() != 4 * own.Count)
   {
     throw std::runtime_error("the ranks' results cover " + std::to_string(perPatch.size() / 4) +
@@ -547,13 +683,18 @@ std::string vtkLightPropagationFilter::AddSolutionFigures(vtkPolyData* illuminat
     return "no illumination";
   }
   sphcover::SphericalCover cover;
+  sphcover::PointIllumination surfaces;
   sphcover::CoverFigures figures;
   std::string problem = vtkSphericalCoverArrays::Load(illumination, cover);
   if (problem.empty())
   {
-    problem = CoverFiguresOf(cover, illumination, figures);
+    problem = ReadSurfaces(illumination, surfaces);
   }
-  return problem.empty() ? StoreFigures(figures, illumination) : problem;
+  if (problem.empty())
+  {
+    problem = CoverFiguresOf(cover, surfaces, figures);
+  }
+  return problem.empty() ? StoreFigures(figures, std::move(surfaces), illumination) : problem;
 }
 
 vtkLightPropagationFilter::vtkLightPropagationFilter()
@@ -595,18 +736,23 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   vtkTable* history = vtkTable::GetData(outputVector, 1);
   this->Shots = 0;
   this->RankFigures.clear();
+  this->RankCount = 1;
 
   // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
   const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, inputData);
-  // Under MPI the ranks propagate together when every one holds the whole cover (see the
-  // header); the count is collective, so it comes before any rank returns.
+  // Under MPI the ranks propagate together (see the header); the count is collective, so it
+  // comes before any rank returns.
   vtkMultiProcessController* controller = this->Controller;
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
-  const bool shared = ranks > 1 && this->ShootingOrder == BRIGHTEST_FIRST &&
-    vtkCoverDistribution::Count(controller, role == vtkScenePieces::Role::WholeScene) == ranks;
-  if (shared)
+  if (ranks > 1 && this->ShootingOrder == BRIGHTEST_FIRST)
   {
-    return this->PropagateOnRanks(this->Controller, input, output, history);
+    const bool whole = role == vtkScenePieces::Role::WholeScene;
+    if (vtkCoverDistribution::Count(controller, whole) == ranks)
+    {
+      return this->PropagateOnRanks(controller, input, output, history);
+    }
+    return this->PropagateFromFirst(
+      controller, static_cast<int>(role), outputVector, input, output, history);
   }
   if (role != vtkScenePieces::Role::WholeScene)
   {
@@ -631,16 +777,78 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   return this->PropagateOnRanks(nullptr, input, output, history);
 }
 
-int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* controller,
+int vtkLightPropagationFilter::PropagateFromFirst(vtkMultiProcessController* controller,
+  int role,
+  vtkInformationVector* outputVector,
   vtkPolyData* input,
   vtkPolyData* output,
   vtkTable* history)
 {
-  // One process, or the ranks together (see the header): every rank reads the same cover and
-  // agrees on each step before the next collective one, so that a failure is one error on every
-  // rank and none waits for ever (vtkCoverDistribution.h).
+  // pvbatch and pvserver: rank 0 holds the cover (piece 0), the others empty pieces. Every rank
+  // gets rank 0's points without the cover (their materials, frames and lamps: small), rank 0
+  // deals each rank its rows, the ranks propagate together and rank 0 writes the solution; the
+  // others keep empty outputs (vtkScenePieces.h) and never hold the whole cover.
+  output->Initialize();
+  history->Initialize();
+  const int rank = controller->GetLocalProcessId();
+  const auto pieceRole = static_cast<vtkScenePieces::Role>(role);
+  std::string problem;
+  if (pieceRole == vtkScenePieces::Role::PartialScene)
+  {
+    problem = vtkScenePieces::PartialSceneError(outputVector);
+  }
+  else if (rank == 0 && pieceRole != vtkScenePieces::Role::WholeScene)
+  {
+    problem = "rank 0 must hold the whole cover (piece 0)";
+  }
+  else if (rank != 0 && pieceRole == vtkScenePieces::Role::WholeScene)
+  {
+    problem = "some ranks other than rank 0 hold piece 0, but not all";
+  }
+  else if (rank == 0 && !input)
+  {
+    problem = "the input is not the cover points (vtkPolyData) of vtkSphericalCoverFilter";
+  }
+  problem = vtkCoverDistribution::Agree(controller, problem);
+  if (!problem.empty())
+  {
+    vtkErrorMacro(<< "Cannot propagate light: " << problem << ".");
+    return 0;
+  }
+  vtkNew<vtkPolyData> points;
+  if (rank == 0)
+  {
+    points->ShallowCopy(input);
+    vtkNew<vtkFieldData> withoutCover;
+    vtkFieldData* fd = input->GetFieldData();
+    for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+    {
+      vtkAbstractArray* array = fd->GetAbstractArray(a);
+      if (!vtkSphericalCoverArrays::IsCoverArray(array->GetName()))
+      {
+        withoutCover->AddArray(array);
+      }
+    }
+    points->SetFieldData(withoutCover);
+  }
+  vtkCoverDistribution::BroadcastFromFirst(controller, points);
+  return this->PropagateOnRanks(controller, rank == 0 ? input : points.Get(), output, history, true);
+}
+
+int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* controller,
+  vtkPolyData* input,
+  vtkPolyData* output,
+  vtkTable* history,
+  bool dealt)
+{
+  // One process, or the ranks together (see the header): every rank reads the same cover (or,
+  // `dealt`, rank 0 reads it and the others its points) and agrees on each step before the next
+  // collective one, so that a failure is one error on every rank and none waits for ever
+  // (vtkCoverDistribution.h).
   auto agree = [controller](const std::string& problem)
   { return controller ? vtkCoverDistribution::Agree(controller, problem) : problem; };
+  // Whether this rank holds the whole cover, and then writes the solution.
+  const bool holder = !dealt || controller->GetLocalProcessId() == 0;
   std::string problem;
   if (!input)
   {
@@ -649,27 +857,45 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   sphcover::SphericalCover cover;
   std::vector<sphcover::Material> materials;
   bool named = false;
+  sphcover::PointIllumination surfaces;
+  sphcover::CoverFigures figures;
   if (problem.empty())
   {
     // Under MPI a rank propagates its rows: their state must fit, checked when they are known.
     problem = ReadPropagationInput(input,
+      holder,
       controller ? std::numeric_limits<double>::infinity() : this->MemoryLimit,
       cover,
       materials,
-      named);
+      named,
+      surfaces);
   }
   double watts = 1.0;
   if (problem.empty())
   {
     SquareMetresPerUnit(input->GetFieldData(), watts, problem);
   }
+  if (!problem.empty())
+  {
+    problem = "Cannot propagate light: " + problem;
+  }
+  else if (holder && named)
+  {
+    // The cover's part of the figures now: under MPI the cover is let go before the
+    // propagation (below).
+    problem = CoverFiguresOf(cover, surfaces, figures);
+    if (!problem.empty())
+    {
+      problem = "Cannot sum up the solution: " + problem;
+    }
+  }
   problem = agree(problem);
   if (!problem.empty())
   {
-    vtkErrorMacro(<< "Cannot propagate light: " << problem);
+    vtkErrorMacro(<< problem);
     return 0;
   }
-  if (!cover.HasPanes() &&
+  if (holder && !cover.HasPanes() &&
     std::any_of(materials.begin(),
       materials.end(),
       [](const sphcover::Material& material) { return material.IsTransmitter(); }))
@@ -681,79 +907,77 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   }
 
   PropagationRanks ranks;
-  sphcover::SphericalCover rows;
+  RankRows mine;
   std::vector<bool> lampPatch;
   bool firstBounce = false;
-  sphcover::CoverFigures figures;
   PropagationResults results;
   try
   {
-    LampPatchesOf(input, cover, materials, lampPatch, firstBounce);
-    if (named)
+    // A step the user can abort (its warning held under MPI): the ranks agree on whether some
+    // rank stopped, so that all stop together with its message as the error. True: go on.
+    // The agreed error goes out after the held messages are let go (they would hold it too).
+    auto completedOnEveryRank = [this, controller, &agree](const std::function<bool()>& step)
     {
-      // The cover's part of the figures now: under MPI the cover is let go before the
-      // propagation (below). Every rank reads the same cover, so all fail alike.
-      problem = CoverFiguresOf(cover, input, figures);
-      if (!problem.empty())
+      std::string stopped;
       {
-        vtkErrorMacro(<< "Cannot sum up the solution: " << problem);
-        return 0;
+        vtkHeldMessages held(controller ? this : nullptr);
+        stopped = step() ? std::string() : held.First("Light propagation aborted.");
       }
-    }
-    if (controller)
-    {
-      // Rank r shoots into the rows of its receivers: split by their entries, a shot's work.
-      std::vector<double> costs(cover.PatchCount());
-      for (std::size_t i = 0; i < costs.size(); ++i)
+      stopped = agree(stopped);
+      if (!stopped.empty() && controller)
       {
-        costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i));
+        vtkErrorMacro(<< stopped);
       }
-      const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
-        costs, static_cast<std::size_t>(controller->GetNumberOfProcesses()));
-      const std::size_t rank = static_cast<std::size_t>(controller->GetLocalProcessId());
-      ranks.Share = vtkCoverDistribution::ShareOf(controller);
-      ranks.First = bounds[rank];
-      ranks.Last = bounds[rank + 1];
-    }
+      return stopped.empty();
+    };
+    // The exchange balance needs the whole cover: each holder computes it.
     std::vector<double> factors;
+    if (this->BalanceExchanges &&
+      !completedOnEveryRank([&] { return !holder || BalanceFactors(this, cover, factors); }))
     {
-      vtkHeldMessages held(controller ? this : nullptr);
-      const bool balanced = !this->BalanceExchanges || BalanceFactors(this, cover, ranks, factors);
-      problem = agree(balanced ? std::string() : held.First("Light propagation aborted."));
-    }
-    if (!problem.empty())
-    {
-      if (controller)
-      {
-        vtkErrorMacro(<< problem);
-      }
       return 0;
     }
-    if (controller)
+    if (!controller)
     {
-      // A rank keeps its rows and lets the whole cover go before the propagation's state
-      // exists (the cover's arrays stay in the input): the memory that falls with the ranks.
-      // Its state must fit MemoryLimit, not the whole cover's.
-      rows = cover.RowsOf(ranks.First, ranks.Last);
+      mine.Last = cover.PatchCount();
+      mine.Rows = std::move(cover);
+      mine.Factors = std::move(factors);
+    }
+    else
+    {
+      // Rank r shoots into the rows of its receivers. A rank keeps (or is dealt) its rows and
+      // the whole cover goes before the propagation's state exists: the memory that falls with
+      // the ranks. Its state must fit MemoryLimit, not the whole cover's.
+      if (dealt)
+      {
+        mine = DealRows(controller, cover, factors);
+      }
+      else
+      {
+        mine = RowsOfRank(cover,
+          factors,
+          ReceiverBounds(cover, controller->GetNumberOfProcesses()),
+          static_cast<std::size_t>(controller->GetLocalProcessId()));
+      }
       cover = sphcover::SphericalCover();
-      problem = agree(MemoryProblem(rows, materials, this->MemoryLimit));
+      factors = std::vector<double>();
+      ranks.Share = vtkCoverDistribution::ShareOf(controller);
+      ranks.First = mine.First;
+      ranks.Last = mine.Last;
+      ranks.Controller = controller;
+      ranks.EveryRankWrites = !dealt;
+      problem = agree(MemoryProblem(mine.Rows, materials, this->MemoryLimit));
       if (!problem.empty())
       {
         vtkErrorMacro(<< "Cannot propagate light: " << problem);
         return 0;
       }
     }
-    auto propagation =
-      std::make_unique<sphcover::LightPropagation>(controller ? rows : cover, materials);
-    vtkHeldMessages held(controller ? this : nullptr);
-    const bool completed = Propagate(this, input, ranks, factors, *propagation);
-    problem = agree(completed ? std::string() : held.First("Light propagation aborted."));
-    if (!problem.empty())
+    LampPatchesOf(input, mine.Rows, materials, lampPatch, firstBounce);
+    auto propagation = std::make_unique<sphcover::LightPropagation>(mine.Rows, materials);
+    if (!completedOnEveryRank(
+          [&] { return Propagate(this, input, ranks, mine.Factors, *propagation); }))
     {
-      if (controller)
-      {
-        vtkErrorMacro(<< problem);
-      }
       return 0;
     }
     OwnResults own = OwnResultsOf(*propagation, lampPatch, firstBounce);
@@ -761,19 +985,22 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     if (controller)
     {
       // What each rank held and did (GetRankFigures), gathered in rank order.
-      const double mine[4] = { static_cast<double>(ranks.Last - ranks.First),
-        static_cast<double>(rows.EntryCount()),
-        static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)),
+      const double done[4] = { static_cast<double>(ranks.Last - ranks.First),
+        static_cast<double>(mine.Rows.EntryCount()),
+        static_cast<double>(sphcover::LightPropagation::EstimateBytes(mine.Rows, materials)),
         shots.empty() ? 0.0 : shots.back().Seconds };
-      this->RankFigures = sphcover::JoinValues(ranks.Share, mine, 4, true);
+      this->RankFigures = sphcover::JoinValues(ranks.Share, done, 4, true);
+      this->RankCount = controller->GetNumberOfProcesses();
     }
     this->Shots = static_cast<int>(shots.size());
-    WriteShotHistory(shots, watts, history);
+    if (holder)
+    {
+      WriteShotHistory(shots, watts, history);
+    }
     // The propagation's state goes before the ranks' results are joined: the join holds every
     // rank's regions, and beside the state it was each rank's peak memory.
     propagation.reset();
-    rows = sphcover::SphericalCover();
-    cover = sphcover::SphericalCover();
+    mine = RankRows();
     results = JoinResults(ranks, std::move(own));
   }
   catch (const std::exception& e)
@@ -781,11 +1008,15 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     vtkErrorMacro(<< "Light propagation failed: " << e.what());
     return 0;
   }
+  if (!holder)
+  {
+    return 1; // rank 0 writes the solution
+  }
   output->ShallowCopy(input);
   WriteIllumination(results, this->Shots, watts, output);
   if (named)
   {
-    const std::string figuresProblem = StoreFigures(figures, output);
+    const std::string figuresProblem = StoreFigures(figures, std::move(surfaces), output);
     if (!figuresProblem.empty())
     {
       output->Initialize();

@@ -50,10 +50,12 @@
  * gathered rows), the K ranks propagate together (LightPropagation::SetRankShare): rank r
  * shoots into the rows of its range of receivers, split by their entries, and the results are
  * gathered, so every rank's outputs are the serial ones (the per-patch values and the regions'
- * incident radiances bit for bit; the energy sums up to the order of addition). FixedOrder, or
- * processes of which some hold an empty piece (pvbatch, where rank 0 holds the cover), run as
- * described above. Every process must then update the filter together, as for
- * vtkSphericalCoverFilter.
+ * incident radiances bit for bit; the energy sums up to the order of addition). When rank 0
+ * holds the cover and the others empty pieces (pvbatch, pvserver), rank 0 deals each rank its
+ * rows (the other ranks never hold the whole cover) and the K ranks propagate together in the
+ * same way; the results are gathered on rank 0, which writes the solution, and the others keep
+ * empty outputs, as above. FixedOrder runs on each process alone, as described
+ * above. Every process must update the filter together, as for vtkSphericalCoverFilter.
  */
 #ifndef vtkLightPropagationFilter_h
 #define vtkLightPropagationFilter_h
@@ -139,6 +141,9 @@ public:
    */
   const std::vector<double>& GetRankFigures() const { return this->RankFigures; }
 
+  /// The number of processes the last update propagated on together (1: this one alone).
+  vtkGetMacro(RankCount, int);
+
   ///@{
   /**
    * The processes that propagate together (see above); nullptr or one process: this process
@@ -164,7 +169,18 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   /// RequestData's work on the whole cover: alone (`controller` null), or together with the
   /// controller's ranks, each of which holds the whole cover.
+  /// `dealt`: rank 0 holds the cover and deals the rows, the other ranks' `input` being its
+  /// points without the cover.
   int PropagateOnRanks(vtkMultiProcessController* controller,
+    vtkPolyData* input,
+    vtkPolyData* output,
+    vtkTable* history,
+    bool dealt = false);
+  /// RequestData's work when not every rank holds the cover: rank 0's (piece 0) propagated by
+  /// every rank together, `role` (vtkScenePieces::Role) this rank's piece.
+  int PropagateFromFirst(vtkMultiProcessController* controller,
+    int role,
+    vtkInformationVector* outputVector,
     vtkPolyData* input,
     vtkPolyData* output,
     vtkTable* history);
@@ -177,6 +193,7 @@ protected:
   int Shots = 0;
   vtkMultiProcessController* Controller = nullptr;
   std::vector<double> RankFigures;
+  int RankCount = 1;
 
 private:
   vtkLightPropagationFilter(const vtkLightPropagationFilter&) = delete;

@@ -9,7 +9,10 @@
 
 #include "scene/SettingsOverride.h"
 
+#include <vtkAlgorithm.h>
+#include <vtkDataObject.h>
 #include <vtkExecutive.h>
+#include <vtkSmartPointer.h>
 #include <vtkFieldData.h>
 #include <vtkMultiProcessController.h>
 #include <vtkUnstructuredGrid.h>
@@ -21,10 +24,12 @@
 
 namespace sphcover_cli
 {
-void Run(vtkAlgorithm* algorithm, ErrorCollector& errors)
+void Run(vtkAlgorithm* algorithm, ErrorCollector& errors, int piece, int pieces)
 {
   errors.Watch(algorithm);
-  if (algorithm->GetExecutive()->Update() != 1)
+  const int updated =
+    piece > 0 ? algorithm->UpdatePiece(piece, pieces, 0) : algorithm->GetExecutive()->Update();
+  if (updated != 1)
   {
     throw std::runtime_error(errors.First());
   }
@@ -92,10 +97,24 @@ void Solution::Solve(const Options& options)
 {
   const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
   CheckCoverGrid(settings, options);
+  // Every rank subdivides (so that all fail alike on a bad scene), but under mpiexec only rank 0
+  // gives the cover the patches: the other ranks ask for empty pieces, as pvbatch's ranks do,
+  // so the cover's rows are gathered on rank 0 alone and the propagation's dealt from there
+  // (vtkLightPropagationFilter): no other rank holds the whole cover or the solution.
   this->Subdivide(options);
   this->Cover->SetMemoryLimit(options.MemoryLimit);
   this->Propagation->SetMemoryLimit(options.MemoryLimit);
-  this->Cover->SetInputConnection(this->Subdivision->GetOutputPort(0));
+  const int piece = options.Ranks > 1 ? options.Rank : 0;
+  if (piece > 0)
+  {
+    vtkSmartPointer<vtkDataObject> none =
+      vtkSmartPointer<vtkDataObject>::Take(this->Subdivision->GetOutputDataObject(0)->NewInstance());
+    this->Cover->SetInputData(none);
+  }
+  else
+  {
+    this->Cover->SetInputConnection(this->Subdivision->GetOutputPort(0));
+  }
   if (options.Fill == "projection")
   {
     this->Cover->SetFillMethodToProjection();
@@ -106,7 +125,7 @@ void Solution::Solve(const Options& options)
   {
     ProgressBar bar(this->Cover, "cover", options.Quiet);
     const double cpuStart = ProcessorSeconds();
-    Run(this->Cover, this->Errors);
+    Run(this->Cover, this->Errors, piece, options.Ranks);
     this->CoverCpuSeconds = ProcessorSeconds() - cpuStart;
     this->CoverSeconds = bar.Seconds();
   }
@@ -114,7 +133,7 @@ void Solution::Solve(const Options& options)
   {
     ProgressBar bar(this->Propagation, "propagate", options.Quiet);
     const double cpuStart = ProcessorSeconds();
-    Run(this->Propagation, this->Errors);
+    Run(this->Propagation, this->Errors, piece, options.Ranks);
     this->PropagateCpuSeconds = ProcessorSeconds() - cpuStart;
     this->PropagateSeconds = bar.Seconds();
   }

@@ -31,8 +31,9 @@ namespace sphcover_cli
 {
 struct Options;
 
-/// Updates an algorithm; on failure throws its first error as one line.
-void Run(vtkAlgorithm* algorithm, ErrorCollector& errors);
+/// Updates an algorithm (`piece` > 0: piece `piece` of `pieces`, vtkScenePieces.h); on failure
+/// throws its first error as one line.
+void Run(vtkAlgorithm* algorithm, ErrorCollector& errors, int piece = 0, int pieces = 1);
 
 /// Processor seconds the whole process has used so far, all its threads (std::clock): the
 /// difference over a stage is what the stage cost in processor time, whatever the number of
@@ -70,7 +71,9 @@ struct Solution
   void Subdivide(const Options& options);
 
   /// After Read: checks the cover grid against --memory-limit, then subdivides, covers and
-  /// propagates with the scene's settings and the options.
+  /// propagates with the scene's settings and the options. Under mpiexec the ranks cover and
+  /// propagate together, rank 0 holding the whole scene and the others empty pieces (as under
+  /// pvbatch): rank 0 alone ends with the cover and the solution.
   void Solve(const Options& options);
 
   /// The stages' seconds, as the report's `timings_s`.

@@ -18,10 +18,11 @@
  * Every error is one line on stderr and a non-zero exit status; no output file is left
  * half-written, also when interrupted (OutputFiles.h).
  *
- * Under mpiexec (README.md#running-on-a-cluster) the program joins MPI and the spherical
- * cover's rows are built on all ranks (vtkSphericalCoverFilter, Controller); every rank reads,
- * subdivides and propagates alike, and only rank 0 prints, writes files and renders. Started
- * any other way it is a plain program and never touches MPI.
+ * Under mpiexec (README.md#running-on-a-cluster) the program joins MPI: every rank reads and
+ * subdivides alike, the spherical cover's rows are built on all ranks and gathered on rank 0
+ * (vtkSphericalCoverFilter, Controller), which deals each rank its rows of the propagation
+ * (vtkLightPropagationFilter); only rank 0 prints, writes files and renders. Started any other
+ * way it is a plain program and never touches MPI.
  */
 #include "Commands.h"
 #include "Options.h"

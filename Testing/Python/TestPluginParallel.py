@@ -5,13 +5,20 @@ completes on 2 ranks, under the piece policy of Readers/vtkScenePieces.h:
 - the totals gathered over the ranks (points, cells, rows of every output port, both by an
   explicit MPI sum of the local pieces) equal those of the same pipeline run serially (plain
   VTK, no pieces); each rank's ParaView data information describes its piece; piece 0's
-  illumination equals the serial one value for value.
+  illumination equals the serial one value for value;
+- the light propagation ran on both ranks together (rank 0 dealing each rank its rows, each
+  shooting into its own), not on rank 0 alone;
+- a propagation refused (a MemoryLimit below a rank's share) is one error on each rank, and
+  neither waits for the other; so is one that rank 0 aborts while it balances the exchange (the
+  other rank waiting to be dealt its rows).
 The launcher (RunParallelPvbatch.py) checks that every rank completed without a failure or an
 error message."""
 import sys
 
 from paraview import servermanager  # noqa: F401  (initialises the session)
 from paraview.simple import LoadPlugin, OpenDataFile, OutputPort
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkDoubleArray
 from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessController
 
@@ -104,6 +111,51 @@ if rank == 0:
     elif [lit.GetValue(i) for i in range(lit.GetNumberOfValues())] != \
             [reference.GetValue(i) for i in range(reference.GetNumberOfValues())]:
         failures.append("piece 0's Radiosity differs from the serial solution")
+
+# The propagation is shared: every rank shot into its own rows (vtkLightPropagationFilter's
+# RankCount), the rows of rank 0's cover tiling the points.
+shared_ranks = propagation.GetClientSideObject().GetRankCount()
+if shared_ranks != ranks:
+    failures.append(f"the propagation ran on {shared_ranks} rank(s), not on all {ranks}")
+
+
+def errors_of(proxy):
+    """Updates the proxy's pipeline and returns the errors its filter reported (caught, so that
+    the launcher's check for error lines stays meaningful; the executive's failure notice too)."""
+    errors = []
+    algorithm = proxy.GetClientSideObject()
+    algorithm.AddObserver("ErrorEvent",
+                          calldata_type(VTK_STRING)(lambda caller, event, text: errors.append(text)))
+    algorithm.GetExecutive().AddObserver(
+        "ErrorEvent", calldata_type(VTK_STRING)(lambda caller, event, text: None))
+    proxy.UpdatePipeline()
+    if algorithm.GetOutputDataObject(0).GetNumberOfPoints() != 0:
+        failures.append(f"{proxy.GetXMLName()} that failed has an output")
+    return errors
+
+
+# A refused propagation: each rank reports one error and returns.
+refused = globals()["LightPropagation"](Input=OutputPort(cover, 0), MemoryLimit=0.001)
+errors = errors_of(refused)
+if len(errors) != 1 or "MemoryLimit" not in errors[0] or f"of {ranks})" not in errors[0]:
+    failures.append(f"the refused propagation reported {errors}, not one MemoryLimit error "
+                    "naming the rank")
+
+# Rank 0 aborts while it balances the exchange (it alone holds the whole cover): every rank
+# stops with the one error, none waits for rows that are never dealt.
+aborted = globals()["LightPropagation"](Input=OutputPort(cover, 0))
+
+
+def abort_while_balancing(algorithm, event):
+    if rank == 0 and "balancing" in (algorithm.GetProgressText() or ""):
+        algorithm.SetAbortExecute(1)
+
+
+aborted.GetClientSideObject().AddObserver("ProgressEvent", abort_while_balancing)
+errors = errors_of(aborted)
+if len(errors) != 1 or "aborted" not in errors[0] or "(rank 0 of" not in errors[0]:
+    failures.append(f"the propagation aborted on rank 0 reported {errors}, not one error naming "
+                    "rank 0")
 
 for failure in failures:
     print(f"FAILED (rank {rank}):", failure)
