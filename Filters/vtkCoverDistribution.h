@@ -3,7 +3,7 @@
  * @file vtkCoverDistribution.h
  * @brief The collective steps of a spherical cover built by the K processes of a
  * vtkMultiProcessController (MPI under pvbatch, pvserver and `mpiexec sphcover`): every rank
- * builds the rows H_i of its chunks of characteristic points (paper §3.3, §4.3: one R-buffer per
+ * builds the rows H_i of a range of characteristic points (paper §3.3, §4.3: one R-buffer per
  * point, rows independent), balanced by Core's estimate of each row's work, and the row blocks
  * are gathered in receiver order, so the cover is the serial one bit for bit whatever K; rank 0
  * then deals the light propagation its rows (DealFromFirst).

@@ -20,7 +20,6 @@
 #include "cover/RayCastFill.h"
 #include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
-#include "math/ByteBuffer.h"
 #include "geometry/RayCaster.h"
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
@@ -647,15 +646,11 @@ void WriteOutputs(vtkSphericalCoverFilter* self,
   WriteStrips(cover, patches.size(), stripsOut);
 }
 
-/// Chunks of receivers per rank in a distributed build (see BuildDistributed).
-constexpr std::size_t ChunksPerRank = 4;
-
 /**
  * The cover on the controller's K ranks (vtkCoverDistribution.h): every rank prepares the same
  * patches (rank 0's input broadcast when the other ranks hold empty pieces, as under pvbatch),
- * builds the rows of its chunks of receivers (ChunksPerRank x K chunks balanced by Core's cost
- * estimate, interleaved among the ranks), and the row blocks are joined in receiver order: the
- * serial cover bit for bit. The ranks that hold the
+ * builds the rows of its range of receivers, balanced by Core's cost estimate, and the row
+ * blocks are joined in receiver order: the serial cover bit for bit. The ranks that hold the
  * whole scene write the outputs (with CoverRankFigures); those that hold an empty piece keep
  * empty outputs (vtkScenePieces.h). Every rank agrees on success before each collective step,
  * so a failure anywhere is one error on every rank and no rank waits forever.
@@ -737,57 +732,35 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
     problem = step(
       [&]
       {
-        // The receivers in ChunksPerRank x K consecutive chunks of about equal estimated cost,
-        // rank r building chunks r, r + K, ...: where the estimate errs, it errs alike in
-        // neighbouring rows (a surface's patches), and interleaved chunks spread that error
-        // over the ranks (one range per rank left the Cornell box's two ranks 2.1 and 3.0 s).
-        const std::size_t chunks = ChunksPerRank * static_cast<std::size_t>(ranks);
         const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
-          sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options), chunks);
+          sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options),
+          static_cast<std::size_t>(ranks));
+        const std::size_t first = bounds[static_cast<std::size_t>(rank)];
+        const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];
         if (!MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget))
         {
           return false;
         }
-        std::size_t rows = 0;
-        for (std::size_t c = static_cast<std::size_t>(rank); c < chunks; c += static_cast<std::size_t>(ranks))
-        {
-          rows += bounds[c + 1] - bounds[c];
-        }
         vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
         const auto start = std::chrono::steady_clock::now();
-        sphcover::ByteWriter out(bytes);
-        std::size_t done = 0;
-        for (std::size_t c = static_cast<std::size_t>(rank); c < chunks; c += static_cast<std::size_t>(ranks))
+        sphcover::SphericalCover::Arrays block;
+        sphcover::CullingStatistics culling;
+        if (!sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
+              prepared.Options,
+              first,
+              last,
+              block,
+              culling,
+              vtkSMPParallelFor::Make(),
+              [&progress](double fraction) { return progress(fraction); }))
         {
-          const std::size_t first = bounds[c];
-          const std::size_t last = bounds[c + 1];
-          sphcover::SphericalCover::Arrays block;
-          sphcover::CullingStatistics culling;
-          if (!sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
-                prepared.Options,
-                first,
-                last,
-                block,
-                culling,
-                vtkSMPParallelFor::Make(),
-                [&](double fraction)
-                {
-                  return progress(rows > 0
-                      ? (static_cast<double>(done) + fraction * static_cast<double>(last - first)) /
-                        static_cast<double>(rows)
-                      : 1.0);
-                }))
-          {
-            vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
-            return false;
-          }
-          done += last - first;
-          out.Value(static_cast<uint64_t>(c));
-          out.Array(sphcover::PackRowBlock(block, culling));
+          vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+          return false;
         }
         mine.Seconds = SecondsSince(start);
         self->RecordStageSeconds(1, mine.Seconds);
-        mine.Receivers = static_cast<double>(rows);
+        mine.Receivers = static_cast<double>(last - first);
+        bytes = sphcover::PackRowBlock(block, culling);
         mine.Bytes = static_cast<double>(bytes.size());
         return true;
       });
@@ -814,28 +787,12 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
   {
     return 1; // an empty piece (vtkScenePieces.h)
   }
-  // Every rank's chunks, put back in receiver order (chunk c holds the c-th range).
-  const std::size_t chunks = ChunksPerRank * static_cast<std::size_t>(ranks);
-  std::vector<sphcover::SphericalCover::Arrays> blocks(chunks);
-  std::vector<bool> arrived(chunks, false);
+  std::vector<sphcover::SphericalCover::Arrays> blocks(received.size());
   sphcover::CullingStatistics culling;
   for (size_t r = 0; r < received.size(); ++r)
   {
-    sphcover::ByteReader in(received[r]);
-    while (problem.empty() && !in.AtEnd())
-    {
-      uint64_t chunk = 0;
-      std::vector<char> packed;
-      sphcover::CullingStatistics counts;
-      if (!in.Value(chunk) || chunk >= chunks || arrived[chunk] || !in.Array(packed))
-      {
-        problem = "a chunk of rows is damaged or repeated";
-        break;
-      }
-      problem = sphcover::UnpackRowBlock(packed.data(), packed.size(), blocks[chunk], counts);
-      arrived[chunk] = true;
-      culling += counts;
-    }
+    sphcover::CullingStatistics counts;
+    problem = sphcover::UnpackRowBlock(received[r].data(), received[r].size(), blocks[r], counts);
     if (!problem.empty())
     {
       vtkErrorWithObjectMacro(
@@ -843,6 +800,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
       return 0;
     }
     received[r] = std::vector<char>();
+    culling += counts;
   }
   sphcover::SphericalCover cover;
   problem = cover.ImportRowBlocks(std::move(blocks), prepared.Options, culling);
