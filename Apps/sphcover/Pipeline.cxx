@@ -12,9 +12,9 @@
 #include <vtkAlgorithm.h>
 #include <vtkDataObject.h>
 #include <vtkExecutive.h>
-#include <vtkSmartPointer.h>
 #include <vtkFieldData.h>
 #include <vtkMultiProcessController.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 
 #include <sys/resource.h>
