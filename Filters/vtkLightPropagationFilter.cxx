@@ -548,18 +548,8 @@ PropagationResults JoinResults(const PropagationRanks& ranks, OwnResults own)
     }
     std::vector<char> bytes;
     sphcover::ByteWriter(bytes).Values(values.data(), values.size());
-    std::vector<glm::dvec3> joined;
-    for (const std::vector<char>& block :
-      vtkCoverDistribution::GatherBytes(ranks.Controller, bytes, false))
-    {
-      const std::size_t at = joined.size();
-      joined.resize(at + block.size() / sizeof(glm::dvec3));
-      if (!sphcover::ByteReader(block).Values(joined.data() + at, joined.size() - at))
-      {
-        throw std::runtime_error("a rank's results are damaged");
-      }
-    }
-    return joined;
+    return sphcover::ValuesOfRanks<glm::dvec3>(
+      vtkCoverDistribution::GatherBytes(ranks.Controller, bytes, false));
   };
   PropagationResults results;
   results.Energy = own.Energy;

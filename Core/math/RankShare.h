@@ -222,6 +222,28 @@ private:
 };
 
 /**
+ * The values in every rank's bytes (ByteWriter::Values of each), concatenated in rank order.
+ * Throws std::runtime_error when a rank's bytes are not whole values.
+ */
+template <typename Value>
+std::vector<Value> ValuesOfRanks(const std::vector<std::vector<char>>& all)
+{
+  std::vector<Value> joinedValues;
+  for (const std::vector<char>& bytes : all)
+  {
+    if (bytes.size() % sizeof(Value) != 0)
+    {
+      throw std::runtime_error("JoinValues: a rank sent " + std::to_string(bytes.size()) +
+        " bytes, not whole values");
+    }
+    const std::size_t at = joinedValues.size();
+    joinedValues.resize(at + bytes.size() / sizeof(Value));
+    ByteReader(bytes).Values(joinedValues.data() + at, bytes.size() / sizeof(Value));
+  }
+  return joinedValues;
+}
+
+/**
  * Every rank's `count` values, concatenated in rank order, on every rank (`sameSize`: every
  * rank gives as many, one collective). Collective; throws RankShare::PeerFailure when a rank
  * failed, std::runtime_error when a rank's bytes are not whole values. One process: a copy.
@@ -241,19 +263,7 @@ std::vector<Value> JoinValues(const RankShare& share,
   {
     throw RankShare::PeerFailure();
   }
-  std::vector<Value> joinedValues;
-  for (const std::vector<char>& bytes : all)
-  {
-    if (bytes.size() % sizeof(Value) != 0)
-    {
-      throw std::runtime_error("JoinValues: a rank sent " + std::to_string(bytes.size()) +
-        " bytes, not whole values");
-    }
-    const std::size_t at = joinedValues.size();
-    joinedValues.resize(at + bytes.size() / sizeof(Value));
-    ByteReader(bytes).Values(joinedValues.data() + at, bytes.size() / sizeof(Value));
-  }
-  return joinedValues;
+  return ValuesOfRanks<Value>(all);
 }
 
 /**
