@@ -401,6 +401,7 @@ bool Propagate(vtkLightPropagationFilter* self,
   settings.Order = self->GetShootingOrder() == vtkLightPropagationFilter::FIXED_ORDER
     ? sphcover::ShootingOrder::FixedOrder
     : sphcover::ShootingOrder::BrightestFirst;
+  settings.ShotBatch = static_cast<size_t>(self->GetShotBatch());
   // The points' hemisphere frames (vtkSphericalCoverFilter's Normals and Tangents), for the
   // receivers a non-diffuse point's hemisphere does not hold (LightPropagation::SetFrames).
   std::vector<sphcover::HemisphereFrame> frames;

@@ -108,6 +108,18 @@ public:
 
   ///@{
   /**
+   * Most points shot at a time by BRIGHTEST_FIRST: the brightest and the next ones with at least
+   * half its unshot power, all taken before any is delivered (Core's LightPropagation,
+   * "Batches"). Under MPI the ranks reflect a batch's mirror and glossy shooters at the same
+   * time and exchange once per batch; the result depends on the batch, never on the ranks.
+   * 1: the paper's order, one at a time. Default is 16.
+   */
+  vtkSetClampMacro(ShotBatch, int, 1, 4096);
+  vtkGetMacro(ShotBatch, int);
+  ///@}
+
+  ///@{
+  /**
    * Balance the cover's exchange before propagating (Core's ExchangeBalance): the radiance a
    * shot delivers through region h_ij is scaled by x_i y_j so that every point still gathers
    * exactly its covered projected solid angle (row sums) and every point delivers exactly what
@@ -188,6 +200,7 @@ protected:
   double ConvergenceTolerance = 1e-5;
   int MaximumShots = 0;
   int ShootingOrder = BRIGHTEST_FIRST;
+  int ShotBatch = 16;
   bool BalanceExchanges = true;
   double MemoryLimit = 8192.0;
   int Shots = 0;

@@ -123,27 +123,33 @@ void LightPropagation::ComputeAlbedoMeasures()
   }
 }
 
-glm::dvec3 LightPropagation::DirectionalShot(std::size_t shooter)
+void LightPropagation::DirectionalShot(std::size_t shooter, DirectionalShotData& shot)
 {
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
   const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
-  this->TakeUnshotInStrips(shooter);
-  const std::size_t pairs = this->CoupleInRows(shooter, table);
-  this->GridShot = this->Method == DirectionalMethod::Grid ||
+  this->TakeUnshotInStrips(shooter, shot);
+  const std::size_t pairs = this->CoupleInRows(shooter, table, shot);
+  shot.Grid = this->Method == DirectionalMethod::Grid ||
     (this->Method == DirectionalMethod::Automatic &&
       static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount()));
-  this->DirectionalOut.assign(cover.EntryEnd(shooter) - cover.EntryBegin(shooter), glm::dvec3(0.0));
-  return this->GridShot ? this->ShotByGrid(shooter, table)
-                        : this->ShotByStripPairs(shooter, table, pairs);
+  shot.Out.assign(cover.EntryEnd(shooter) - cover.EntryBegin(shooter), glm::dvec3(0.0));
+  if (shot.Grid)
+  {
+    this->ShotByGrid(shooter, table, shot);
+  }
+  else
+  {
+    this->ShotByStripPairs(shooter, table, pairs, shot);
+  }
 }
 
-void LightPropagation::TakeUnshotInStrips(std::size_t shooter)
+void LightPropagation::TakeUnshotInStrips(std::size_t shooter, DirectionalShotData& shot)
 {
   const SphericalCover& cover = this->Cover;
   const std::size_t rowBegin = cover.EntryBegin(shooter);
   const std::size_t rowEnd = cover.EntryEnd(shooter);
-  std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
+  std::vector<std::vector<InStrip>>& in = shot.In;
   in.resize(static_cast<std::size_t>(cover.Grid().ThetaBins()));
   for (std::vector<InStrip>& strips : in)
   {
@@ -173,13 +179,15 @@ void LightPropagation::TakeUnshotInStrips(std::size_t shooter)
   this->DirectionalUnshot[shooter] = 0.0;
 }
 
-std::size_t LightPropagation::CoupleInRows(std::size_t shooter, const ReflectanceWeights& table)
+std::size_t LightPropagation::CoupleInRows(std::size_t shooter,
+  const ReflectanceWeights& table,
+  DirectionalShotData& shot)
 {
   const SphericalCover& cover = this->Cover;
   const int rows = cover.Grid().ThetaBins();
   const std::size_t rowCount = static_cast<std::size_t>(rows);
-  const std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
-  std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
+  const std::vector<std::vector<InStrip>>& in = shot.In;
+  std::vector<std::vector<int>>& coupled = shot.Coupled;
   coupled.resize(rowCount);
   for (std::vector<int>& rowsIn : coupled)
   {
@@ -212,16 +220,17 @@ std::size_t LightPropagation::CoupleInRows(std::size_t shooter, const Reflectanc
   return pairs;
 }
 
-glm::dvec3 LightPropagation::ShotByStripPairs(std::size_t shooter,
+void LightPropagation::ShotByStripPairs(std::size_t shooter,
   const ReflectanceWeights& table,
-  std::size_t pairs)
+  std::size_t pairs,
+  DirectionalShotData& shot)
 {
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
   const std::size_t rowBegin = cover.EntryBegin(shooter);
   const std::size_t rowEnd = cover.EntryEnd(shooter);
-  const std::vector<std::vector<InStrip>>& in = this->DirectionalIn;
-  const std::vector<std::vector<int>>& coupled = this->DirectionalCoupled;
+  const std::vector<std::vector<InStrip>>& in = shot.In;
+  const std::vector<std::vector<int>>& coupled = shot.Coupled;
   // Mean over the whole hemisphere: every out row in full, sum_o Omega_o I(o) / sum_o Omega_o.
   glm::dvec3 meanFlux(0.0);
   for (int rowOut = 0; rowOut < grid.ThetaBins(); ++rowOut)
@@ -259,14 +268,16 @@ glm::dvec3 LightPropagation::ShotByStripPairs(std::size_t shooter,
     }
     if (this->EntryOmega[e] > 0.0)
     {
-      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
+      shot.Out[e - rowBegin] = flux / this->EntryOmega[e];
     }
   }
-  this->LastWeightEvaluations = pairs;
-  return meanFlux / grid.TotalMeasure();
+  shot.WeightEvaluations = pairs;
+  shot.Mean = meanFlux / grid.TotalMeasure();
 }
 
-glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWeights& table)
+void LightPropagation::ShotByGrid(std::size_t shooter,
+  const ReflectanceWeights& table,
+  DirectionalShotData& shot)
 {
   const SphericalCover& cover = this->Cover;
   const HemisphereGrid& grid = cover.Grid();
@@ -276,7 +287,7 @@ glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWe
   this->GridIn.assign(rows * columns, glm::dvec3(0.0));
   for (std::size_t row = 0; row < rows; ++row)
   {
-    for (const InStrip& strip : this->DirectionalIn[row])
+    for (const InStrip& strip : shot.In[row])
     {
       for (int c = strip.Begin; c < strip.End; ++c)
       {
@@ -286,7 +297,7 @@ glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWe
   }
   // I(o) toward every cell, then per out row the prefix sums of I over the columns, so that
   // a strip of out cells costs O(1).
-  table.Reflect(this->GridIn, this->GridOut, this->ReflectScratch);
+  table.Reflect(this->GridIn, shot.GridOut, this->ReflectScratch);
   this->GridPrefix.resize(rows * (columns + 1));
   glm::dvec3 meanFlux(0.0);
   for (std::size_t row = 0; row < rows; ++row)
@@ -295,7 +306,7 @@ glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWe
     prefix[0] = glm::dvec3(0.0);
     for (std::size_t c = 0; c < columns; ++c)
     {
-      prefix[c + 1] = prefix[c] + this->GridOut[row * columns + c];
+      prefix[c + 1] = prefix[c] + shot.GridOut[row * columns + c];
     }
     meanFlux += grid.CellMeasure(static_cast<int>(row)) * prefix[columns];
   }
@@ -312,11 +323,11 @@ glm::dvec3 LightPropagation::ShotByGrid(std::size_t shooter, const ReflectanceWe
     }
     if (this->EntryOmega[e] > 0.0)
     {
-      this->DirectionalOut[e - rowBegin] = flux / this->EntryOmega[e];
+      shot.Out[e - rowBegin] = flux / this->EntryOmega[e];
     }
   }
-  this->LastWeightEvaluations = 0;
-  return meanFlux / grid.TotalMeasure();
+  shot.WeightEvaluations = 0;
+  shot.Mean = meanFlux / grid.TotalMeasure();
 }
 
 void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
@@ -366,28 +377,29 @@ void LightPropagation::EncodeFallbacks()
 
 glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
   uint32_t code,
-  const glm::dvec3& mean)
+  const DirectionalShotData& shot,
+  std::size_t& meanFallbacks) const
 {
   if (code == NoEntry)
   {
-    ++this->LastMeanFallbacks;
-    return mean;
+    ++meanFallbacks;
+    return shot.Mean;
   }
   // The exitant radiance toward the cell of the direction P_i - P_j (paper §5.1) in the
   // shooter's hemisphere, from the in-strips DirectionalShot kept.
   const HemisphereGrid& grid = this->Cover.Grid();
   const int cell = static_cast<int>(code & ~FallbackFlag);
-  if (this->GridShot)
+  if (shot.Grid)
   {
-    return this->GridOut[static_cast<std::size_t>(cell)];
+    return shot.GridOut[static_cast<std::size_t>(cell)];
   }
   const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
   const int rowOut = grid.RowOfCell(cell);
   const int columnOut = grid.ColumnOfCell(cell);
   glm::dvec3 sum(0.0);
-  for (int rowIn : this->DirectionalCoupled[static_cast<std::size_t>(rowOut)])
+  for (int rowIn : shot.Coupled[static_cast<std::size_t>(rowOut)])
   {
-    for (const InStrip& strip : this->DirectionalIn[static_cast<std::size_t>(rowIn)])
+    for (const InStrip& strip : shot.In[static_cast<std::size_t>(rowIn)])
     {
       sum += table.StripWeight(rowOut, columnOut, rowIn, strip.Begin, strip.End) * strip.Radiance;
     }

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -200,81 +201,132 @@ void LightPropagation::Reset()
 
 std::size_t LightPropagation::Shoot(std::size_t shooter)
 {
+  if (this->Shared())
+  {
+    throw std::logic_error("LightPropagation::Shoot under a share: Run shoots collectively");
+  }
+  Candidate one;
+  one.Shooter = shooter;
+  one.Power = this->Power[shooter];
+  return this->ShootBatch({ one }).front().ReceiverUpdates;
+}
+
+std::vector<ShotRecord> LightPropagation::ShootBatch(const std::vector<Candidate>& batch)
+{
+  const std::size_t members = batch.size();
+  std::vector<ShotRecord> records(members);
+  // Every member's unshot light is taken before any column is walked (see the file comment).
   // The uniform part (a diffuse patch's reflected light, any patch's emission) is the same
-  // toward every receiver (§5.2), so it is evaluated once. It is taken out before the column is
-  // walked, because the shooter may be in its own column (a concave patch sees itself, h_ii)
-  // and then receives part of it back.
-  // Under a share the shooter's owner does this; the other ranks have it from the scan before
-  // the shot (JoinScan) and, for a directional shot, from the owner (ShareDirectionalShot).
-  const bool owner = shooter >= this->OwnedFirst && shooter < this->OwnedLast;
-  glm::dvec3 increment(0.0);
-  glm::dvec3 mean(0.0);
-  bool directional = false;
-  this->LastMeanFallbacks = 0;
-  this->LastWeightEvaluations = 0;
-  this->GridShot = false;
-  if (owner)
+  // toward every receiver (§5.2), so it is evaluated once; it is taken out before the walk,
+  // because the shooter may be in its own column (a concave patch sees itself, h_ii) and then
+  // receives part of it back. Under a share the shooter's owner does this; the other ranks
+  // have it from the scan before the batch (JoinScan) and, for a directional shot, from the
+  // owner (ShareDirectionalShots).
+  std::vector<glm::dvec3> increments(members, glm::dvec3(0.0));
+  std::vector<bool> directional(members, false);
+  if (this->BatchShots.size() < members)
   {
-    increment = this->Unshot[shooter];
-    this->Unshot[shooter] = glm::dvec3(0.0);
-    // The directional part of a non-diffuse shooter (see the file comment).
-    directional = this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
+    this->BatchShots.resize(members);
   }
-  else
+  bool ok = true;
+  std::exception_ptr failure;
+  try
   {
-    // Another rank's shooter: what the scan before the shot brought (JoinScan).
-    increment = this->ScannedIncrement;
-    directional = this->ScannedDirectional;
+    for (std::size_t m = 0; m < members; ++m)
+    {
+      const std::size_t shooter = batch[m].Shooter;
+      records[m].Shot = this->Shots.size() + m;
+      records[m].Shooter = shooter;
+      records[m].ShotPower = batch[m].Power;
+      records[m].RelativeChange = batch[m].Power / this->TotalEmitted;
+      if (shooter < this->OwnedFirst || shooter >= this->OwnedLast)
+      {
+        increments[m] = batch[m].Increment;
+        directional[m] = batch[m].Directional;
+        continue;
+      }
+      increments[m] = this->Unshot[shooter];
+      this->Unshot[shooter] = glm::dvec3(0.0);
+      // The directional part of a non-diffuse shooter (see the file comment).
+      directional[m] = this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
+      if (directional[m])
+      {
+        this->DirectionalShot(shooter, this->BatchShots[m]);
+      }
+      this->Power[shooter] = this->PowerOf(shooter);
+    }
   }
-  if (directional)
+  catch (...)
   {
-    mean = this->Shared() ? this->ShareDirectionalShot(shooter, owner)
-                          : this->DirectionalShot(shooter);
+    if (!this->Shared())
+    {
+      throw;
+    }
+    failure = std::current_exception();
+    ok = false;
   }
-  if (owner)
+  if (this->Shared() &&
+    std::any_of(batch.begin(), batch.end(), [](const Candidate& c) { return c.Directional; }))
   {
-    this->Power[shooter] = this->PowerOf(shooter);
+    this->ShareDirectionalShots(batch, directional, this->BatchShots, ok);
   }
-  const std::size_t begin = this->Cover.ColumnBegin(shooter);
-  const std::size_t end = this->Cover.ColumnEnd(shooter);
-  std::size_t fallbacks = 0;
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
   this->IncidentByEntryValid = false;
-  for (std::size_t k = begin; k < end; ++k)
+  for (std::size_t m = 0; m < members; ++m)
   {
-    const SphericalCover::ColumnEntry& item = this->Cover.ColumnAt(k);
-    // The radiance P_i sees through h_ij: the shooter's, whatever the balance.
-    glm::dvec3 value = increment;
-    if (directional)
+    const std::size_t shooter = batch[m].Shooter;
+    const glm::dvec3& increment = increments[m];
+    const DirectionalShotData& shot = this->BatchShots[m];
+    const std::size_t begin = this->Cover.ColumnBegin(shooter);
+    const std::size_t end = this->Cover.ColumnEnd(shooter);
+    std::size_t fallbacks = 0;
+    std::size_t meanFallbacks = 0;
+    for (std::size_t k = begin; k < end; ++k)
     {
-      const uint32_t back = this->ColumnBack[k];
-      if (back < FallbackFlag)
+      const SphericalCover::ColumnEntry& item = this->Cover.ColumnAt(k);
+      // The radiance P_i sees through h_ij: the shooter's, whatever the balance.
+      glm::dvec3 value = increment;
+      if (directional[m])
       {
-        value += this->DirectionalOut[back];
+        const uint32_t back = this->ColumnBack[k];
+        if (back < FallbackFlag)
+        {
+          value += shot.Out[back];
+        }
+        else
+        {
+          value += this->TowardReceiver(shooter, back, shot, meanFallbacks);
+          ++fallbacks;
+        }
       }
-      else
+      if (!this->ColumnFilter.empty())
       {
-        value += this->TowardReceiver(shooter, back, mean);
-        ++fallbacks;
+        value *= this->ColumnFilter[k]; // seen through panes
       }
+      this->Incident[k] += value;
+      // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed
+      // form, over the region's balanced measure f_e Omega_e (SetExchangeFactors).
+      this->Unshot[item.Receiver] +=
+        this->Rho[item.Receiver] * (this->ColumnMeasure[k] / Pi) * value;
+      if (this->ModelOfPatch[item.Receiver] >= 0)
+      {
+        this->UnshotIncident[k] += value;
+        this->DirectionalUnshot[item.Receiver] +=
+          this->Cover.PatchArea(item.Receiver) * BandSum(value * this->ColumnAlbedoMeasure[k]);
+      }
+      this->Power[item.Receiver] = this->PowerOf(item.Receiver);
     }
-    if (!this->ColumnFilter.empty())
-    {
-      value *= this->ColumnFilter[k]; // seen through panes
-    }
-    this->Incident[k] += value;
-    // The Lambertian part (all of a diffuse receiver's reflection, phong's k_d) in closed form,
-    // over the region's balanced measure f_e Omega_e (SetExchangeFactors).
-    this->Unshot[item.Receiver] += this->Rho[item.Receiver] * (this->ColumnMeasure[k] / Pi) * value;
-    if (this->ModelOfPatch[item.Receiver] >= 0)
-    {
-      this->UnshotIncident[k] += value;
-      this->DirectionalUnshot[item.Receiver] +=
-        this->Cover.PatchArea(item.Receiver) * BandSum(value * this->ColumnAlbedoMeasure[k]);
-    }
-    this->Power[item.Receiver] = this->PowerOf(item.Receiver);
+    ShotRecord& record = records[m];
+    record.ReceiverUpdates = end - begin;
+    record.Fallbacks = fallbacks;
+    record.MeanFallbacks = meanFallbacks;
+    record.GridShot = directional[m] && shot.Grid;
+    record.WeightEvaluations = directional[m] ? shot.WeightEvaluations : 0;
   }
-  this->LastFallbacks = fallbacks;
-  return end - begin;
+  return records;
 }
 
 double LightPropagation::PowerOf(std::size_t patch) const
@@ -330,6 +382,59 @@ std::size_t LightPropagation::Brightest(double& power, double& total) const
   return this->OwnedFirst + best;
 }
 
+std::vector<LightPropagation::Candidate> LightPropagation::LocalBatch(std::size_t best,
+  double largest,
+  std::size_t size) const
+{
+  std::vector<Candidate> batch;
+  auto candidate = [this](std::size_t j)
+  {
+    Candidate c;
+    c.Shooter = j;
+    c.Power = this->Power[j];
+    c.Increment = this->Unshot[j];
+    c.Directional = this->ModelOfPatch[j] >= 0 && this->DirectionalUnshot[j] > 0.0;
+    return c;
+  };
+  if (size <= 1 || !(largest > 0.0))
+  {
+    // One at a time: the brightest, found by the scan.
+    if (largest > 0.0)
+    {
+      batch.push_back(candidate(best));
+    }
+    return batch;
+  }
+  const double threshold = BatchPowerFraction * largest;
+  for (std::size_t j = this->OwnedFirst; j < this->OwnedLast; ++j)
+  {
+    if (this->Power[j] >= threshold)
+    {
+      batch.push_back(candidate(j));
+    }
+  }
+  SelectBatch(batch, largest, size);
+  return batch;
+}
+
+void LightPropagation::SelectBatch(std::vector<Candidate>& candidates,
+  double largest,
+  std::size_t size)
+{
+  const double threshold = BatchPowerFraction * largest;
+  candidates.erase(std::remove_if(candidates.begin(),
+                     candidates.end(),
+                     [threshold](const Candidate& c)
+                     { return !(c.Power > 0.0 && c.Power >= threshold); }),
+    candidates.end());
+  // By decreasing power, ties to the lowest index: the order §5's scan would meet them in.
+  auto before = [](const Candidate& a, const Candidate& b)
+  { return a.Power > b.Power || (a.Power == b.Power && a.Shooter < b.Shooter); };
+  const std::size_t kept = std::min(std::max<std::size_t>(size, 1), candidates.size());
+  std::partial_sort(candidates.begin(), candidates.begin() + kept, candidates.end(), before);
+  candidates.resize(kept);
+}
+
 bool LightPropagation::Converged(double tolerance) const
 {
   if (this->TotalEmitted <= 0.0 || this->PatchCount() == 0)
@@ -370,13 +475,20 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   {
     throw std::invalid_argument("LightPropagation: only BrightestFirst is shared among ranks");
   }
+  const std::size_t batchSize =
+    settings.Order == ShootingOrder::BrightestFirst ? std::max<std::size_t>(settings.ShotBatch, 1) : 1;
   double largest = 0.0;
   double unshot = 0.0;
-  std::size_t brightest = this->Brightest(largest, unshot);
-  if (shared)
+  // The next batch, from a scan of the state (joined over the ranks under a share).
+  auto scan = [&](bool stop, std::vector<ShotRecord>* records)
   {
-    this->JoinScan(brightest, largest, unshot, false, nullptr);
-  }
+    const std::size_t best = this->Brightest(largest, unshot);
+    std::vector<Candidate> batch = this->LocalBatch(best, largest, batchSize);
+    const bool everyRankGoesOn =
+      !shared || this->JoinScan(batch, largest, unshot, batchSize, stop, records);
+    return std::make_pair(std::move(batch), everyRankGoesOn);
+  };
+  std::vector<Candidate> batch = scan(false, nullptr).first;
   const double initialUnshot = unshot;
   double reported = 0.0;
   std::size_t shots = 0;
@@ -395,32 +507,40 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     {
       return false;
     }
-    const std::size_t shooter =
-      settings.Order == ShootingOrder::FixedOrder ? this->NextInFixedOrder() : brightest;
-    const double shotPower = largest;
-    ShotRecord record = this->ShootAndRecord(shooter);
-    brightest = this->Brightest(largest, unshot);
-    bool someRankStops = false;
-    if (shared)
+    if (settings.Order == ShootingOrder::FixedOrder)
     {
-      // The shooter's power is known to its owner alone before the shot: the scan's.
-      record.ShotPower = shotPower;
-      record.RelativeChange = shotPower / this->TotalEmitted;
-      someRankStops = !this->JoinScan(brightest, largest, unshot, stopping, &record);
+      Candidate next;
+      next.Shooter = this->NextInFixedOrder();
+      next.Power = this->Power[next.Shooter];
+      batch.assign(1, next);
     }
+    else if (settings.MaximumShots > 0)
+    {
+      batch.resize(std::min(batch.size(), settings.MaximumShots - shots));
+    }
+    if (batch.empty())
+    {
+      return false; // nothing has unshot power left to send (only rounding kept it unconverged)
+    }
+    std::vector<ShotRecord> records = this->ShootBatch(batch);
+    auto next = scan(stopping, &records);
+    batch = std::move(next.first);
     if (!std::isfinite(unshot))
     {
       throw std::overflow_error("the unshot energy is no longer finite after shot " +
-        std::to_string(record.Shot) + " (an overflow); scale the emissions down");
+        std::to_string(records.back().Shot) + " (an overflow); scale the emissions down");
     }
-    record.MaxUnshotRelative = largest / this->TotalEmitted;
-    record.UnshotEnergy = unshot;
     this->ElapsedSeconds =
       secondsBefore + std::chrono::duration<double>(Clock::now() - start).count();
-    record.Seconds = this->ElapsedSeconds;
-    this->Shots.push_back(record);
-    ++shots;
-    if (someRankStops)
+    for (ShotRecord& record : records)
+    {
+      record.MaxUnshotRelative = largest / this->TotalEmitted;
+      record.UnshotEnergy = unshot;
+      record.Seconds = this->ElapsedSeconds;
+      this->Shots.push_back(record);
+    }
+    shots += records.size();
+    if (!next.second)
     {
       return false;
     }
@@ -429,7 +549,7 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     {
       if (initialUnshot > 0.0)
       {
-        reported = std::max(reported, std::min(1.0, 1.0 - record.UnshotEnergy / initialUnshot));
+        reported = std::max(reported, std::min(1.0, 1.0 - unshot / initialUnshot));
       }
       if (!progress(reported))
       {
@@ -459,21 +579,6 @@ std::size_t LightPropagation::NextInFixedOrder()
   const std::size_t shooter = this->NextInOrder;
   this->NextInOrder = (this->NextInOrder + 1) % this->PatchCount();
   return shooter;
-}
-
-ShotRecord LightPropagation::ShootAndRecord(std::size_t shooter)
-{
-  ShotRecord record;
-  record.Shot = this->Shots.size();
-  record.Shooter = shooter;
-  record.ShotPower = this->UnshotPower(shooter);
-  record.RelativeChange = record.ShotPower / this->TotalEmitted;
-  record.ReceiverUpdates = this->Shoot(shooter);
-  record.WeightEvaluations = this->LastWeightEvaluations;
-  record.Fallbacks = this->LastFallbacks;
-  record.MeanFallbacks = this->LastMeanFallbacks;
-  record.GridShot = this->GridShot;
-  return record;
 }
 
 void LightPropagation::CheckIncidentFinite() const

@@ -24,6 +24,15 @@
  * sum_j U_j falls below ConvergenceTolerance times the emitted power, or after MaximumShots. All
  * in the calling thread, in a fixed order: the results are deterministic.
  *
+ * Batches (PropagationSettings::ShotBatch): BrightestFirst may shoot up to B patches at a time,
+ * the brightest and the next ones whose U_j is at least BatchPowerFraction of its U_j, in order
+ * of U_j (ties to the lowest index). Every member's unshot light is taken and, for a non-diffuse
+ * one, reflected (its DirectionalShot) before any column is walked; the columns are then walked
+ * in the batch's order. Light a member receives from another in the same batch stays unshot for
+ * a later batch. The batch depends on the state alone, never on the ranks: under MPI the owners
+ * of a batch's non-diffuse shooters reflect them at the same time, with one exchange per batch.
+ * B = 1 is §5's order, one shot at a time.
+ *
  * Panes (paper §5.4; SphericalCover.h "Panes"): an entry seen through panes receives the
  * shooter's radiance times its filter (E_e is what arrives, filtered); a pane's own unshot light
  * is only what it reflects, what it lets through having reached the points behind it through
@@ -94,6 +103,9 @@ struct PropagationSettings
   /// Most shots in one Run call (0: no limit other than convergence).
   std::size_t MaximumShots = 0;
   ShootingOrder Order = ShootingOrder::BrightestFirst;
+  /// Most patches shot at a time by BrightestFirst (see the file comment; at least 1). The
+  /// results differ with it, within the tolerance; never with the ranks.
+  std::size_t ShotBatch = 1;
 };
 
 /// One shot of the convergence history.
@@ -198,11 +210,12 @@ public:
   /**
    * Under MPI (math/RankShare.h): the ranks propagate together, each over the rows of its own
    * receivers [firstOwned, lastOwned), which is all the cover given to the constructor holds
-   * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every shot,
-   * the ranks agree on the shooter (the patch of largest unshot power over all ranks, lowest index on ties:
-   * serial's), its owner sends what it shoots (its unshot radiance; for a non-diffuse shooter
-   * its reflected radiance toward every region of its row and what serves receivers without
-   * one) and each rank updates its own receivers in column order. So every owned patch's state,
+   * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every batch,
+   * the ranks agree on its shooters (from every rank's candidates, chosen as the serial scan
+   * chooses), their owners send what they shoot (the unshot radiance, with the scan; for the
+   * non-diffuse shooters, all in one exchange, their reflected radiance toward every region of
+   * their rows and what serves receivers without one) and each rank updates its own receivers
+   * in column order. So every owned patch's state,
    * and each result of an owned patch (Irradiance, ExitantRadiance, Brightness, the incident
    * radiances of its row), is the serial one bit for bit; the history's shooters and powers
    * are serial's, its sums over the ranks (UnshotEnergy, ReceiverUpdates) equal up to the order
@@ -227,6 +240,8 @@ public:
   /// Automatic takes the grid when the strip pairs exceed this many per cell of the grid: the
   /// grid's cost in strip pairs, as measured (Documentation/notes/propagation.md).
   static constexpr double GridCostInPairs = 5.0;
+  /// A batch's members after the brightest have at least this fraction of its unshot power.
+  static constexpr double BatchPowerFraction = 0.5;
 
   /**
    * Shoots until converged (true), MaximumShots shots were made in this call (false) or
@@ -239,7 +254,8 @@ public:
    */
   bool Run(const PropagationSettings& settings = {}, const ProgressCallback& progress = nullptr);
 
-  /// One shot of patch `shooter`'s unshot radiance (§5.1); returns the entries updated.
+  /// One shot of patch `shooter`'s unshot radiance (§5.1); returns the entries updated. Not
+  /// under a share (std::logic_error): there Run's batches are collective.
   std::size_t Shoot(std::size_t shooter);
 
   /// Whether max_j U_j / emitted power < tolerance (true when nothing is emitted).
@@ -312,15 +328,52 @@ public:
   const glm::dvec3& Emission(std::size_t patch) const { return this->Le[patch]; }
 
 private:
+  /// A patch chosen to shoot, with what the ranks that do not own it need to know of it.
+  struct Candidate
+  {
+    std::size_t Shooter = 0;
+    /// U_j when chosen.
+    double Power = 0.0;
+    /// Its unshot radiance dL_j, and whether its shot is directional (has unshot dE).
+    glm::dvec3 Increment{ 0.0 };
+    bool Directional = false;
+  };
+  /// What a non-diffuse shot sends (DirectionalShot's results): the radiance toward each entry
+  /// of the shooter's row and what serves the receivers without one (the grid's exitant
+  /// radiance, or the in-strips and their coupled rows), the mean over the hemisphere.
+  struct InStrip
+  {
+    int Begin;
+    int End;
+    glm::dvec3 Radiance;
+  };
+  struct DirectionalShotData
+  {
+    glm::dvec3 Mean{ 0.0 };
+    bool Grid = false;
+    std::size_t WeightEvaluations = 0;
+    std::vector<glm::dvec3> Out;
+    std::vector<glm::dvec3> GridOut;
+    std::vector<std::vector<InStrip>> In;
+    std::vector<std::vector<int>> Coupled;
+  };
   /// The patch of largest unshot power (lowest index on ties), that power, and the sum of all
   /// (UnshotEnergy), in one scan.
   std::size_t Brightest(double& power, double& total) const;
+  /// The next batch from this rank's patches (the brightest `best` of power `largest`): up to
+  /// `size` of them, of power >= BatchPowerFraction x largest, by SelectBatch.
+  std::vector<Candidate> LocalBatch(std::size_t best, double largest, std::size_t size) const;
+  /// The batch of `candidates`: those of power > 0 and >= BatchPowerFraction x `largest`, by
+  /// decreasing power (lowest index on ties), the first `size`.
+  static void SelectBatch(std::vector<Candidate>& candidates, double largest, std::size_t size);
+  /// Shoots the batch (see the file comment); one record per member, without what the scan
+  /// after it measures.
+  std::vector<ShotRecord> ShootBatch(const std::vector<Candidate>& batch);
   /// U_j from Unshot and DirectionalUnshot (what Power holds).
   double PowerOf(std::size_t patch) const;
   /// Run's steps: the next patch of FixedOrder that has unshot power; one shot with its
   /// record (all but what the scan after it measures); the final check of E_e.
   std::size_t NextInFixedOrder();
-  ShotRecord ShootAndRecord(std::size_t shooter);
   void CheckIncidentFinite() const;
   // The non-diffuse shots (DirectionalShot.cxx).
   /// Sets up the non-diffuse machinery (models, weight tables, transposed entries).
@@ -336,35 +389,37 @@ private:
   /// row j from `remoteRows[j]` where that is not empty (the keys of another rank's row).
   void MatchTransposedEntries(const std::vector<std::vector<EntryKey>>& remoteRows = {});
   // Under a share (SharedPropagation.cxx).
-  /// Every rank's brightest own patch (with its unshot radiance and whether its shot is
-  /// directional), unshot energy, whether it stops and the last shot's counts, joined: the
-  /// shooter, its power and the total unshot energy, the counts summed into `record` (when
-  /// given); false when some rank stops.
-  bool JoinScan(std::size_t& brightest, double& largest, double& unshot, bool stop,
-    ShotRecord* record);
-  /// A non-diffuse shot's data (DirectionalShot's results) from the shooter's owner to every
-  /// rank; returns the mean exitant radiance.
-  glm::dvec3 ShareDirectionalShot(std::size_t shooter, bool owner);
-  /// The values of one rank's scan (JoinScan).
-  static constexpr std::size_t ScanValues = 11;
+  /// Every rank's batch of its own patches (LocalBatch), largest power, unshot energy, whether
+  /// it stops and the last batch's counts, joined: the batch (SelectBatch over the ranks'), the
+  /// largest power and the total unshot energy, the counts summed into `records` (when given);
+  /// false when some rank stops.
+  bool JoinScan(std::vector<Candidate>& batch, double& largest, double& unshot, std::size_t size,
+    bool stop, std::vector<ShotRecord>* records);
+  /// The batch's non-diffuse shots: each rank computes those of its own shooters into
+  /// `data[m]` (m the member), then every rank gets every one. `ok`: this rank's succeeded.
+  void ShareDirectionalShots(const std::vector<Candidate>& batch,
+    const std::vector<bool>& directional, std::vector<DirectionalShotData>& data, bool ok);
   bool Shared() const { return this->Share.Distributed(); }
   /// ColumnAlbedoMeasure: a_e Omega_e of every entry of a non-diffuse row.
   void ComputeAlbedoMeasures();
-  /// Exitant radiance of non-diffuse patch j (from its unshot dE) averaged over each entry of
-  /// row j, into DirectionalOut, by the cheaper method; returns the mean over the hemisphere.
-  glm::dvec3 DirectionalShot(std::size_t shooter);
-  /// Moves the shooter's unshot dE into DirectionalIn, as in-strips by row.
-  void TakeUnshotInStrips(std::size_t shooter);
-  /// DirectionalCoupled from DirectionalIn; returns the strip pairs of a strip-pair shot.
-  std::size_t CoupleInRows(std::size_t shooter, const ReflectanceWeights& table);
+  /// Exitant radiance of non-diffuse patch j (from its unshot dE, which it takes) averaged over
+  /// each entry of row j, by the cheaper method, with the mean over the hemisphere, into `shot`.
+  void DirectionalShot(std::size_t shooter, DirectionalShotData& shot);
+  /// Moves the shooter's unshot dE into shot.In, as in-strips by row.
+  void TakeUnshotInStrips(std::size_t shooter, DirectionalShotData& shot);
+  /// shot.Coupled from shot.In; returns the strip pairs of a strip-pair shot.
+  std::size_t CoupleInRows(std::size_t shooter, const ReflectanceWeights& table,
+    DirectionalShotData& shot);
   /// The two methods of DirectionalShot, on the in-strips it collected.
-  glm::dvec3 ShotByStripPairs(std::size_t shooter,
+  void ShotByStripPairs(std::size_t shooter,
     const ReflectanceWeights& table,
-    std::size_t pairs);
-  glm::dvec3 ShotByGrid(std::size_t shooter, const ReflectanceWeights& table);
-  /// The exitant radiance of the current directional shot toward a receiver without h_ji, whose
-  /// ColumnBack code is `code`.
-  glm::dvec3 TowardReceiver(std::size_t shooter, uint32_t code, const glm::dvec3& mean);
+    std::size_t pairs,
+    DirectionalShotData& shot);
+  void ShotByGrid(std::size_t shooter, const ReflectanceWeights& table, DirectionalShotData& shot);
+  /// The exitant radiance of directional shot `shot` toward a receiver without h_ji, whose
+  /// ColumnBack code is `code`; counts a mean fallback into `meanFallbacks`.
+  glm::dvec3 TowardReceiver(std::size_t shooter, uint32_t code, const DirectionalShotData& shot,
+    std::size_t& meanFallbacks) const;
   /// Sets the ColumnBack codes of the receivers without h_ji from the frames.
   void EncodeFallbacks();
   /// sum_e E_e a_e Omega_e over row i (non-diffuse) or rho_i E_i (diffuse).
@@ -422,38 +477,20 @@ private:
   /// U_j of every patch, updated with Unshot and DirectionalUnshot: the scan for the brightest
   /// reads one array.
   std::vector<double> Power;
-  /// Scratch of DirectionalShot: radiance toward each entry of the shooter's row, the in-strips
-  /// with unshot radiance by row, and per out row the coupled in rows that hold some.
-  std::vector<glm::dvec3> DirectionalOut;
-  struct InStrip
-  {
-    int Begin;
-    int End;
-    glm::dvec3 Radiance;
-  };
-  std::vector<std::vector<InStrip>> DirectionalIn;
-  std::vector<std::vector<int>> DirectionalCoupled;
-  /// Scratch of ShotByGrid: unshot incident radiance per cell, exitant radiance per cell, and
-  /// per row the prefix sums of the exitant radiance over the columns.
+  /// The directional shots of the current batch, one per member (kept from batch to batch for
+  /// their buffers).
+  std::vector<DirectionalShotData> BatchShots;
+  /// Scratch of ShotByGrid: unshot incident radiance per cell and per row the prefix sums of
+  /// the exitant radiance over the columns.
   std::vector<glm::dvec3> GridIn;
-  std::vector<glm::dvec3> GridOut;
   std::vector<glm::dvec3> GridPrefix;
   ReflectanceWeights::Scratch ReflectScratch;
   DirectionalMethod Method = DirectionalMethod::Automatic;
-  /// Whether the current (last) directional shot went through the grid.
-  bool GridShot = false;
   std::vector<HemisphereFrame> Frames;
-  /// Statistics of the last Shoot, for its ShotRecord.
-  std::size_t LastWeightEvaluations = 0;
-  std::size_t LastFallbacks = 0;
-  std::size_t LastMeanFallbacks = 0;
   /// Under MPI (SetRankShare): the ranks and this rank's receivers.
   RankShare Share;
   std::size_t OwnedFirst = 0;
   std::size_t OwnedLast = 0;
-  /// The shooter's unshot radiance and whether its shot is directional, from the last scan.
-  glm::dvec3 ScannedIncrement{ 0.0 };
-  bool ScannedDirectional = false;
 };
 
 } // namespace sphcover

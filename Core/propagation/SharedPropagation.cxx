@@ -1,15 +1,17 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // LightPropagation under MPI (SetRankShare in LightPropagation.h; the class is declared
 // there): the ranks' rows, the once-only exchange of the keys of their non-diffuse rows, the
-// scan joined every shot, and the shot's data sent by the shooter's owner. Communication per
-// shot: one all-gather of K x 89 bytes (the scan, with what a Lambertian shot sends), and for a
-// non-diffuse shooter a second join of its row's radiances and its unshot in-strips or its
-// grid (Documentation/notes/distributed-solve.md).
+// scan joined every batch, and the batch's non-diffuse shots sent by their owners.
+// Communication per batch of B shots: one all-gather of K x (32 + 48 B + 24 B) bytes (the scan,
+// with what a Lambertian shot sends and the last batch's counts), and when the batch has
+// non-diffuse shooters a second join of their rows' radiances and their unshot in-strips or
+// their grids (Documentation/notes/distributed-solve.md).
 #include "propagation/LightPropagation.h"
 
 #include "cover/SphericalCover.h"
 #include "math/ByteBuffer.h"
 
+#include <algorithm>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -101,148 +103,181 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
   this->EncodeFallbacks();
 }
 
-bool LightPropagation::JoinScan(std::size_t& brightest,
+bool LightPropagation::JoinScan(std::vector<Candidate>& batch,
   double& largest,
   double& unshot,
+  std::size_t size,
   bool stop,
-  ShotRecord* record)
+  std::vector<ShotRecord>* records)
 {
-  // This rank's brightest patch comes with what a shot of it sends when it is Lambertian (its
-  // unshot radiance), so that such a shot needs no exchange of its own.
-  const bool owns = brightest < this->OwnedLast;
-  const glm::dvec3 increment = owns ? this->Unshot[brightest] : glm::dvec3(0.0);
-  const bool directional =
-    owns && this->ModelOfPatch[brightest] >= 0 && this->DirectionalUnshot[brightest] > 0.0;
-  const double mine[ScanValues] = { largest,
-    static_cast<double>(brightest),
-    unshot,
-    stop ? 1.0 : 0.0,
-    record ? static_cast<double>(record->ReceiverUpdates) : 0.0,
-    record ? static_cast<double>(record->Fallbacks) : 0.0,
-    record ? static_cast<double>(record->MeanFallbacks) : 0.0,
-    increment.x,
-    increment.y,
-    increment.z,
-    directional ? 1.0 : 0.0 };
-  const std::vector<double> scans = JoinValues(this->Share, mine, ScanValues, true);
-  // The largest power over the ranks, the lowest index on ties: the serial scan's choice.
+  // One block of doubles per rank, as many on every rank: its largest power, unshot energy,
+  // whether it stops, the last batch's counts per member (every rank had the same batch), and
+  // its candidates padded to `size`, each with what a Lambertian shot of it sends (its unshot
+  // radiance), so that such a shot needs no exchange of its own.
+  const std::size_t members = records ? records->size() : 0;
+  constexpr std::size_t PerCandidate = 6;
+  std::vector<double> mine;
+  mine.reserve(4 + 3 * members + PerCandidate * size);
+  mine.push_back(largest);
+  mine.push_back(unshot);
+  mine.push_back(stop ? 1.0 : 0.0);
+  for (std::size_t m = 0; m < members; ++m)
+  {
+    const ShotRecord& record = (*records)[m];
+    mine.push_back(static_cast<double>(record.ReceiverUpdates));
+    mine.push_back(static_cast<double>(record.Fallbacks));
+    mine.push_back(static_cast<double>(record.MeanFallbacks));
+  }
+  mine.push_back(static_cast<double>(batch.size()));
+  for (std::size_t c = 0; c < size; ++c)
+  {
+    const Candidate none;
+    const Candidate& candidate = c < batch.size() ? batch[c] : none;
+    mine.push_back(static_cast<double>(candidate.Shooter));
+    mine.push_back(candidate.Power);
+    mine.push_back(candidate.Increment.x);
+    mine.push_back(candidate.Increment.y);
+    mine.push_back(candidate.Increment.z);
+    mine.push_back(candidate.Directional ? 1.0 : 0.0);
+  }
+  const std::size_t stride = mine.size();
+  const std::vector<double> scans = JoinValues(this->Share, mine.data(), stride, true);
+  if (scans.size() != stride * static_cast<std::size_t>(this->Share.Ranks()))
+  {
+    throw std::runtime_error("LightPropagation: a rank's scan is damaged");
+  }
+  // The ranks' candidates, chosen among as the serial scan chooses among all patches.
   bool someRankStops = false;
-  largest = -1.0;
+  largest = 0.0;
   unshot = 0.0;
-  double counts[3] = { 0.0, 0.0, 0.0 };
-  for (std::size_t at = 0; at + ScanValues <= scans.size(); at += ScanValues)
+  batch.clear();
+  std::vector<double> counts(3 * members, 0.0);
+  for (std::size_t at = 0; at < scans.size(); at += stride)
   {
     const double* theirs = scans.data() + at;
-    const std::size_t index = static_cast<std::size_t>(theirs[1]);
-    if (theirs[0] > largest || (theirs[0] == largest && index < brightest))
+    largest = std::max(largest, theirs[0]);
+    unshot += theirs[1];
+    someRankStops = someRankStops || theirs[2] != 0.0;
+    for (std::size_t c = 0; c < 3 * members; ++c)
     {
-      largest = theirs[0];
-      brightest = index;
-      this->ScannedIncrement = glm::dvec3(theirs[7], theirs[8], theirs[9]);
-      this->ScannedDirectional = theirs[10] != 0.0;
+      counts[c] += theirs[3 + c];
     }
-    unshot += theirs[2];
-    someRankStops = someRankStops || theirs[3] != 0.0;
-    for (int c = 0; c < 3; ++c)
+    const double* candidates = theirs + 3 + 3 * members;
+    const std::size_t count = static_cast<std::size_t>(candidates[0]);
+    Expect(count <= size, "scans");
+    for (std::size_t c = 0; c < count; ++c)
     {
-      counts[c] += theirs[4 + c];
+      const double* values = candidates + 1 + PerCandidate * c;
+      Candidate candidate;
+      candidate.Shooter = static_cast<std::size_t>(values[0]);
+      Expect(candidate.Shooter < this->PatchCount(), "scans");
+      candidate.Power = values[1];
+      candidate.Increment = glm::dvec3(values[2], values[3], values[4]);
+      candidate.Directional = values[5] != 0.0;
+      batch.push_back(candidate);
     }
   }
-  if (record)
+  SelectBatch(batch, largest, size);
+  for (std::size_t m = 0; m < members; ++m)
   {
-    record->ReceiverUpdates = static_cast<std::size_t>(counts[0]);
-    record->Fallbacks = static_cast<std::size_t>(counts[1]);
-    record->MeanFallbacks = static_cast<std::size_t>(counts[2]);
+    ShotRecord& record = (*records)[m];
+    record.ReceiverUpdates = static_cast<std::size_t>(counts[3 * m]);
+    record.Fallbacks = static_cast<std::size_t>(counts[3 * m + 1]);
+    record.MeanFallbacks = static_cast<std::size_t>(counts[3 * m + 2]);
   }
   return !someRankStops;
 }
 
-glm::dvec3 LightPropagation::ShareDirectionalShot(std::size_t shooter, bool owner)
+void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch,
+  const std::vector<bool>& directional,
+  std::vector<DirectionalShotData>& data,
+  bool ok)
 {
-  // The owner computes the shot (DirectionalShot, as serial) and packs it; the others send
-  // nothing and find the owner's data as the one non-empty block.
-  glm::dvec3 mean(0.0);
+  // Each rank packs the shots of its own members (computed by ShootBatch, as serial), in the
+  // batch's order; one join gives every rank every shot, each found by its member index.
   std::vector<char> bytes;
-  bool ok = true;
-  std::exception_ptr failure;
-  if (owner)
+  if (ok)
   {
-    try
+    ByteWriter out(bytes);
+    for (std::size_t m = 0; m < batch.size(); ++m)
     {
-      mean = this->DirectionalShot(shooter);
-      ByteWriter out(bytes);
-      out.Value(mean);
-      out.Value(static_cast<uint8_t>(this->GridShot ? 1 : 0));
-      out.Value(static_cast<uint64_t>(this->LastWeightEvaluations));
-      out.Array(this->DirectionalOut);
-      if (this->GridShot)
+      const std::size_t shooter = batch[m].Shooter;
+      if (!directional[m] || shooter < this->OwnedFirst || shooter >= this->OwnedLast)
       {
-        out.Array(this->GridOut);
+        continue;
+      }
+      const DirectionalShotData& shot = data[m];
+      out.Value(static_cast<uint64_t>(m));
+      out.Value(shot.Mean);
+      out.Value(static_cast<uint8_t>(shot.Grid ? 1 : 0));
+      out.Value(static_cast<uint64_t>(shot.WeightEvaluations));
+      out.Array(shot.Out);
+      if (shot.Grid)
+      {
+        out.Array(shot.GridOut);
       }
       else
       {
-        for (std::size_t row = 0; row < this->DirectionalIn.size(); ++row)
+        for (std::size_t row = 0; row < shot.In.size(); ++row)
         {
-          out.Array(this->DirectionalIn[row]);
-          out.Array(this->DirectionalCoupled[row]);
+          out.Array(shot.In[row]);
+          out.Array(shot.Coupled[row]);
         }
       }
     }
-    catch (...)
-    {
-      failure = std::current_exception();
-      ok = false;
-    }
   }
   std::vector<std::vector<char>> all;
-  const bool everyRankOk = this->Share.Join(bytes, ok, all);
-  if (failure)
+  if (!this->Share.Join(bytes, ok, all))
   {
-    std::rethrow_exception(failure);
-  }
-  if (!everyRankOk)
-  {
+    if (!ok)
+    {
+      return; // this rank's own failure is rethrown by the caller
+    }
     throw RankShare::PeerFailure();
   }
-  if (owner)
+  const std::size_t rows = static_cast<std::size_t>(this->Cover.Grid().ThetaBins());
+  std::vector<bool> received(batch.size(), false);
+  for (std::size_t r = 0; r < all.size(); ++r)
   {
-    return mean;
-  }
-  const std::vector<char>* theirs = nullptr;
-  for (const std::vector<char>& rankBytes : all)
-  {
-    if (!rankBytes.empty())
+    if (static_cast<int>(r) == this->Share.Rank())
     {
-      theirs = &rankBytes;
+      continue;
+    }
+    ByteReader in(all[r]);
+    while (!in.AtEnd())
+    {
+      uint64_t m = 0;
+      Expect(in.Value(m) && m < batch.size() && directional[m] && !received[m], "shot data");
+      DirectionalShotData& shot = data[m];
+      uint8_t grid = 0;
+      uint64_t evaluations = 0;
+      bool read = in.Value(shot.Mean) && in.Value(grid) && in.Value(evaluations) &&
+        in.Array(shot.Out);
+      shot.Grid = grid != 0;
+      shot.WeightEvaluations = static_cast<std::size_t>(evaluations);
+      if (shot.Grid)
+      {
+        read = read && in.Array(shot.GridOut);
+      }
+      else
+      {
+        shot.In.resize(rows);
+        shot.Coupled.resize(rows);
+        for (std::size_t row = 0; row < rows; ++row)
+        {
+          read = read && in.Array(shot.In[row]) && in.Array(shot.Coupled[row]);
+        }
+      }
+      Expect(read, "shot data");
+      received[m] = true;
     }
   }
-  if (!theirs)
+  for (std::size_t m = 0; m < batch.size(); ++m)
   {
-    throw std::runtime_error("LightPropagation: no rank owns the shooter");
+    const std::size_t shooter = batch[m].Shooter;
+    const bool own = shooter >= this->OwnedFirst && shooter < this->OwnedLast;
+    Expect(!directional[m] || own || received[m], "shot data (a shot is missing)");
   }
-  ByteReader in(*theirs);
-  uint8_t grid = 0;
-  uint64_t evaluations = 0;
-  bool read = in.Value(mean) && in.Value(grid) && in.Value(evaluations) &&
-    in.Array(this->DirectionalOut);
-  this->GridShot = grid != 0;
-  this->LastWeightEvaluations = static_cast<std::size_t>(evaluations);
-  if (this->GridShot)
-  {
-    read = read && in.Array(this->GridOut);
-  }
-  else
-  {
-    const std::size_t rows = static_cast<std::size_t>(this->Cover.Grid().ThetaBins());
-    this->DirectionalIn.resize(rows);
-    this->DirectionalCoupled.resize(rows);
-    for (std::size_t row = 0; row < rows; ++row)
-    {
-      read = read && in.Array(this->DirectionalIn[row]) && in.Array(this->DirectionalCoupled[row]);
-    }
-  }
-  Expect(read, "shot data");
-  return mean;
 }
 
 } // namespace sphcover

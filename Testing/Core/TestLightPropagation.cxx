@@ -181,6 +181,81 @@ TEST(LightPropagation, ShootingOrderDoesNotChangeTheEquilibrium)
   }
 }
 
+TEST(LightPropagation, BatchesReachTheSameEquilibrium)
+{
+  // Shooting up to B patches at a time (PropagationSettings::ShotBatch) changes the path to the
+  // equilibrium, not the equilibrium: the furnace stays uniform, the Cornell box's radiances
+  // equal the one-at-a-time ones within the tolerance's reach, and every batch is the
+  // brightest patch and the next ones of at least BatchPowerFraction of its power.
+  for (const char* name : { "cornell_box.scene", "furnace_box.scene" })
+  {
+    CoveredScene setup(name, 2);
+    PropagationSettings settings;
+    settings.ConvergenceTolerance = 1e-7;
+    LightPropagation single(setup.Cover, setup.Materials);
+    ASSERT_TRUE(single.Run(settings));
+    settings.ShotBatch = 16;
+    LightPropagation batched(setup.Cover, setup.Materials);
+    // Before the first batch: the powers it is chosen from.
+    std::vector<double> power;
+    for (size_t i = 0; i < setup.Patches.size(); ++i)
+    {
+      power.push_back(batched.UnshotPower(i));
+    }
+    ASSERT_TRUE(batched.Run(settings));
+    double worst = 0.0;
+    double largest = 0.0;
+    for (size_t i = 0; i < setup.Patches.size(); ++i)
+    {
+      const glm::dvec3 a = single.ExitantRadiance(i);
+      const glm::dvec3 b = batched.ExitantRadiance(i);
+      for (int k = 0; k < 3; ++k)
+      {
+        worst = std::max(worst, std::fabs(a[k] - b[k]));
+        largest = std::max(largest, a[k]);
+      }
+    }
+    std::printf("[ Batches  ] %s: one at a time %zu shots, batches of 16 %zu shots, largest "
+                "difference %.1e of the largest radiance\n",
+      name,
+      single.History().size(),
+      batched.History().size(),
+      worst / largest);
+    EXPECT_LT(worst, 1e-5 * largest) << name;
+    if (std::string(name) == "furnace_box.scene")
+    {
+      EXPECT_LT(WorstFurnaceError(batched, setup.Materials), 5e-3);
+    }
+    // The first batch: the patches of largest power, in decreasing order (lowest index on
+    // ties), as many as are at least half the largest, at most 16.
+    std::vector<size_t> order(power.size());
+    for (size_t i = 0; i < order.size(); ++i)
+    {
+      order[i] = i;
+    }
+    std::stable_sort(order.begin(), order.end(), [&power](size_t a, size_t b) { return power[a] > power[b]; });
+    size_t members = 0;
+    while (members < 16 && members < order.size() && power[order[members]] > 0.0 &&
+      power[order[members]] >= LightPropagation::BatchPowerFraction * power[order[0]])
+    {
+      ++members;
+    }
+    ASSERT_GT(members, 0u);
+    ASSERT_GE(batched.History().size(), members);
+    for (size_t m = 0; m < members; ++m)
+    {
+      EXPECT_EQ(batched.History()[m].Shooter, order[m]) << name << " member " << m;
+      EXPECT_EQ(batched.History()[m].ShotPower, power[order[m]]) << name << " member " << m;
+    }
+    // The batch's records share what the scan after it measured; the next batch's do not.
+    EXPECT_EQ(batched.History()[members - 1].UnshotEnergy, batched.History()[0].UnshotEnergy);
+    if (batched.History().size() > members)
+    {
+      EXPECT_NE(batched.History()[members].UnshotEnergy, batched.History()[0].UnshotEnergy);
+    }
+  }
+}
+
 TEST(LightPropagation, HowellParallelRectanglesWithOneLamp)
 {
   // Lamp A (rho = 0, Le) facing white B (rho_B) across a gap, nothing else: B is lit only
@@ -381,11 +456,14 @@ TEST(LightPropagation, ProgressAbortAndShotLimit)
   EXPECT_EQ(calls, 3);
   EXPECT_EQ(aborted.History().size(), 3u);
 
-  // A shot limit stops early; a later Run continues from there to the same equilibrium.
+  // A shot limit stops early, also within a batch; a later Run continues from there to the
+  // same equilibrium.
   LightPropagation limited(setup.Cover, setup.Materials);
   settings.MaximumShots = 5;
+  settings.ShotBatch = 16;
   EXPECT_FALSE(limited.Run(settings));
   EXPECT_EQ(limited.History().size(), 5u);
+  settings.ShotBatch = 1;
   EXPECT_FALSE(limited.Converged(settings.ConvergenceTolerance));
   settings.MaximumShots = 0;
   std::vector<double> fractions;

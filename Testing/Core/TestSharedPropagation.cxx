@@ -64,9 +64,10 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
   const std::vector<Patch>& patches,
   const std::vector<Material>& materials,
   int ranks,
+  std::size_t batch,
   DirectionalMethod method = DirectionalMethod::Automatic)
 {
-  SCOPED_TRACE(testing::Message() << ranks << " ranks");
+  SCOPED_TRACE(testing::Message() << ranks << " ranks, batches of " << batch);
   const std::vector<HemisphereFrame> frames = FramesOf(patches);
   std::vector<glm::dvec3> emission;
   for (const Material& material : materials)
@@ -83,6 +84,7 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
   const glm::dvec3 oblique = HemisphereGrid::LocalDirection(1.0, 2.0);
   PropagationSettings settings;
   settings.ConvergenceTolerance = 1e-6;
+  settings.ShotBatch = batch;
 
   LightPropagation serial(cover, materials);
   serial.SetFrames(frames);
@@ -179,14 +181,17 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
 TEST(SharedPropagation, CornellBoxEqualsSerial)
 {
   const CoveredScene setup("cornell_box.scene", 3);
-  for (const int ranks : { 2, 3 })
+  for (const std::size_t batch : { 1, 16 })
   {
-    ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, ranks);
+    for (const int ranks : { 2, 3 })
+    {
+      ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, ranks, batch);
+    }
   }
 }
 
 // Mirror, phong and tabulated shooters send their row's radiances and in-strips (strip-pair
-// shots) or their grid (grid shots) to the other ranks.
+// shots) or their grid (grid shots) to the other ranks; in batches, several ranks' shots at once.
 TEST(SharedPropagation, MixedMaterialsEqualSerial)
 {
   const CoveredScene setup("furnace_box.scene", 2);
@@ -204,9 +209,12 @@ TEST(SharedPropagation, MixedMaterialsEqualSerial)
   for (const DirectionalMethod method : { DirectionalMethod::StripPairs, DirectionalMethod::Grid })
   {
     SCOPED_TRACE(testing::Message() << "method " << static_cast<int>(method));
-    for (const int ranks : { 2, 3 })
+    for (const std::size_t batch : { 1, 16 })
     {
-      ExpectSharedEqualsSerial(setup.Cover, setup.Patches, materials, ranks, method);
+      for (const int ranks : { 2, 3 })
+      {
+        ExpectSharedEqualsSerial(setup.Cover, setup.Patches, materials, ranks, batch, method);
+      }
     }
   }
 }
@@ -220,7 +228,7 @@ TEST(SharedPropagation, PanesEqualSerial)
   AddPaneAcrossMixedBox(scene);
   const PaneScene setup(ParseScene(scene.dump(), ScenePath("mixed_box.scene")), 3, 8, 32);
   ASSERT_TRUE(setup.Cover.HasPanes());
-  ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, 3);
+  ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, 3, 16);
 }
 
 // A rank whose rows are not its own is refused; so is a range out of bounds.

@@ -129,7 +129,7 @@ if cover.GetDataInformation(1).GetNumberOfRows() == 0:
 # Light propagation over the cover: the Cornell box is all diffuse.
 propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
 check_properties(propagation, vtkLightPropagationFilter(), ["ConvergenceTolerance", "MaximumShots",
-                 "ShootingOrder", "BalanceExchanges"])
+                 "ShootingOrder", "ShotBatch", "BalanceExchanges"])
 propagation.UpdatePipeline()
 lit = servermanager.Fetch(propagation)
 for name in ["Irradiance", "Radiosity", "Brightness"]:
