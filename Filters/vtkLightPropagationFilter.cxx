@@ -287,16 +287,16 @@ std::vector<double> FactorsOfRows(const std::vector<double>& all,
     all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(last)));
 }
 
-/// Rank r's receivers [bounds[r], bounds[r + 1]) of `cover`, split by their entries (a shot's
-/// work per receiver), for the controller's K ranks.
-std::vector<std::size_t> ReceiverBounds(const sphcover::SphericalCover& cover, int ranks)
+/// Rank r's receivers [bounds[r], bounds[r + 1]) of `cover`, split by their estimated cost
+/// (LightPropagation::EstimateRowCosts: their entries and their non-diffuse shots), for the
+/// controller's K ranks.
+std::vector<std::size_t> ReceiverBounds(const sphcover::SphericalCover& cover,
+  const std::vector<sphcover::Material>& materials,
+  int ranks)
 {
-  std::vector<double> costs(cover.PatchCount());
-  for (std::size_t i = 0; i < costs.size(); ++i)
-  {
-    costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i));
-  }
-  return sphcover::SphericalCover::PartitionRows(costs, static_cast<std::size_t>(ranks));
+  return sphcover::SphericalCover::PartitionRows(
+    sphcover::LightPropagation::EstimateRowCosts(cover, materials),
+    static_cast<std::size_t>(ranks));
 }
 
 /// What one rank propagates: its receivers [First, Last), their rows (SphericalCover::RowsOf)
@@ -331,11 +331,12 @@ RankRows RowsOfRank(const sphcover::SphericalCover& cover,
  */
 RankRows DealRows(vtkMultiProcessController* controller,
   const sphcover::SphericalCover& cover,
+  const std::vector<sphcover::Material>& materials,
   const std::vector<double>& allFactors)
 {
   const bool dealer = controller->GetLocalProcessId() == 0;
   const std::vector<std::size_t> bounds = dealer
-    ? ReceiverBounds(cover, controller->GetNumberOfProcesses())
+    ? ReceiverBounds(cover, materials, controller->GetNumberOfProcesses())
     : std::vector<std::size_t>();
   const std::vector<char> bytes = vtkCoverDistribution::DealFromFirst(controller,
     [&](int rank)
@@ -941,13 +942,13 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       // the ranks. Its state must fit MemoryLimit, not the whole cover's.
       if (dealt)
       {
-        mine = DealRows(controller, cover, factors);
+        mine = DealRows(controller, cover, materials, factors);
       }
       else
       {
         mine = RowsOfRank(cover,
           factors,
-          ReceiverBounds(cover, controller->GetNumberOfProcesses()),
+          ReceiverBounds(cover, materials, controller->GetNumberOfProcesses()),
           static_cast<std::size_t>(controller->GetLocalProcessId()));
       }
       cover = sphcover::SphericalCover();

@@ -133,6 +133,7 @@ void LightPropagation::DirectionalShot(std::size_t shooter, DirectionalShotData&
   shot.Grid = this->Method == DirectionalMethod::Grid ||
     (this->Method == DirectionalMethod::Automatic &&
       static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount()));
+  shot.ByCell = shot.Grid;
   shot.Out.assign(cover.EntryEnd(shooter) - cover.EntryBegin(shooter), glm::dvec3(0.0));
   if (shot.Grid)
   {
@@ -339,6 +340,7 @@ void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
   }
   this->Frames = std::move(frames);
   this->EncodeFallbacks();
+  this->ShotNeedsKnown = false;
 }
 
 void LightPropagation::EncodeFallbacks()
@@ -389,7 +391,7 @@ glm::dvec3 LightPropagation::TowardReceiver(std::size_t shooter,
   // shooter's hemisphere, from the in-strips DirectionalShot kept.
   const HemisphereGrid& grid = this->Cover.Grid();
   const int cell = static_cast<int>(code & ~FallbackFlag);
-  if (shot.Grid)
+  if (shot.ByCell)
   {
     return shot.GridOut[static_cast<std::size_t>(cell)];
   }

@@ -454,6 +454,25 @@ std::size_t LightPropagation::EstimateBytes(const SphericalCover& cover,
     PointReflectances::EstimateBytes(options.ThetaBins, options.PhiBins, materialOfPatch);
 }
 
+std::vector<double> LightPropagation::EstimateRowCosts(const SphericalCover& cover,
+  const std::vector<Material>& materialOfPatch)
+{
+  if (materialOfPatch.size() != cover.PatchCount())
+  {
+    throw std::invalid_argument("LightPropagation::EstimateRowCosts: " +
+      std::to_string(materialOfPatch.size()) + " materials for " +
+      std::to_string(cover.PatchCount()) + " patches");
+  }
+  const double directional = static_cast<double>(cover.Grid().CellCount());
+  std::vector<double> costs(cover.PatchCount());
+  for (std::size_t i = 0; i < costs.size(); ++i)
+  {
+    costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i)) +
+      (materialOfPatch[i].Type == MaterialType::Diffuse ? 0.0 : directional);
+  }
+  return costs;
+}
+
 bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCallback& progress)
 {
   if (!(settings.ConvergenceTolerance >= 0.0))
@@ -488,6 +507,10 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
       !shared || this->JoinScan(batch, largest, unshot, batchSize, stop, records);
     return std::make_pair(std::move(batch), everyRankGoesOn);
   };
+  if (shared && !this->Reflectances.Empty() && !this->ShotNeedsKnown)
+  {
+    this->ExchangeShotNeeds();
+  }
   std::vector<Candidate> batch = scan(false, nullptr).first;
   const double initialUnshot = unshot;
   double reported = 0.0;

@@ -183,6 +183,18 @@ public:
   static std::size_t EstimateBytes(const SphericalCover& cover,
     const std::vector<Material>& materialOfPatch);
 
+  /**
+   * The estimated cost of propagating into each receiver's row, for splitting the receivers
+   * among ranks (SphericalCover::PartitionRows): a column walk updates each entry of the row
+   * whenever its source shoots, so the row counts its entries; a non-diffuse receiver also
+   * computes its own directional shots (DirectionalShot), each about the cost of updating one
+   * entry per cell of the hemisphere grid (the grid's reflection, O(D log PhiBins), measured:
+   * Documentation/notes/distributed-solve.md), counted with the patches shooting about equally
+   * often. Plus 1 per row. Throws std::invalid_argument when the sizes differ.
+   */
+  static std::vector<double> EstimateRowCosts(const SphericalCover& cover,
+    const std::vector<Material>& materialOfPatch);
+
   /// The material of every patch: Scene::Materials of its surface.
   static std::vector<Material> MaterialsOfPatches(const Scene& scene,
     const std::vector<Patch>& patches);
@@ -350,7 +362,11 @@ private:
   struct DirectionalShotData
   {
     glm::dvec3 Mean{ 0.0 };
+    /// Summed through the grid (the record's GridShot).
     bool Grid = false;
+    /// GridOut holds the radiance toward the cells the receivers without h_ji need: a grid
+    /// shot's, or one received from another rank (ShareDirectionalShots).
+    bool ByCell = false;
     std::size_t WeightEvaluations = 0;
     std::vector<glm::dvec3> Out;
     std::vector<glm::dvec3> GridOut;
@@ -395,8 +411,15 @@ private:
   /// false when some rank stops.
   bool JoinScan(std::vector<Candidate>& batch, double& largest, double& unshot, std::size_t size,
     bool stop, std::vector<ShotRecord>* records);
+  /// Which of a non-diffuse shot's values the other ranks read, per non-diffuse row j: the
+  /// positions in row j of the entries (j, i) of their receivers i (SentPositions[j]) and the
+  /// cells of the directions toward their receivers without h_ji (SentCells[j]), each the
+  /// sorted union over the ranks, the same on every rank. Collective; from Run, once after
+  /// SetRankShare or SetFrames.
+  void ExchangeShotNeeds();
   /// The batch's non-diffuse shots: each rank computes those of its own shooters into
-  /// `data[m]` (m the member), then every rank gets every one. `ok`: this rank's succeeded.
+  /// `data[m]` (m the member), then every rank gets every one, as far as it reads it (the
+  /// values ExchangeShotNeeds found). `ok`: this rank's succeeded.
   void ShareDirectionalShots(const std::vector<Candidate>& batch,
     const std::vector<bool>& directional, std::vector<DirectionalShotData>& data, bool ok);
   bool Shared() const { return this->Share.Distributed(); }
@@ -491,6 +514,10 @@ private:
   RankShare Share;
   std::size_t OwnedFirst = 0;
   std::size_t OwnedLast = 0;
+  /// ExchangeShotNeeds' unions, by row, and whether they are up to date.
+  std::vector<std::vector<uint32_t>> SentPositions;
+  std::vector<std::vector<uint32_t>> SentCells;
+  bool ShotNeedsKnown = false;
 };
 
 } // namespace sphcover

@@ -54,6 +54,7 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
   this->Share = std::move(share);
   this->OwnedFirst = firstOwned;
   this->OwnedLast = lastOwned;
+  this->ShotNeedsKnown = false;
   if (this->Reflectances.Empty() || !this->Shared())
   {
     return;
@@ -101,6 +102,94 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
   }
   this->MatchTransposedEntries(remoteRows);
   this->EncodeFallbacks();
+}
+
+void LightPropagation::ExchangeShotNeeds()
+{
+  // Each rank lists, for every non-diffuse row another rank owns, what its receivers in that
+  // row's column read of a shot: the positions ColumnBack points at and the cells of its
+  // fallbacks (the mean goes with every shot). Every rank gets every list and forms the same
+  // unions: the owner packs those values, the others find them in that order.
+  const std::size_t n = this->PatchCount();
+  std::vector<char> mine;
+  ByteWriter out(mine);
+  std::vector<uint32_t> positions;
+  std::vector<uint32_t> cells;
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    if (this->ModelOfPatch[j] < 0 || (j >= this->OwnedFirst && j < this->OwnedLast))
+    {
+      continue;
+    }
+    positions.clear();
+    cells.clear();
+    for (std::size_t k = this->Cover.ColumnBegin(j); k < this->Cover.ColumnEnd(j); ++k)
+    {
+      const uint32_t back = this->ColumnBack[k];
+      if (back < FallbackFlag)
+      {
+        positions.push_back(back);
+      }
+      else if (back != NoEntry)
+      {
+        cells.push_back(back & ~FallbackFlag);
+      }
+    }
+    if (positions.empty() && cells.empty())
+    {
+      continue;
+    }
+    for (std::vector<uint32_t>* list : { &positions, &cells })
+    {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    out.Value(static_cast<uint64_t>(j));
+    out.Array(positions);
+    out.Array(cells);
+  }
+  std::vector<std::vector<char>> all;
+  if (!this->Share.Join(mine, true, all))
+  {
+    throw RankShare::PeerFailure();
+  }
+  this->SentPositions.assign(n, {});
+  this->SentCells.assign(n, {});
+  const uint32_t cellCount = static_cast<uint32_t>(this->Cover.Grid().CellCount());
+  for (const std::vector<char>& rankBytes : all)
+  {
+    ByteReader in(rankBytes);
+    while (!in.AtEnd())
+    {
+      uint64_t j = 0;
+      Expect(in.Value(j) && j < n && this->ModelOfPatch[j] >= 0 && in.Array(positions) &&
+          in.Array(cells),
+        "shot needs");
+      for (const uint32_t cell : cells)
+      {
+        Expect(cell < cellCount, "shot needs");
+      }
+      std::vector<uint32_t>& sent = this->SentPositions[j];
+      sent.insert(sent.end(), positions.begin(), positions.end());
+      std::vector<uint32_t>& sentCells = this->SentCells[j];
+      sentCells.insert(sentCells.end(), cells.begin(), cells.end());
+    }
+  }
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    for (std::vector<uint32_t>* list : { &this->SentPositions[j], &this->SentCells[j] })
+    {
+      std::sort(list->begin(), list->end());
+      list->erase(std::unique(list->begin(), list->end()), list->end());
+    }
+    // An owner's row must hold every position its receivers elsewhere read.
+    if (j >= this->OwnedFirst && j < this->OwnedLast && !this->SentPositions[j].empty())
+    {
+      Expect(this->SentPositions[j].back() < this->Cover.EntryEnd(j) - this->Cover.EntryBegin(j),
+        "shot needs");
+    }
+  }
+  this->ShotNeedsKnown = true;
 }
 
 bool LightPropagation::JoinScan(std::vector<Candidate>& batch,
@@ -196,6 +285,7 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
   // Each rank packs the shots of its own members (computed by ShootBatch, as serial), in the
   // batch's order; one join gives every rank every shot, each found by its member index.
   std::vector<char> bytes;
+  std::vector<glm::dvec3> values;
   if (ok)
   {
     ByteWriter out(bytes);
@@ -206,24 +296,24 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
       {
         continue;
       }
+      // Only what the other ranks read (ExchangeShotNeeds): the radiance toward their
+      // receivers' entries of the row, then toward the cells of their fallbacks.
       const DirectionalShotData& shot = data[m];
+      values.clear();
+      for (const uint32_t position : this->SentPositions[shooter])
+      {
+        values.push_back(shot.Out[position]);
+      }
+      std::size_t unused = 0;
+      for (const uint32_t cell : this->SentCells[shooter])
+      {
+        values.push_back(this->TowardReceiver(shooter, FallbackFlag | cell, shot, unused));
+      }
       out.Value(static_cast<uint64_t>(m));
       out.Value(shot.Mean);
       out.Value(static_cast<uint8_t>(shot.Grid ? 1 : 0));
       out.Value(static_cast<uint64_t>(shot.WeightEvaluations));
-      out.Array(shot.Out);
-      if (shot.Grid)
-      {
-        out.Array(shot.GridOut);
-      }
-      else
-      {
-        for (std::size_t row = 0; row < shot.In.size(); ++row)
-        {
-          out.Array(shot.In[row]);
-          out.Array(shot.Coupled[row]);
-        }
-      }
+      out.Array(values);
     }
   }
   std::vector<std::vector<char>> all;
@@ -235,7 +325,7 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
     }
     throw RankShare::PeerFailure();
   }
-  const std::size_t rows = static_cast<std::size_t>(this->Cover.Grid().ThetaBins());
+  const std::size_t cellCount = static_cast<std::size_t>(this->Cover.Grid().CellCount());
   std::vector<bool> received(batch.size(), false);
   for (std::size_t r = 0; r < all.size(); ++r)
   {
@@ -249,26 +339,32 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
       uint64_t m = 0;
       Expect(in.Value(m) && m < batch.size() && directional[m] && !received[m], "shot data");
       DirectionalShotData& shot = data[m];
+      const std::size_t shooter = batch[m].Shooter;
+      const std::vector<uint32_t>& positions = this->SentPositions[shooter];
+      const std::vector<uint32_t>& cells = this->SentCells[shooter];
       uint8_t grid = 0;
       uint64_t evaluations = 0;
-      bool read = in.Value(shot.Mean) && in.Value(grid) && in.Value(evaluations) &&
-        in.Array(shot.Out);
+      Expect(in.Value(shot.Mean) && in.Value(grid) && in.Value(evaluations) &&
+          in.Array(values) && values.size() == positions.size() + cells.size(),
+        "shot data");
       shot.Grid = grid != 0;
       shot.WeightEvaluations = static_cast<std::size_t>(evaluations);
-      if (shot.Grid)
+      // Only the positions and cells this rank's receivers read are set (the others keep what
+      // an earlier shot left there, never read).
+      shot.ByCell = true;
+      if (!positions.empty() && shot.Out.size() <= positions.back())
       {
-        read = read && in.Array(shot.GridOut);
+        shot.Out.resize(positions.back() + 1);
       }
-      else
+      shot.GridOut.resize(cellCount);
+      for (std::size_t p = 0; p < positions.size(); ++p)
       {
-        shot.In.resize(rows);
-        shot.Coupled.resize(rows);
-        for (std::size_t row = 0; row < rows; ++row)
-        {
-          read = read && in.Array(shot.In[row]) && in.Array(shot.Coupled[row]);
-        }
+        shot.Out[positions[p]] = values[p];
       }
-      Expect(read, "shot data");
+      for (std::size_t c = 0; c < cells.size(); ++c)
+      {
+        shot.GridOut[cells[c]] = values[positions.size() + c];
+      }
       received[m] = true;
     }
   }

@@ -242,3 +242,23 @@ TEST(SharedPropagation, RefusesRowsOutsideTheRange)
   EXPECT_THROW(
     whole.SetRankShare(world.Share(0), 0, setup.Cover.PatchCount() + 1), std::invalid_argument);
 }
+
+// The rows' estimated costs (what the filter splits the receivers by): every row its entries
+// and 1, a non-diffuse row one entry per cell of the grid more; materials of another count are
+// refused.
+TEST(SharedPropagation, RowCostsCountEntriesAndDirectionalShots)
+{
+  const CoveredScene setup("cornell_box.scene", 1);
+  std::vector<Material> materials = setup.Materials;
+  materials[1] = Mirror(glm::dvec3(0.9));
+  const std::vector<double> costs = LightPropagation::EstimateRowCosts(setup.Cover, materials);
+  ASSERT_EQ(costs.size(), setup.Cover.PatchCount());
+  const double cells = static_cast<double>(setup.Cover.Grid().CellCount());
+  for (std::size_t i = 0; i < costs.size(); ++i)
+  {
+    const double entries = static_cast<double>(setup.Cover.EntryEnd(i) - setup.Cover.EntryBegin(i));
+    EXPECT_EQ(costs[i], 1.0 + entries + (i == 1 ? cells : 0.0)) << "row " << i;
+  }
+  materials.pop_back();
+  EXPECT_THROW(LightPropagation::EstimateRowCosts(setup.Cover, materials), std::invalid_argument);
+}
