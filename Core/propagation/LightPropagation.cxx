@@ -422,10 +422,10 @@ void LightPropagation::SelectBatch(std::vector<Candidate>& candidates,
   std::size_t size)
 {
   const double threshold = BatchPowerFraction * largest;
-  candidates.erase(std::remove_if(candidates.begin(),
-                     candidates.end(),
-                     [threshold](const Candidate& c)
-                     { return !(c.Power > 0.0 && c.Power >= threshold); }),
+  candidates.erase(
+    std::remove_if(candidates.begin(),
+      candidates.end(),
+      [threshold](const Candidate& c) { return !(c.Power > 0.0 && c.Power >= threshold); }),
     candidates.end());
   // By decreasing power, ties to the lowest index: the order §5's scan would meet them in.
   auto before = [](const Candidate& a, const Candidate& b)
@@ -459,9 +459,9 @@ std::vector<double> LightPropagation::EstimateRowCosts(const SphericalCover& cov
 {
   if (materialOfPatch.size() != cover.PatchCount())
   {
-    throw std::invalid_argument("LightPropagation::EstimateRowCosts: " +
-      std::to_string(materialOfPatch.size()) + " materials for " +
-      std::to_string(cover.PatchCount()) + " patches");
+    throw std::invalid_argument(
+      "LightPropagation::EstimateRowCosts: " + std::to_string(materialOfPatch.size()) +
+      " materials for " + std::to_string(cover.PatchCount()) + " patches");
   }
   const double directional = static_cast<double>(cover.Grid().CellCount());
   std::vector<double> costs(cover.PatchCount());
@@ -494,8 +494,9 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
   {
     throw std::invalid_argument("LightPropagation: only BrightestFirst is shared among ranks");
   }
-  const std::size_t batchSize =
-    settings.Order == ShootingOrder::BrightestFirst ? std::max<std::size_t>(settings.ShotBatch, 1) : 1;
+  const std::size_t batchSize = settings.Order == ShootingOrder::BrightestFirst
+    ? std::max<std::size_t>(settings.ShotBatch, 1)
+    : 1;
   double largest = 0.0;
   double unshot = 0.0;
   // The next batch, from a scan of the state (joined over the ranks under a share).

@@ -409,8 +409,12 @@ private:
   /// it stops and the last batch's counts, joined: the batch (SelectBatch over the ranks'), the
   /// largest power and the total unshot energy, the counts summed into `records` (when given);
   /// false when some rank stops.
-  bool JoinScan(std::vector<Candidate>& batch, double& largest, double& unshot, std::size_t size,
-    bool stop, std::vector<ShotRecord>* records);
+  bool JoinScan(std::vector<Candidate>& batch,
+    double& largest,
+    double& unshot,
+    std::size_t size,
+    bool stop,
+    std::vector<ShotRecord>* records);
   /// Which of a non-diffuse shot's values the other ranks read, per non-diffuse row j: the
   /// positions in row j of the entries (j, i) of their receivers i (SentPositions[j]) and the
   /// cells of the directions toward their receivers without h_ji (SentCells[j]), each the
@@ -421,7 +425,9 @@ private:
   /// `data[m]` (m the member), then every rank gets every one, as far as it reads it (the
   /// values ExchangeShotNeeds found). `ok`: this rank's succeeded.
   void ShareDirectionalShots(const std::vector<Candidate>& batch,
-    const std::vector<bool>& directional, std::vector<DirectionalShotData>& data, bool ok);
+    const std::vector<bool>& directional,
+    std::vector<DirectionalShotData>& data,
+    bool ok);
   bool Shared() const { return this->Share.Distributed(); }
   /// ColumnAlbedoMeasure: a_e Omega_e of every entry of a non-diffuse row.
   void ComputeAlbedoMeasures();
@@ -431,7 +437,8 @@ private:
   /// Moves the shooter's unshot dE into shot.In, as in-strips by row.
   void TakeUnshotInStrips(std::size_t shooter, DirectionalShotData& shot);
   /// shot.Coupled from shot.In; returns the strip pairs of a strip-pair shot.
-  std::size_t CoupleInRows(std::size_t shooter, const ReflectanceWeights& table,
+  std::size_t CoupleInRows(std::size_t shooter,
+    const ReflectanceWeights& table,
     DirectionalShotData& shot);
   /// The two methods of DirectionalShot, on the in-strips it collected.
   void ShotByStripPairs(std::size_t shooter,
@@ -441,7 +448,9 @@ private:
   void ShotByGrid(std::size_t shooter, const ReflectanceWeights& table, DirectionalShotData& shot);
   /// The exitant radiance of directional shot `shot` toward a receiver without h_ji, whose
   /// ColumnBack code is `code`; counts a mean fallback into `meanFallbacks`.
-  glm::dvec3 TowardReceiver(std::size_t shooter, uint32_t code, const DirectionalShotData& shot,
+  glm::dvec3 TowardReceiver(std::size_t shooter,
+    uint32_t code,
+    const DirectionalShotData& shot,
     std::size_t& meanFallbacks) const;
   /// Sets the ColumnBack codes of the receivers without h_ji from the frames.
   void EncodeFallbacks();

@@ -32,6 +32,13 @@ void Expect(bool read, const char* what)
   }
 }
 
+/// `values` sorted, each once.
+void SortUnique(std::vector<uint32_t>& values)
+{
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end()), values.end());
+}
+
 } // namespace
 
 void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std::size_t lastOwned)
@@ -139,11 +146,8 @@ void LightPropagation::ExchangeShotNeeds()
     {
       continue;
     }
-    for (std::vector<uint32_t>* list : { &positions, &cells })
-    {
-      std::sort(list->begin(), list->end());
-      list->erase(std::unique(list->begin(), list->end()), list->end());
-    }
+    SortUnique(positions);
+    SortUnique(cells);
     out.Value(static_cast<uint64_t>(j));
     out.Array(positions);
     out.Array(cells);
@@ -177,11 +181,8 @@ void LightPropagation::ExchangeShotNeeds()
   }
   for (std::size_t j = 0; j < n; ++j)
   {
-    for (std::vector<uint32_t>* list : { &this->SentPositions[j], &this->SentCells[j] })
-    {
-      std::sort(list->begin(), list->end());
-      list->erase(std::unique(list->begin(), list->end()), list->end());
-    }
+    SortUnique(this->SentPositions[j]);
+    SortUnique(this->SentCells[j]);
     // An owner's row must hold every position its receivers elsewhere read.
     if (j >= this->OwnedFirst && j < this->OwnedLast && !this->SentPositions[j].empty())
     {
@@ -344,8 +345,8 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
       const std::vector<uint32_t>& cells = this->SentCells[shooter];
       uint8_t grid = 0;
       uint64_t evaluations = 0;
-      Expect(in.Value(shot.Mean) && in.Value(grid) && in.Value(evaluations) &&
-          in.Array(values) && values.size() == positions.size() + cells.size(),
+      Expect(in.Value(shot.Mean) && in.Value(grid) && in.Value(evaluations) && in.Array(values) &&
+          values.size() == positions.size() + cells.size(),
         "shot data");
       shot.Grid = grid != 0;
       shot.WeightEvaluations = static_cast<std::size_t>(evaluations);

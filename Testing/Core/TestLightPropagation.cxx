@@ -40,6 +40,27 @@ double WorstFurnaceError(const LightPropagation& propagation, const std::vector<
   }
   return worst;
 }
+
+/// The largest difference of two propagations' exitant radiances over the patches and bands,
+/// with the largest radiance of `a` in `largest`.
+double LargestExitantDifference(const LightPropagation& a,
+  const LightPropagation& b,
+  double& largest)
+{
+  double worst = 0.0;
+  largest = 0.0;
+  for (size_t i = 0; i < a.PatchCount(); ++i)
+  {
+    const glm::dvec3 x = a.ExitantRadiance(i);
+    const glm::dvec3 y = b.ExitantRadiance(i);
+    for (int k = 0; k < 3; ++k)
+    {
+      worst = std::max(worst, std::fabs(x[k] - y[k]));
+      largest = std::max(largest, x[k]);
+    }
+  }
+  return worst;
+}
 }
 
 TEST(LightPropagation, WhiteFurnaceIsUniformInFlatAndCurvedEnclosures)
@@ -134,18 +155,8 @@ TEST(LightPropagation, ShootingOrderDoesNotChangeTheEquilibrium)
     LightPropagation brightest(setup.Cover, setup.Materials);
     LightPropagation fixed(setup.Cover, setup.Materials);
     ASSERT_TRUE(RunInBothOrders(brightest, fixed));
-    double worst = 0.0;
     double largest = 0.0;
-    for (size_t i = 0; i < setup.Patches.size(); ++i)
-    {
-      const glm::dvec3 a = brightest.ExitantRadiance(i);
-      const glm::dvec3 b = fixed.ExitantRadiance(i);
-      for (int k = 0; k < 3; ++k)
-      {
-        worst = std::max(worst, std::fabs(a[k] - b[k]));
-        largest = std::max(largest, a[k]);
-      }
-    }
+    const double worst = LargestExitantDifference(brightest, fixed, largest);
     std::printf("[ Order    ] %s: brightest first %zu shots, fixed order %zu shots, largest "
                 "difference %.1e of the largest radiance\n",
       name,
@@ -203,18 +214,8 @@ TEST(LightPropagation, BatchesReachTheSameEquilibrium)
       power.push_back(batched.UnshotPower(i));
     }
     ASSERT_TRUE(batched.Run(settings));
-    double worst = 0.0;
     double largest = 0.0;
-    for (size_t i = 0; i < setup.Patches.size(); ++i)
-    {
-      const glm::dvec3 a = single.ExitantRadiance(i);
-      const glm::dvec3 b = batched.ExitantRadiance(i);
-      for (int k = 0; k < 3; ++k)
-      {
-        worst = std::max(worst, std::fabs(a[k] - b[k]));
-        largest = std::max(largest, a[k]);
-      }
-    }
+    const double worst = LargestExitantDifference(single, batched, largest);
     std::printf("[ Batches  ] %s: one at a time %zu shots, batches of 16 %zu shots, largest "
                 "difference %.1e of the largest radiance\n",
       name,
@@ -233,7 +234,8 @@ TEST(LightPropagation, BatchesReachTheSameEquilibrium)
     {
       order[i] = i;
     }
-    std::stable_sort(order.begin(), order.end(), [&power](size_t a, size_t b) { return power[a] > power[b]; });
+    std::stable_sort(
+      order.begin(), order.end(), [&power](size_t a, size_t b) { return power[a] > power[b]; });
     size_t members = 0;
     while (members < 16 && members < order.size() && power[order[members]] > 0.0 &&
       power[order[members]] >= LightPropagation::BatchPowerFraction * power[order[0]])
