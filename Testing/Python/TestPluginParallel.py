@@ -13,6 +13,7 @@ completes on 2 ranks, under the piece policy of Readers/vtkScenePieces.h:
   other rank waiting to be dealt its rows).
 The launcher (RunParallelPvbatch.py) checks that every rank completed without a failure or an
 error message."""
+import os
 import sys
 
 from paraview import servermanager  # noqa: F401  (initialises the session)
@@ -24,8 +25,10 @@ from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessControlle
 
 plugin, data = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
-from sphericalcover import (vtkHemisphereExtractor, vtkIntervalSubdivisionFilter,  # noqa: E402
-                            vtkLightPropagationFilter, vtkPatchSceneReader, vtkSphericalCoverFilter)
+from sphericalcover import vtkHemisphereExtractor  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from coarse_cornell_pipeline import ErrorCollector, coarse_cornell_pipeline  # noqa: E402
 
 controller = vtkMultiProcessController.GetGlobalController()
 rank = controller.GetLocalProcessId()
@@ -44,22 +47,15 @@ for proxy in (propagation, hemisphere):
     proxy.UpdatePipeline()
 
 # The same pipeline serially in plain VTK (no piece requests): the reference totals.
-reader = vtkPatchSceneReader()
-reader.SetFileName(SCENE)
-serial_subdivision = vtkIntervalSubdivisionFilter()
-serial_subdivision.SetInputConnection(reader.GetOutputPort())
-serial_subdivision.SetMaxLevel(1)
-serial_cover = vtkSphericalCoverFilter()
-serial_cover.SetInputConnection(serial_subdivision.GetOutputPort(0))
-serial_cover.SetThetaBins(8)
-serial_cover.SetPhiBins(32)
-serial_propagation = vtkLightPropagationFilter()
-serial_propagation.SetInputConnection(serial_cover.GetOutputPort(0))
+serial_errors = ErrorCollector()
+reader, serial_subdivision, serial_cover, serial_propagation = coarse_cornell_pipeline(
+    data, serial_errors)
 serial_hemisphere = vtkHemisphereExtractor()
 serial_hemisphere.SetInputConnection(serial_cover.GetOutputPort(0))
 serial_hemisphere.SetPointId(3)
 serial_propagation.Update()
 serial_hemisphere.Update()
+failures += [f"serial reference: {message}" for message in serial_errors.messages]
 
 STAGES = [("reader", scene, reader, 0), ("patches", subdivision, serial_subdivision, 0),
           ("characteristic points", subdivision, serial_subdivision, 1),

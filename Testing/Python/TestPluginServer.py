@@ -27,24 +27,16 @@ def client(port, plugin, data):
     failures = []
     # The serial reference in this process first, with the plug-in's classes loaded locally.
     LoadPlugin(plugin, remote=False, ns=globals())
-    from sphericalcover import (vtkIntervalSubdivisionFilter, vtkLightPropagationFilter,
-                                vtkPatchSceneReader, vtkSphericalCoverFilter)
-    scene_file = f"{data}/scenes/cornell_box.scene"
-    reader = vtkPatchSceneReader()
-    reader.SetFileName(scene_file)
-    subdivision = vtkIntervalSubdivisionFilter()
-    subdivision.SetInputConnection(reader.GetOutputPort())
-    subdivision.SetMaxLevel(1)
-    cover = vtkSphericalCoverFilter()
-    cover.SetInputConnection(subdivision.GetOutputPort(0))
-    cover.SetThetaBins(8)
-    cover.SetPhiBins(32)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from coarse_cornell_pipeline import ErrorCollector, coarse_cornell_pipeline
+    collector = ErrorCollector()
+    _, _, cover, propagation = coarse_cornell_pipeline(data, collector)
     cover.SetController(None)
-    propagation = vtkLightPropagationFilter()
-    propagation.SetInputConnection(cover.GetOutputPort(0))
     propagation.SetController(None)
     propagation.Update()
+    failures += [f"serial reference: {message}" for message in collector.messages]
     reference = propagation.GetOutput().GetPointData().GetArray("Radiosity")
+    scene_file = f"{data}/scenes/cornell_box.scene"
 
     Connect("localhost", port)
     LoadPlugin(plugin, remote=True, ns=globals())
