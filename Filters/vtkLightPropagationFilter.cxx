@@ -1027,6 +1027,7 @@ void vtkLightPropagationFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumShots: " << this->MaximumShots << "\n";
   os << indent << "ShootingOrder: "
      << (this->ShootingOrder == BRIGHTEST_FIRST ? "BrightestFirst" : "FixedOrder") << "\n";
+  os << indent << "ShotBatch: " << this->ShotBatch << "\n";
   os << indent << "BalanceExchanges: " << (this->BalanceExchanges ? "On" : "Off") << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Shots: " << this->Shots << "\n";
