@@ -248,7 +248,7 @@ std::vector<ShotRecord> LightPropagation::ShootBatch(const std::vector<Candidate
       increments[m] = this->Unshot[shooter];
       this->Unshot[shooter] = glm::dvec3(0.0);
       // The directional part of a non-diffuse shooter (see the file comment).
-      directional[m] = this->ModelOfPatch[shooter] >= 0 && this->DirectionalUnshot[shooter] > 0.0;
+      directional[m] = this->ShootsDirectionally(shooter);
       if (directional[m])
       {
         this->DirectionalShot(shooter, this->BatchShots[m]);
@@ -393,7 +393,7 @@ std::vector<LightPropagation::Candidate> LightPropagation::LocalBatch(std::size_
     c.Shooter = j;
     c.Power = this->Power[j];
     c.Increment = this->Unshot[j];
-    c.Directional = this->ModelOfPatch[j] >= 0 && this->DirectionalUnshot[j] > 0.0;
+    c.Directional = this->ShootsDirectionally(j);
     return c;
   };
   if (size <= 1 || !(largest > 0.0))

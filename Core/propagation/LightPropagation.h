@@ -225,8 +225,8 @@ public:
    * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every batch,
    * the ranks agree on its shooters (from every rank's candidates, chosen as the serial scan
    * chooses), their owners send what they shoot (the unshot radiance, with the scan; for the
-   * non-diffuse shooters, all in one exchange, their reflected radiance toward every region of
-   * their rows and what serves receivers without one) and each rank updates its own receivers
+   * non-diffuse shooters, all in one exchange, their reflected radiance toward the regions and
+   * the fallback cells the other ranks' receivers read: ExchangeShotNeeds) and each rank updates its own receivers
    * in column order. So every owned patch's state,
    * and each result of an owned patch (Irradiance, ExitantRadiance, Brightness, the incident
    * radiances of its row), is the serial one bit for bit; the history's shooters and powers
@@ -350,9 +350,10 @@ private:
     glm::dvec3 Increment{ 0.0 };
     bool Directional = false;
   };
-  /// What a non-diffuse shot sends (DirectionalShot's results): the radiance toward each entry
-  /// of the shooter's row and what serves the receivers without one (the grid's exitant
-  /// radiance, or the in-strips and their coupled rows), the mean over the hemisphere.
+  /// A non-diffuse shot (DirectionalShot's results): the radiance toward each entry of the
+  /// shooter's row and what serves the receivers without one (the grid's exitant radiance, or
+  /// the in-strips and their coupled rows), the mean over the hemisphere. Another rank's shot
+  /// holds only what this rank's receivers read (ShareDirectionalShots).
   struct InStrip
   {
     int Begin;
@@ -387,8 +388,12 @@ private:
   std::vector<ShotRecord> ShootBatch(const std::vector<Candidate>& batch);
   /// U_j from Unshot and DirectionalUnshot (what Power holds).
   double PowerOf(std::size_t patch) const;
-  /// Run's steps: the next patch of FixedOrder that has unshot power; one shot with its
-  /// record (all but what the scan after it measures); the final check of E_e.
+  /// Whether patch j's next shot is directional: non-diffuse, with unshot dE.
+  bool ShootsDirectionally(std::size_t patch) const
+  {
+    return this->ModelOfPatch[patch] >= 0 && this->DirectionalUnshot[patch] > 0.0;
+  }
+  /// Run's steps: the next patch of FixedOrder that has unshot power; the final check of E_e.
   std::size_t NextInFixedOrder();
   void CheckIncidentFinite() const;
   // The non-diffuse shots (DirectionalShot.cxx).

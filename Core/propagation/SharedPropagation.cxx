@@ -4,8 +4,9 @@
 // scan joined every batch, and the batch's non-diffuse shots sent by their owners.
 // Communication per batch of B shots: one all-gather of K x (32 + 48 B + 24 B) bytes (the scan,
 // with what a Lambertian shot sends and the last batch's counts), and when the batch has
-// non-diffuse shooters a second join of their rows' radiances and their unshot in-strips or
-// their grids (Documentation/notes/distributed-solve.md).
+// non-diffuse shooters a second join of their radiance toward what the other ranks' receivers
+// read (the regions of their rows, the cells of their fallbacks: ExchangeShotNeeds)
+// (Documentation/notes/distributed-solve.md).
 #include "propagation/LightPropagation.h"
 
 #include "cover/SphericalCover.h"

@@ -220,7 +220,9 @@ TEST(SharedPropagation, MixedMaterialsEqualSerial)
 }
 
 // Panes (paper §5.4): the transposed entries another rank's receivers match are those seen
-// through the same panes (the keys exchanged by SetRankShare carry layer and filter).
+// through the same panes (the keys exchanged by SetRankShare carry layer and filter). Here, of
+// the scenes above, other ranks' receivers also read fallback cells of a shot (receivers
+// without h_ji): by both methods, the owner's radiance toward those cells.
 TEST(SharedPropagation, PanesEqualSerial)
 {
   std::ifstream file(ScenePath("mixed_box.scene"));
@@ -228,7 +230,11 @@ TEST(SharedPropagation, PanesEqualSerial)
   AddPaneAcrossMixedBox(scene);
   const PaneScene setup(ParseScene(scene.dump(), ScenePath("mixed_box.scene")), 3, 8, 32);
   ASSERT_TRUE(setup.Cover.HasPanes());
-  ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, 3, 16);
+  for (const DirectionalMethod method : { DirectionalMethod::StripPairs, DirectionalMethod::Grid })
+  {
+    SCOPED_TRACE(testing::Message() << "method " << static_cast<int>(method));
+    ExpectSharedEqualsSerial(setup.Cover, setup.Patches, setup.Materials, 3, 16, method);
+  }
 }
 
 // A rank whose rows are not its own is refused; so is a range out of bounds.
