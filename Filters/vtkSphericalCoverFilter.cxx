@@ -43,8 +43,10 @@
 
 #include <algorithm>
 #include <chrono>
-#include <functional>
 #include <exception>
+#include <functional>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -115,10 +117,11 @@ bool CoverOptionsOf(vtkSphericalCoverFilter* self,
 bool MemoryFits(vtkSphericalCoverFilter* self,
   const std::vector<sphcover::Patch>& patches,
   const sphcover::SphericalCoverOptions& options,
-  const MemoryBudget& budget)
+  const MemoryBudget& budget,
+  const std::shared_ptr<const sphcover::RayCaster>& rays)
 {
-  const std::string memory =
-    sphcover::SphericalCover::MemoryProblem(patches, options, budget.Threads, budget.LimitBytes);
+  const std::string memory = sphcover::SphericalCover::MemoryProblem(
+    patches, options, budget.Threads, budget.LimitBytes, rays);
   if (!memory.empty())
   {
     vtkErrorWithObjectMacro(
@@ -275,6 +278,7 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
   const sphcover::SphericalCoverOptions& options,
   const std::vector<glm::dvec3>& diffuse,
   const sphcover::RankShare& share,
+  const std::shared_ptr<const sphcover::RayCaster>& rays,
   sphcover::DirectIrradianceNodes& nodes)
 {
   try
@@ -284,8 +288,10 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
     {
       return true;
     }
-    const sphcover::RayCaster caster(
-      sphcover::RayCastPatches(patches), sphcover::RayCastOptions(options.FillOptions));
+    if (!rays)
+    {
+      throw std::logic_error("no ray caster of the patches");
+    }
     sphcover::DirectIrradianceOptions direct;
     direct.NodesPerSide = self->GetDirectIrradianceNodes();
     direct.SelfExclusionFraction = options.FillOptions.SelfExclusionFraction;
@@ -303,8 +309,9 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
       }
     }
     vtkStageProgress progress(self, "Spherical Cover: direct light", 0.9, 0.98);
-    const bool completed = sphcover::ComputeDirectIrradiance(patches,
-      caster,
+    const bool completed = sphcover::ComputeDirectIrradiance(
+      patches,
+      *rays,
       lamps,
       emission,
       diffuse,
@@ -335,19 +342,22 @@ bool BuildCover(vtkSphericalCoverFilter* self,
   const sphcover::SphericalCoverOptions& options,
   const MemoryBudget& budget,
   double coverStart,
+  const std::shared_ptr<const sphcover::RayCaster>& rays,
   sphcover::SphericalCover& cover)
 {
   try
   {
-    if (!MemoryFits(self, patches, options, budget))
+    if (!MemoryFits(self, patches, options, budget, rays))
     {
       return false;
     }
     vtkStageProgress progress(self, "Spherical Cover: cover", coverStart, 0.9);
-    const bool completed = cover.Build(patches,
+    const bool completed = cover.Build(
+      patches,
       options,
       vtkSMPParallelFor::Make(),
-      [&progress](double fraction) { return progress(fraction); });
+      [&progress](double fraction) { return progress(fraction); },
+      rays);
     if (!completed)
     {
       vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
@@ -505,6 +515,9 @@ struct CoverInput
   std::vector<glm::dvec3> Emission;
   /// Where the cover's own progress starts (after the refinement's).
   double CoverStart = 0.0;
+  /// The one ray caster of the refined patches, shared by the ray fill (its memory estimate
+  /// and its rows) and the lamps' direct light; null when neither casts rays.
+  std::shared_ptr<const sphcover::RayCaster> Rays;
 };
 
 double SecondsSince(std::chrono::steady_clock::time_point start)
@@ -546,7 +559,7 @@ bool PrepareCover(vtkSphericalCoverFilter* self, vtkDataSet* input, CoverInput& 
     static_cast<std::size_t>(std::min(self->GetMemoryLimit() * 1024.0 * 1024.0, 1.0e18));
   try
   {
-    if (!MemoryFits(self, {}, options, budget))
+    if (!MemoryFits(self, {}, options, budget, nullptr))
     {
       return false;
     }
@@ -565,8 +578,8 @@ bool PrepareCover(vtkSphericalCoverFilter* self, vtkDataSet* input, CoverInput& 
 }
 
 /// The refinement of the prepared patches (paper §4.3 Steps 3 and 5; under MPI shared by the
-/// ranks, collective) and what depends on the refined patches: their emission and the
-/// measured lamps. False, with the error reported, when anything fails.
+/// ranks, collective) and what depends on the refined patches: their emission, the measured
+/// lamps and the ray caster. False, with the error reported, when anything fails.
 bool RefineCover(vtkSphericalCoverFilter* self,
   const sphcover::RankShare& share,
   CoverInput& prepared)
@@ -588,9 +601,27 @@ bool RefineCover(vtkSphericalCoverFilter* self,
     refinement == vtkSphericalCoverFilter::REFINEMENT_OFF ? 0.0 : refinementShare;
   prepared.Emission =
     MaterialOf(prepared.Scene, patches, prepared.CellOfPatch, &sphcover::Material::Emission);
+  const std::vector<bool> lamps = sphcover::BrightEmitters(patches, prepared.Emission);
   if (self->GetMeasureLamps())
   {
-    options.MeasuredSurfaces = sphcover::BrightEmitters(patches, prepared.Emission);
+    options.MeasuredSurfaces = lamps;
+  }
+  // Built once: the ray fill's estimate and rows and the direct light cast at the same patches,
+  // and a large scene's tessellation and BVH take a while to build.
+  const bool lit = self->GetDirectIrradianceNodes() > 0 &&
+    std::find(lamps.begin(), lamps.end(), true) != lamps.end();
+  if (!patches.empty() && (options.Fill == sphcover::RBufferFill::RayCasting || lit))
+  {
+    try
+    {
+      prepared.Rays = std::make_shared<const sphcover::RayCaster>(
+        sphcover::RayCastPatches(patches), sphcover::RayCastOptions(options.FillOptions));
+    }
+    catch (const std::exception& e)
+    {
+      vtkErrorWithObjectMacro(self, << "Spherical cover failed: " << e.what());
+      return false;
+    }
   }
   return true;
 }
@@ -610,6 +641,7 @@ bool ComputeDirectIrradianceOf(vtkSphericalCoverFilter* self,
       prepared.Options,
       DiffuseOf(prepared.Scene, prepared.Patches, prepared.CellOfPatch),
       share,
+      prepared.Rays,
       direct);
   self->RecordStageSeconds(2, SecondsSince(start));
   return completed;
@@ -737,7 +769,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
           static_cast<std::size_t>(ranks));
         const std::size_t first = bounds[static_cast<std::size_t>(rank)];
         const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];
-        if (!MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget))
+        if (!MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget, prepared.Rays))
         {
           return false;
         }
@@ -745,14 +777,16 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
         const auto start = std::chrono::steady_clock::now();
         sphcover::SphericalCover::Arrays block;
         sphcover::CullingStatistics culling;
-        if (!sphcover::SphericalCover::BuildRowBlock(prepared.Patches,
+        if (!sphcover::SphericalCover::BuildRowBlock(
+              prepared.Patches,
               prepared.Options,
               first,
               last,
               block,
               culling,
               vtkSMPParallelFor::Make(),
-              [&progress](double fraction) { return progress(fraction); }))
+              [&progress](double fraction) { return progress(fraction); },
+              prepared.Rays))
         {
           vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
           return false;
@@ -771,6 +805,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
     agreed = vtkCoverDistribution::Agree(controller,
       step([&] { return ComputeDirectIrradianceOf(self, share, prepared, direct); }));
   }
+  prepared.Rays.reset();
   if (!agreed.empty())
   {
     vtkErrorWithObjectMacro(self, << agreed);
@@ -888,8 +923,13 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   }
   sphcover::SphericalCover cover;
   const auto start = std::chrono::steady_clock::now();
-  if (!BuildCover(
-        this, prepared.Patches, prepared.Options, prepared.Budget, prepared.CoverStart, cover))
+  if (!BuildCover(this,
+        prepared.Patches,
+        prepared.Options,
+        prepared.Budget,
+        prepared.CoverStart,
+        prepared.Rays,
+        cover))
   {
     return 0;
   }
@@ -899,6 +939,7 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   {
     return 0;
   }
+  prepared.Rays.reset();
   WriteOutputs(this, input, prepared, cover, direct, pointsOut, stripsOut);
   this->UpdateProgress(1.0);
   return 1;

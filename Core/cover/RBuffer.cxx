@@ -371,14 +371,15 @@ void RBuffer::SetUnoccludedProjectedSolidAngles(std::vector<std::pair<int32_t, f
 std::unique_ptr<RBufferFiller> RBufferFiller::Create(RBufferFill kind,
   const std::vector<Patch>& patches,
   const HemisphereGrid& grid,
-  const RBufferFillOptions& options)
+  const RBufferFillOptions& options,
+  std::shared_ptr<const RayCaster> rays)
 {
   switch (kind)
   {
     case RBufferFill::Projection:
       return std::make_unique<ProjectionFiller>(patches, grid, options);
     case RBufferFill::RayCasting:
-      return std::make_unique<RayCastFiller>(patches, grid, options);
+      return std::make_unique<RayCastFiller>(patches, grid, options, std::move(rays));
   }
   return nullptr;
 }

@@ -57,6 +57,7 @@ namespace sphcover
 {
 
 struct Patch;
+class RayCaster;
 struct CullingStatistics;
 
 /// How an R-buffer is filled (two fills of the same R-buffer,
@@ -216,14 +217,16 @@ public:
   virtual std::size_t EnvironmentBytes() const = 0;
 
   /**
-   * The filler of the given kind. The patches and grid must outlive it. The ray fill builds its
-   * Embree scene here (this can take a while for large environments). Throws
+   * The filler of the given kind. The patches and grid must outlive it. The ray fill casts
+   * against `rays` when given (RayCastFiller), else builds its Embree scene here (this can take
+   * a while for large environments); the projection fill ignores `rays`. Throws
    * std::runtime_error if Embree cannot be initialised.
    */
   static std::unique_ptr<RBufferFiller> Create(RBufferFill kind,
     const std::vector<Patch>& patches,
     const HemisphereGrid& grid,
-    const RBufferFillOptions& options = {});
+    const RBufferFillOptions& options = {},
+    std::shared_ptr<const RayCaster> rays = nullptr);
 };
 
 } // namespace sphcover

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace sphcover
 {
@@ -124,12 +125,20 @@ RayCasterOptions RayCastOptions(const RBufferFillOptions& options)
 
 RayCastFiller::RayCastFiller(const std::vector<Patch>& patches,
   const HemisphereGrid& grid,
-  const RBufferFillOptions& options)
+  const RBufferFillOptions& options,
+  std::shared_ptr<const RayCaster> rays)
   : Patches(patches)
   , Grid(grid)
   , Options(options)
-  , Rays(RayCastPatches(patches), RayCastOptions(options))
+  , Rays(rays ? std::move(rays)
+              : std::make_shared<const RayCaster>(RayCastPatches(patches), RayCastOptions(options)))
 {
+  if (this->Rays->PatchCount() != patches.size())
+  {
+    throw std::invalid_argument("RayCastFiller: the given ray caster has " +
+      std::to_string(this->Rays->PatchCount()) + " patches, not the environment's " +
+      std::to_string(patches.size()));
+  }
   const std::vector<bool>& panes = options.PaneSurfaces;
   bool anyPane = false;
   for (const Patch& patch : patches)
@@ -158,7 +167,7 @@ std::size_t RayCastFiller::EnvironmentBytes() const
   // Vertices and indices (12 bytes each per vertex / triangle, about one vertex per two
   // triangles) plus Embree's high-quality BVH, about 40 bytes per triangle (its reference
   // figures: node and triangle storage of the 4-wide BVH with spatial splits).
-  return this->Rays.TriangleCount() * (6 + 12 + 40);
+  return this->Rays->TriangleCount() * (6 + 12 + 40);
 }
 
 bool RayCastFiller::IsGrazing(const TriangleHit& hit, const glm::dvec3& direction) const
@@ -198,7 +207,7 @@ int32_t RayCastFiller::CastSample(const SampleCast& cast, int row, int column) c
   const glm::dvec3 direction = cast.Frame.ToWorld(this->Grid.SampleDirection(row, column));
   TriangleHit hit;
   // Rays from one point in neighbouring directions: coherent.
-  if (!this->Rays.Intersect(cast.Frame.Origin, direction, 0.0f, cast.Filter, true, hit))
+  if (!this->Rays->Intersect(cast.Frame.Origin, direction, 0.0f, cast.Filter, true, hit))
   {
     return RBuffer::NoSource;
   }
@@ -376,7 +385,7 @@ void RayCastFiller::Flush(const SampleCast& cast, PendingRays& pending) const
   }
   TriangleHit hits[RayCaster::PacketSize];
   bool found[RayCaster::PacketSize];
-  this->Rays.IntersectPacket(
+  this->Rays->IntersectPacket(
     cast.Frame.Origin, pending.Direction, pending.Count, 0.0f, cast.Filter, hits, found);
   for (int k = 0; k < pending.Count; ++k)
   {
@@ -410,7 +419,7 @@ void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistic
       double v = scratch.V[sample];
       double t = scratch.T[sample];
       // The tessellation's distance stays where Newton's method leaves the patch.
-      this->Rays.Refine(static_cast<size_t>(source), frame.Origin, direction, u, v, t);
+      this->Rays->Refine(static_cast<size_t>(source), frame.Origin, direction, u, v, t);
       return static_cast<float>(t);
     },
     &this->SurfaceOfPatch,
@@ -463,7 +472,7 @@ void RayCastFiller::FillBehindPanes(std::size_t receiver,
         for (;;)
         {
           ++rays;
-          found = this->Rays.Intersect(frame.Origin, direction, nearest, filter, true, hit) &&
+          found = this->Rays->Intersect(frame.Origin, direction, nearest, filter, true, hit) &&
             hit.FrontSide;
           if (!found || passed == layer || !this->IsPane(hit.Patch))
           {
@@ -611,7 +620,7 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
   const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options, this->PanePatch);
   const RayFilter filter{ AcceptForReceiver, &receiverFilter };
   return sphcover::VisibleProjectedSolidAngle(
-    this->Rays, frame.Origin, frame.Normal, filter, source, this->Patches[source], minimumSide);
+    *this->Rays, frame.Origin, frame.Normal, filter, source, this->Patches[source], minimumSide);
 }
 
 } // namespace sphcover

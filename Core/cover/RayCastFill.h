@@ -44,6 +44,8 @@
 
 #include <atomic>
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 namespace sphcover
@@ -92,10 +94,17 @@ RayCasterOptions RayCastOptions(const RBufferFillOptions& options);
 class RayCastFiller : public RBufferFiller
 {
 public:
-  /// Throws what RayCaster throws (patches beyond MaxRayCastCoordinate, Embree failing).
+  /**
+   * Casts against `rays` when given: a RayCaster of these patches (RayCastPatches) with
+   * RayCastOptions(options), built once and shared with the other users of the same patches
+   * (the direct light, the memory estimate); builds its own otherwise. Throws what RayCaster
+   * throws (patches beyond MaxRayCastCoordinate, Embree failing), std::invalid_argument when
+   * `rays` holds another number of patches.
+   */
   RayCastFiller(const std::vector<Patch>& patches,
     const HemisphereGrid& grid,
-    const RBufferFillOptions& options);
+    const RBufferFillOptions& options,
+    std::shared_ptr<const RayCaster> rays = nullptr);
   ~RayCastFiller() override;
   RayCastFiller(const RayCastFiller&) = delete;
   RayCastFiller& operator=(const RayCastFiller&) = delete;
@@ -105,7 +114,7 @@ public:
   std::size_t EnvironmentBytes() const override;
 
   /// The tessellation the samples are cast against.
-  const RayCaster& Caster() const { return this->Rays; }
+  const RayCaster& Caster() const { return *this->Rays; }
 
   /**
    * The projected solid angle through which `receiver`'s point P_i sees the patch `source`
@@ -197,7 +206,7 @@ private:
   std::vector<glm::dvec3> PlaneNormals;
   /// Per patch 1 when it is a pane's side; empty when no patch is.
   std::vector<char> PanePatch;
-  RayCaster Rays;
+  std::shared_ptr<const RayCaster> Rays;
   mutable std::atomic<std::uint64_t> RayCount{ 0 };
 };
 

@@ -396,7 +396,8 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   std::size_t first,
   std::size_t last,
   const ParallelFor& parallelFor,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress,
+  std::shared_ptr<const RayCaster> rays)
 {
   this->Clear();
   if (patches.size() >= std::numeric_limits<uint32_t>::max())
@@ -446,8 +447,8 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   this->GridPointer = std::make_unique<HemisphereGrid>(
     options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
   const HemisphereGrid& grid = *this->GridPointer;
-  const std::unique_ptr<RBufferFiller> filler =
-    RBufferFiller::Create(options.Fill, patches, grid, this->BuildOptions.FillOptions);
+  const std::unique_ptr<RBufferFiller> filler = RBufferFiller::Create(
+    options.Fill, patches, grid, this->BuildOptions.FillOptions, std::move(rays));
   const RayCastFiller* paneFiller =
     transmittanceOfPatch.empty() ? nullptr : dynamic_cast<const RayCastFiller*>(filler.get());
   const ParallelFor& run = parallelFor ? parallelFor : ParallelFor(SequentialFor);
@@ -522,9 +523,10 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
 bool SphericalCover::Build(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
   const ParallelFor& parallelFor,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress,
+  std::shared_ptr<const RayCaster> rays)
 {
-  if (!this->BuildRows(patches, options, 0, patches.size(), parallelFor, progress))
+  if (!this->BuildRows(patches, options, 0, patches.size(), parallelFor, progress, std::move(rays)))
   {
     return false;
   }
@@ -807,12 +809,13 @@ bool SphericalCover::BuildRowBlock(const std::vector<Patch>& patches,
   Arrays& block,
   CullingStatistics& culling,
   const ParallelFor& parallelFor,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress,
+  std::shared_ptr<const RayCaster> rays)
 {
   block = Arrays();
   culling = CullingStatistics();
   SphericalCover rows;
-  if (!rows.BuildRows(patches, options, first, last, parallelFor, progress))
+  if (!rows.BuildRows(patches, options, first, last, parallelFor, progress, std::move(rays)))
   {
     return false;
   }
@@ -1151,7 +1154,8 @@ std::size_t SphericalCover::UpperBoundBytes(std::size_t patches,
 
 std::size_t SphericalCover::EstimateBytes(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
-  std::size_t sampleReceivers)
+  std::size_t sampleReceivers,
+  std::shared_ptr<const RayCaster> rays)
 {
   const std::size_t count = patches.size();
   if (count == 0)
@@ -1162,7 +1166,7 @@ std::size_t SphericalCover::EstimateBytes(const std::vector<Patch>& patches,
   const HemisphereGrid grid(
     options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
   const std::unique_ptr<RBufferFiller> filler =
-    RBufferFiller::Create(options.Fill, patches, grid, options.FillOptions);
+    RBufferFiller::Create(options.Fill, patches, grid, options.FillOptions, std::move(rays));
   RBuffer buffer(grid);
   std::size_t strips = 0;
   std::size_t entries = 0;
@@ -1208,7 +1212,8 @@ std::size_t SphericalCover::WorkingBytes(const SphericalCoverOptions& options, s
 std::string SphericalCover::MemoryProblem(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
   std::size_t threads,
-  std::size_t limitBytes)
+  std::size_t limitBytes,
+  std::shared_ptr<const RayCaster> rays)
 {
   // Validates the grid (sizes, and a cell count that fits its int indices) without allocating.
   HemisphereGrid::CheckSizes(
@@ -1236,7 +1241,7 @@ std::string SphericalCover::MemoryProblem(const std::vector<Patch>& patches,
   {
     return std::string();
   }
-  const std::size_t cover = EstimateBytes(patches, options);
+  const std::size_t cover = EstimateBytes(patches, options, EstimateSamples, std::move(rays));
   if (cover > limitBytes - working)
   {
     problem << "the cover of " << patches.size() << " patches would need about "

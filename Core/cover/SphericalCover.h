@@ -89,6 +89,7 @@ namespace sphcover
 
 struct Patch;
 class RayCastFiller;
+class RayCaster;
 
 struct SphericalCoverOptions
 {
@@ -160,14 +161,17 @@ public:
 
   /**
    * Builds the cover of the patches (every patch is both a receiver and a source). Returns
-   * false, leaving the cover empty, when `progress` returned false. Throws
+   * false, leaving the cover empty, when `progress` returned false. The ray fill casts against
+   * `rays` when given (a RayCaster of these patches with RayCastOptions(options.FillOptions),
+   * shared with the direct light: RayCastFiller), else builds its own. Throws
    * std::invalid_argument for bad options or more than 2^32 - 1 patches, std::runtime_error if
    * the ray fill cannot initialise Embree.
    */
   bool Build(const std::vector<Patch>& patches,
     const SphericalCoverOptions& options = {},
     const ParallelFor& parallelFor = SequentialFor,
-    const ProgressCallback& progress = nullptr);
+    const ProgressCallback& progress = nullptr,
+    std::shared_ptr<const RayCaster> rays = nullptr);
 
   bool Empty() const { return this->RowOffsets.size() < 2; }
   std::size_t PatchCount() const
@@ -308,7 +312,8 @@ public:
     Arrays& block,
     CullingStatistics& culling,
     const ParallelFor& parallelFor = SequentialFor,
-    const ProgressCallback& progress = nullptr);
+    const ProgressCallback& progress = nullptr,
+    std::shared_ptr<const RayCaster> rays = nullptr);
   /**
    * Replaces the cover with the row blocks of consecutive receiver ranges, in receiver order,
    * that together hold every receiver once: the cover Build(patches, options) gives, bit for bit
@@ -343,14 +348,17 @@ public:
    * of its own and an entry of its own (at most min(n, cells) entries per row).
    */
   static std::size_t UpperBoundBytes(std::size_t patches, const SphericalCoverOptions& options);
+  /// The rows EstimateBytes builds unless told otherwise.
+  static constexpr std::size_t EstimateSamples = 16;
   /**
    * An estimate of MemoryBytes() from a few rows actually built (sampleReceivers of them,
    * spread evenly over the patches) scaled to all n rows; costs sampleReceivers / n of a
-   * build.
+   * build, and the ray fill's caster unless `rays` is given (as Build).
    */
   static std::size_t EstimateBytes(const std::vector<Patch>& patches,
     const SphericalCoverOptions& options,
-    std::size_t sampleReceivers = 16);
+    std::size_t sampleReceivers = EstimateSamples,
+    std::shared_ptr<const RayCaster> rays = nullptr);
   /// Working memory of one building thread (its R-buffer and fill scratch), in bytes.
   static std::size_t WorkingBytesPerThread(const SphericalCoverOptions& options);
   /// Working memory of a build on `threads` threads: their R-buffers and scratch at once, and
@@ -361,12 +369,14 @@ public:
    * "". The working memory is checked first, from the options alone (a grid too fine for the
    * limit is refused without allocating anything); only when it fits are a few rows built for
    * EstimateBytes (none for an empty `patches`: the check of the grid alone, which a caller can
-   * make before the subdivision). Throws std::invalid_argument for a grid HemisphereGrid rejects.
+   * make before the subdivision), with `rays` as Build. Throws std::invalid_argument for a grid
+   * HemisphereGrid rejects.
    */
   static std::string MemoryProblem(const std::vector<Patch>& patches,
     const SphericalCoverOptions& options,
     std::size_t threads,
-    std::size_t limitBytes);
+    std::size_t limitBytes,
+    std::shared_ptr<const RayCaster> rays = nullptr);
 
 private:
   struct Row;
@@ -377,7 +387,8 @@ private:
     std::size_t first,
     std::size_t last,
     const ParallelFor& parallelFor,
-    const ProgressCallback& progress);
+    const ProgressCallback& progress,
+    std::shared_ptr<const RayCaster> rays);
   /// Why `arrays` are not a consistent cover ("" when they are).
   static std::string CheckArrays(const Arrays& arrays);
   /// Takes consistent `arrays` with `options` as the build's and derives the columns.

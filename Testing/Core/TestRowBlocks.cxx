@@ -4,14 +4,18 @@
 // and joined (ImportRowBlocks) is the cover Build gives, bit for bit, however the receivers are
 // split: what the distributed filter relies on.
 #include "CoverTestUtilities.h"
+#include "cover/RayCastFill.h"
 #include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
+#include "geometry/RayCaster.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <numeric>
+#include <stdexcept>
 #include <vector>
 
 using namespace sphcover;
@@ -52,7 +56,8 @@ void ExpectSameCover(const SphericalCover& joined, const SphericalCover& serial)
 /// The cover of `patches` built in `parts` blocks split by cost, each through its bytes.
 SphericalCover BuildInBlocks(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
-  std::size_t parts)
+  std::size_t parts,
+  const std::shared_ptr<const RayCaster>& rays = nullptr)
 {
   const std::vector<std::size_t> bounds =
     SphericalCover::PartitionRows(SphericalCover::EstimateRowCosts(patches, options), parts);
@@ -63,7 +68,7 @@ SphericalCover BuildInBlocks(const std::vector<Patch>& patches,
     SphericalCover::Arrays block;
     CullingStatistics counts;
     EXPECT_TRUE(SphericalCover::BuildRowBlock(
-      patches, options, bounds[k], bounds[k + 1], block, counts, ThreadedFor(2)));
+      patches, options, bounds[k], bounds[k + 1], block, counts, ThreadedFor(2), nullptr, rays));
     const std::vector<char> bytes = PackRowBlock(block, counts);
     EXPECT_EQ(UnpackRowBlock(bytes.data(), bytes.size(), blocks[k], counts), "");
     culling += counts;
@@ -105,6 +110,42 @@ TEST(RowBlocks, JoinedEqualsSerial)
       ExpectSameCover(BuildInBlocks(patches, options, parts), serial);
     }
   }
+}
+
+// One ray caster of the patches, built by the caller and shared with the direct light (as the
+// cover filter does), gives the rows each fill's own caster gives, measured lamp included, and
+// the same memory estimate; a caster of other patches is refused, not cast against.
+TEST(RowBlocks, ASharedCasterGivesTheSameRows)
+{
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  const std::vector<Patch> patches = CornellPatches(scene);
+  SphericalCoverOptions options;
+  options.ThetaBins = 8;
+  options.PhiBins = 32;
+  options.Fill = RBufferFill::RayCasting;
+  const int lamp = SurfaceNamed(scene, "light");
+  ASSERT_GE(lamp, 0);
+  options.MeasuredSurfaces.assign(scene.Surfaces.size(), false);
+  options.MeasuredSurfaces[static_cast<size_t>(lamp)] = true;
+  SphericalCover own;
+  ASSERT_TRUE(own.Build(patches, options, ThreadedFor(2)));
+  ASSERT_EQ(own.ExportArrays().Measures.size(), own.EntryCount());
+  const auto rays =
+    std::make_shared<const RayCaster>(RayCastPatches(patches), RayCastOptions(options.FillOptions));
+  SphericalCover shared;
+  ASSERT_TRUE(shared.Build(patches, options, ThreadedFor(2), nullptr, rays));
+  ExpectSameCover(shared, own);
+  ExpectSameCover(BuildInBlocks(patches, options, 3, rays), own);
+  EXPECT_EQ(SphericalCover::EstimateBytes(patches, options, 8, rays),
+    SphericalCover::EstimateBytes(patches, options, 8));
+
+  const std::vector<Patch> fewer(patches.begin(), patches.end() - 1);
+  const auto other =
+    std::make_shared<const RayCaster>(RayCastPatches(fewer), RayCastOptions(options.FillOptions));
+  SphericalCover refused;
+  EXPECT_THROW(
+    refused.Build(patches, options, SequentialFor, nullptr, other), std::invalid_argument);
+  EXPECT_TRUE(refused.Empty());
 }
 
 // The lamp measured on the lamp (ray fill): blocks without a measured row get their cells'
