@@ -24,7 +24,10 @@ namespace sphcover
 namespace
 {
 
-/// A read of another rank's bytes that must succeed (ByteReader's false: they are damaged).
+/// A read of a rank's joined bytes that must succeed (ByteReader's false: they are damaged).
+/// Every rank reads every rank's block, its own too, and so reaches the same verdict from the
+/// same joined bytes: damaged bytes stop all the ranks at once, and none goes on alone to a
+/// join the others never reach.
 void Expect(bool read, const char* what)
 {
   if (!read)
@@ -94,17 +97,16 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
     throw RankShare::PeerFailure();
   }
   std::vector<std::vector<EntryKey>> remoteRows(n);
+  std::vector<EntryKey> ownKeys;
   for (std::size_t r = 0; r < all.size(); ++r)
   {
-    if (static_cast<int>(r) == this->Share.Rank())
-    {
-      continue;
-    }
+    const bool own = static_cast<int>(r) == this->Share.Rank();
     ByteReader in(all[r]);
     while (!in.AtEnd())
     {
       uint64_t row = 0;
-      Expect(in.Value(row) && row < n && in.Array(remoteRows[static_cast<std::size_t>(row)]),
+      Expect(in.Value(row) && row < n &&
+          in.Array(own ? ownKeys : remoteRows[static_cast<std::size_t>(row)]),
         "row keys");
     }
   }
@@ -180,16 +182,23 @@ void LightPropagation::ExchangeShotNeeds()
       sentCells.insert(sentCells.end(), cells.begin(), cells.end());
     }
   }
+  bool fits = true;
   for (std::size_t j = 0; j < n; ++j)
   {
     SortUnique(this->SentPositions[j]);
     SortUnique(this->SentCells[j]);
-    // An owner's row must hold every position its receivers elsewhere read.
+    // An owner's row must hold every position its receivers elsewhere read. Only the owner
+    // can tell, so the ranks join its verdict: none goes on alone.
     if (j >= this->OwnedFirst && j < this->OwnedLast && !this->SentPositions[j].empty())
     {
-      Expect(this->SentPositions[j].back() < this->Cover.EntryEnd(j) - this->Cover.EntryBegin(j),
-        "shot needs");
+      fits =
+        fits && this->SentPositions[j].back() < this->Cover.EntryEnd(j) - this->Cover.EntryBegin(j);
     }
+  }
+  if (!this->Share.Join({}, fits, all))
+  {
+    Expect(fits, "shot needs");
+    throw RankShare::PeerFailure();
   }
   this->ShotNeedsKnown = true;
 }
@@ -331,24 +340,29 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
   std::vector<bool> received(batch.size(), false);
   for (std::size_t r = 0; r < all.size(); ++r)
   {
-    if (static_cast<int>(r) == this->Share.Rank())
-    {
-      continue;
-    }
+    // Its own block too (Expect); a rank keeps its own shots as it computed them.
+    const bool own = static_cast<int>(r) == this->Share.Rank();
     ByteReader in(all[r]);
     while (!in.AtEnd())
     {
       uint64_t m = 0;
       Expect(in.Value(m) && m < batch.size() && directional[m] && !received[m], "shot data");
-      DirectionalShotData& shot = data[m];
       const std::size_t shooter = batch[m].Shooter;
       const std::vector<uint32_t>& positions = this->SentPositions[shooter];
       const std::vector<uint32_t>& cells = this->SentCells[shooter];
+      glm::dvec3 mean(0.0);
       uint8_t grid = 0;
       uint64_t evaluations = 0;
-      Expect(in.Value(shot.Mean) && in.Value(grid) && in.Value(evaluations) && in.Array(values) &&
+      Expect(in.Value(mean) && in.Value(grid) && in.Value(evaluations) && in.Array(values) &&
           values.size() == positions.size() + cells.size(),
         "shot data");
+      received[m] = true;
+      if (own)
+      {
+        continue;
+      }
+      DirectionalShotData& shot = data[m];
+      shot.Mean = mean;
       shot.Grid = grid != 0;
       shot.WeightEvaluations = static_cast<std::size_t>(evaluations);
       // Only the positions and cells this rank's receivers read are set (the others keep what
@@ -367,14 +381,11 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
       {
         shot.GridOut[cells[c]] = values[positions.size() + c];
       }
-      received[m] = true;
     }
   }
   for (std::size_t m = 0; m < batch.size(); ++m)
   {
-    const std::size_t shooter = batch[m].Shooter;
-    const bool own = shooter >= this->OwnedFirst && shooter < this->OwnedLast;
-    Expect(!directional[m] || own || received[m], "shot data (a shot is missing)");
+    Expect(!directional[m] || received[m], "shot data (a shot is missing)");
   }
 }
 

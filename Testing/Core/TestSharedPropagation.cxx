@@ -18,6 +18,8 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -176,6 +178,98 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
   }
 }
 
+/// How one rank's Run ended.
+struct RankEnd
+{
+  bool Converged = false;
+  std::string Failure;
+  std::size_t Shots = 0;
+};
+
+/// Runs the propagation of `cover` (batches of 16, the strip-pair method, to 1e-3 of the
+/// emitted power unshot) on `ranks` ranks, rank r joining through share(world, r) and reporting
+/// progress to progress(r); the ranks split the rows equally.
+std::vector<RankEnd> RunOnRanks(const SphericalCover& cover,
+  const std::vector<Patch>& patches,
+  const std::vector<Material>& materials,
+  int ranks,
+  const std::function<RankShare(InProcessRanks&, int)>& share,
+  const std::function<ProgressCallback(int)>& progress)
+{
+  const std::vector<HemisphereFrame> frames = FramesOf(patches);
+  PropagationSettings settings;
+  settings.ConvergenceTolerance = 1e-3;
+  settings.ShotBatch = 16;
+  InProcessRanks world(ranks);
+  std::vector<RankEnd> ends(static_cast<std::size_t>(ranks));
+  world.Run(
+    [&](const RankShare&, int rank)
+    {
+      RankEnd& end = ends[static_cast<std::size_t>(rank)];
+      try
+      {
+        const std::vector<std::size_t> bounds = SphericalCover::PartitionRows(
+          std::vector<double>(cover.PatchCount(), 1.0), static_cast<std::size_t>(ranks));
+        const std::size_t first = bounds[static_cast<std::size_t>(rank)];
+        const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];
+        const SphericalCover rows = cover.RowsOf(first, last);
+        LightPropagation shared(rows, materials);
+        shared.SetFrames(frames);
+        shared.SetDirectionalMethod(DirectionalMethod::StripPairs);
+        shared.SetRankShare(share(world, rank), first, last);
+        end.Converged = shared.Run(settings, progress(rank));
+        end.Shots = shared.History().size();
+      }
+      catch (const std::exception& e)
+      {
+        end.Failure = e.what();
+      }
+    });
+  return ends;
+}
+
+/// Rank `rank` of `world`'s share, with `joined` called on every join that succeeded with the
+/// joined blocks (in rank order), before the rank reads them.
+RankShare WatchedShare(InProcessRanks& world,
+  int rank,
+  int ranks,
+  std::function<void(std::vector<std::vector<char>>&)> joined)
+{
+  const RankShare inner = world.Share(rank);
+  return RankShare(rank,
+    ranks,
+    [inner, ranks, joined](const std::vector<char>& mine,
+      bool ok,
+      bool sameSize,
+      std::vector<std::vector<char>>& all,
+      std::vector<char>& oks)
+    {
+      const bool good = sameSize ? inner.JoinSameSize(mine, ok, all) : inner.Join(mine, ok, all);
+      oks.assign(static_cast<std::size_t>(ranks), good ? 1 : 0);
+      if (good)
+      {
+        joined(all);
+      }
+    });
+}
+
+/// The furnace box with mirror, phong and tabulated surfaces (MixedMaterialsEqualSerial).
+std::vector<Material> MixedMaterialsOf(const std::vector<Patch>& patches)
+{
+  const std::vector<Material> ofSurface = { Diffuse(glm::dvec3(0.5), glm::dvec3(1.0, 2.0, 3.0)),
+    Mirror(glm::dvec3(0.9, 0.8, 0.7)),
+    Phong(glm::dvec3(0.3, 0.2, 0.1), glm::dvec3(0.5, 0.4, 0.6), 30.0),
+    Clay(),
+    Diffuse(glm::dvec3(0.7, 0.6, 0.5)),
+    Phong(glm::dvec3(0.1), glm::dvec3(0.8), 5.0) };
+  std::vector<Material> materials;
+  for (const Patch& patch : patches)
+  {
+    materials.push_back(ofSurface.at(static_cast<size_t>(patch.SurfaceIndex) % ofSurface.size()));
+  }
+  return materials;
+}
+
 } // namespace
 
 TEST(SharedPropagation, CornellBoxEqualsSerial)
@@ -195,17 +289,7 @@ TEST(SharedPropagation, CornellBoxEqualsSerial)
 TEST(SharedPropagation, MixedMaterialsEqualSerial)
 {
   const CoveredScene setup("furnace_box.scene", 2);
-  const std::vector<Material> ofSurface = { Diffuse(glm::dvec3(0.5), glm::dvec3(1.0, 2.0, 3.0)),
-    Mirror(glm::dvec3(0.9, 0.8, 0.7)),
-    Phong(glm::dvec3(0.3, 0.2, 0.1), glm::dvec3(0.5, 0.4, 0.6), 30.0),
-    Clay(),
-    Diffuse(glm::dvec3(0.7, 0.6, 0.5)),
-    Phong(glm::dvec3(0.1), glm::dvec3(0.8), 5.0) };
-  std::vector<Material> materials;
-  for (const Patch& patch : setup.Patches)
-  {
-    materials.push_back(ofSurface.at(static_cast<size_t>(patch.SurfaceIndex) % ofSurface.size()));
-  }
+  const std::vector<Material> materials = MixedMaterialsOf(setup.Patches);
   for (const DirectionalMethod method : { DirectionalMethod::StripPairs, DirectionalMethod::Grid })
   {
     SCOPED_TRACE(testing::Message() << "method " << static_cast<int>(method));
@@ -267,4 +351,127 @@ TEST(SharedPropagation, RowCostsCountEntriesAndDirectionalShots)
   }
   materials.pop_back();
   EXPECT_THROW(LightPropagation::EstimateRowCosts(setup.Cover, materials), std::invalid_argument);
+}
+
+// A rank whose progress asks to stop (ParaView's abort on one rank) stops every rank after the
+// same batch: each Run returns false, none hangs, all made the same shots.
+TEST(SharedPropagation, ARankThatAbortsStopsEveryRank)
+{
+  const CoveredScene setup("furnace_box.scene", 2);
+  const std::vector<Material> materials = MixedMaterialsOf(setup.Patches);
+  for (const int aborting : { 0, 2 })
+  {
+    SCOPED_TRACE(testing::Message() << "rank " << aborting << " aborts");
+    const std::vector<RankEnd> ends = RunOnRanks(
+      setup.Cover,
+      setup.Patches,
+      materials,
+      3,
+      [](InProcessRanks& world, int rank) { return world.Share(rank); },
+      [aborting](int rank) -> ProgressCallback
+      {
+        auto reports = std::make_shared<int>(0);
+        return [rank, aborting, reports](double) { return rank != aborting || ++*reports < 3; };
+      });
+    for (const RankEnd& end : ends)
+    {
+      EXPECT_EQ(end.Failure, "");
+      EXPECT_FALSE(end.Converged);
+      EXPECT_GT(end.Shots, 0u);
+      EXPECT_EQ(end.Shots, ends.front().Shots);
+    }
+  }
+}
+
+// Bytes damaged on their way between ranks (one rank's block of one join, seen alike by every
+// rank, as an all-gather delivers it), at every join of the setup and the first batches and
+// at later ones: every rank stops (the damage named on some rank, the others told that another
+// failed), or, where the damaged block is not read, every rank converges; none goes on alone
+// to a join the others never reach (it would hang here).
+TEST(SharedPropagation, DamagedBytesStopEveryRank)
+{
+  const CoveredScene setup("furnace_box.scene", 2);
+  const std::vector<Material> materials = MixedMaterialsOf(setup.Patches);
+  const auto noProgress = [](int) { return ProgressCallback(); };
+  // The number of joins of a whole run (every rank joins as often).
+  std::size_t joins = 0;
+  const std::vector<RankEnd> clean = RunOnRanks(
+    setup.Cover,
+    setup.Patches,
+    materials,
+    2,
+    [&joins](InProcessRanks& world, int rank)
+    {
+      return WatchedShare(world,
+        rank,
+        2,
+        [rank, &joins](std::vector<std::vector<char>>&) { joins += rank == 0 ? 1 : 0; });
+    },
+    noProgress);
+  ASSERT_TRUE(clean[0].Converged && clean[1].Converged);
+  ASSERT_GT(joins, 40u);
+
+  std::vector<std::size_t> targets = { 0, 1, 2, 3, 4, 5 };
+  for (std::size_t target = 6; target < joins; target += joins / 4)
+  {
+    targets.push_back(target);
+  }
+  std::size_t stopped = 0;
+  for (const std::size_t target : targets)
+  {
+    for (const int victim : { 0, 1 })
+    {
+      SCOPED_TRACE(testing::Message()
+        << "join " << target << " of " << joins << ", rank " << victim << "'s bytes damaged");
+      const std::vector<RankEnd> ends = RunOnRanks(
+        setup.Cover,
+        setup.Patches,
+        materials,
+        2,
+        [target, victim](InProcessRanks& world, int rank)
+        {
+          auto count = std::make_shared<std::size_t>(0);
+          return WatchedShare(world,
+            rank,
+            2,
+            [count, target, victim](std::vector<std::vector<char>>& all)
+            {
+              if ((*count)++ != target)
+              {
+                return;
+              }
+              std::vector<char>& bytes = all[static_cast<std::size_t>(victim)];
+              if (bytes.empty())
+              {
+                bytes.push_back(1);
+              }
+              else
+              {
+                bytes.pop_back();
+              }
+            });
+        },
+        noProgress);
+      const bool failed = !ends[0].Failure.empty();
+      EXPECT_EQ(!ends[1].Failure.empty(), failed);
+      if (!failed)
+      {
+        EXPECT_TRUE(ends[0].Converged && ends[1].Converged);
+        EXPECT_EQ(ends[0].Shots, clean[0].Shots);
+        continue;
+      }
+      ++stopped;
+      bool named = false;
+      for (const RankEnd& end : ends)
+      {
+        const bool damage = end.Failure.find("damaged") != std::string::npos ||
+          end.Failure.find("not whole values") != std::string::npos;
+        named = named || damage;
+        EXPECT_TRUE(damage || end.Failure == RankShare::PeerFailure::Text) << end.Failure;
+      }
+      EXPECT_TRUE(named);
+    }
+  }
+  // Almost every join's blocks are read: most damages stop the ranks.
+  EXPECT_GT(stopped, targets.size());
 }
