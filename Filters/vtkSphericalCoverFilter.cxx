@@ -647,6 +647,65 @@ bool ComputeDirectIrradianceOf(vtkSphericalCoverFilter* self,
   return completed;
 }
 
+/// How many chunks of rows each rank builds (BuildRowChunks).
+constexpr std::size_t RowChunksPerRank = 8;
+
+/**
+ * This rank's rows of the cover, under MPI, into `bytes` (one AppendRowBlock per chunk) and
+ * their count into `receivers`; progress from the cover's start to 0.9. The receivers are cut
+ * into K x RowChunksPerRank consecutive chunks of about equal estimated cost
+ * (SphericalCover::EstimateRowCosts) and rank r builds chunks r, r + K, ...: consecutive
+ * receivers lie on one surface and cost alike, so dealing the chunks round the ranks evens out
+ * what the estimate misses, as the direct light's interleaved nodes do. False, with a warning,
+ * when aborted; throws what BuildRowBlock throws.
+ */
+bool BuildRowChunks(vtkSphericalCoverFilter* self,
+  const CoverInput& prepared,
+  int rank,
+  int ranks,
+  std::vector<char>& bytes,
+  double& receivers)
+{
+  const std::size_t k = static_cast<std::size_t>(ranks);
+  const std::size_t chunks = k * RowChunksPerRank;
+  const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
+    sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options), chunks);
+  std::size_t mine = 0;
+  for (std::size_t c = static_cast<std::size_t>(rank); c < chunks; c += k)
+  {
+    mine += bounds[c + 1] - bounds[c];
+  }
+  receivers = static_cast<double>(mine);
+  vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
+  bytes.clear();
+  std::size_t done = 0;
+  for (std::size_t c = static_cast<std::size_t>(rank); c < chunks; c += k)
+  {
+    const std::size_t size = bounds[c + 1] - bounds[c];
+    sphcover::SphericalCover::Arrays block;
+    sphcover::CullingStatistics culling;
+    if (!sphcover::SphericalCover::BuildRowBlock(
+          prepared.Patches,
+          prepared.Options,
+          bounds[c],
+          bounds[c + 1],
+          block,
+          culling,
+          vtkSMPParallelFor::Make(),
+          [&](double fraction)
+          { return progress((done + fraction * size) / std::max<std::size_t>(mine, 1)); },
+          prepared.Rays))
+    {
+      vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+      bytes.clear();
+      return false;
+    }
+    sphcover::AppendRowBlock(bytes, block, culling);
+    done += size;
+  }
+  return true;
+}
+
 /// Both outputs of a built cover: the characteristic points with the direct light's nodes,
 /// and the strips.
 void WriteOutputs(vtkSphericalCoverFilter* self,
@@ -764,37 +823,17 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
     problem = step(
       [&]
       {
-        const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
-          sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options),
-          static_cast<std::size_t>(ranks));
-        const std::size_t first = bounds[static_cast<std::size_t>(rank)];
-        const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];
         if (!MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget, prepared.Rays))
         {
           return false;
         }
-        vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
         const auto start = std::chrono::steady_clock::now();
-        sphcover::SphericalCover::Arrays block;
-        sphcover::CullingStatistics culling;
-        if (!sphcover::SphericalCover::BuildRowBlock(
-              prepared.Patches,
-              prepared.Options,
-              first,
-              last,
-              block,
-              culling,
-              vtkSMPParallelFor::Make(),
-              [&progress](double fraction) { return progress(fraction); },
-              prepared.Rays))
+        if (!BuildRowChunks(self, prepared, rank, ranks, bytes, mine.Receivers))
         {
-          vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
           return false;
         }
         mine.Seconds = SecondsSince(start);
         self->RecordStageSeconds(1, mine.Seconds);
-        mine.Receivers = static_cast<double>(last - first);
-        bytes = sphcover::PackRowBlock(block, culling);
         mine.Bytes = static_cast<double>(bytes.size());
         return true;
       });
@@ -822,12 +861,19 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
   {
     return 1; // an empty piece (vtkScenePieces.h)
   }
-  std::vector<sphcover::SphericalCover::Arrays> blocks(received.size());
+  // Chunk c is the (c / K)-th block of rank c mod K (BuildRowChunks).
+  std::vector<sphcover::SphericalCover::Arrays> blocks(RowChunksPerRank * received.size());
   sphcover::CullingStatistics culling;
   for (size_t r = 0; r < received.size(); ++r)
   {
+    std::vector<sphcover::SphericalCover::Arrays> chunks;
     sphcover::CullingStatistics counts;
-    problem = sphcover::UnpackRowBlock(received[r].data(), received[r].size(), blocks[r], counts);
+    problem = sphcover::UnpackRowBlocks(received[r].data(), received[r].size(), chunks, counts);
+    if (problem.empty() && chunks.size() != RowChunksPerRank)
+    {
+      problem = std::to_string(chunks.size()) + " chunks of rows, not " +
+        std::to_string(RowChunksPerRank);
+    }
     if (!problem.empty())
     {
       vtkErrorWithObjectMacro(
@@ -835,6 +881,10 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
       return 0;
     }
     received[r] = std::vector<char>();
+    for (size_t k = 0; k < chunks.size(); ++k)
+    {
+      blocks[k * received.size() + r] = std::move(chunks[k]);
+    }
     culling += counts;
   }
   sphcover::SphericalCover cover;

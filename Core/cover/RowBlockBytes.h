@@ -37,6 +37,21 @@ std::string UnpackRowBlock(const char* bytes,
   std::size_t size,
   SphericalCover::Arrays& block,
   CullingStatistics& culling);
+
+/// Appends the bytes of `block` and its culling counts (PackRowBlock's) to `bytes`, after their
+/// length (uint64): one process's several blocks in one buffer, read by UnpackRowBlocks.
+void AppendRowBlock(std::vector<char>& bytes,
+  const SphericalCover::Arrays& block,
+  const CullingStatistics& culling);
+
+/**
+ * Reads AppendRowBlock's blocks, in order, into `blocks`, their culling counts summed into
+ * `culling`. Returns what is wrong ("" on success), as UnpackRowBlock, naming the block.
+ */
+std::string UnpackRowBlocks(const char* bytes,
+  std::size_t size,
+  std::vector<SphericalCover::Arrays>& blocks,
+  CullingStatistics& culling);
 }
 
 #endif

@@ -148,6 +148,63 @@ TEST(RowBlocks, ASharedCasterGivesTheSameRows)
   EXPECT_TRUE(refused.Empty());
 }
 
+// A process's several blocks in one buffer (AppendRowBlock, UnpackRowBlocks): the filter's
+// ranks each build every K-th of K x 8 chunks of rows; the chunks, read back from the ranks'
+// buffers and put in receiver order, join to the serial cover. Damaged buffers are refused.
+TEST(RowBlocks, ChunksDealtRoundTheRanksJoinToSerial)
+{
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  const std::vector<Patch> patches = CornellPatches(scene);
+  SphericalCoverOptions options;
+  options.ThetaBins = 8;
+  options.PhiBins = 32;
+  SphericalCover serial;
+  ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
+  const std::size_t ranks = 3;
+  const std::size_t chunks = 8 * ranks;
+  const std::vector<std::size_t> bounds =
+    SphericalCover::PartitionRows(SphericalCover::EstimateRowCosts(patches, options), chunks);
+  std::vector<std::vector<char>> buffers(ranks);
+  for (std::size_t c = 0; c < chunks; ++c)
+  {
+    SphericalCover::Arrays block;
+    CullingStatistics counts;
+    ASSERT_TRUE(
+      SphericalCover::BuildRowBlock(patches, options, bounds[c], bounds[c + 1], block, counts));
+    AppendRowBlock(buffers[c % ranks], block, counts);
+  }
+  std::vector<SphericalCover::Arrays> blocks(chunks);
+  CullingStatistics culling;
+  for (std::size_t r = 0; r < ranks; ++r)
+  {
+    std::vector<SphericalCover::Arrays> read;
+    CullingStatistics counts;
+    ASSERT_EQ(UnpackRowBlocks(buffers[r].data(), buffers[r].size(), read, counts), "");
+    ASSERT_EQ(read.size(), chunks / ranks);
+    for (std::size_t k = 0; k < read.size(); ++k)
+    {
+      blocks[k * ranks + r] = std::move(read[k]);
+    }
+    culling += counts;
+  }
+  SphericalCover joined;
+  ASSERT_EQ(joined.ImportRowBlocks(std::move(blocks), options, culling), "");
+  ExpectSameCover(joined, serial);
+
+  std::vector<SphericalCover::Arrays> read;
+  CullingStatistics counts;
+  std::vector<char> bytes = buffers[0];
+  EXPECT_EQ(UnpackRowBlocks(bytes.data(), 0, read, counts), "");
+  EXPECT_TRUE(read.empty());
+  EXPECT_NE(UnpackRowBlocks(bytes.data(), bytes.size() - 1, read, counts), "");
+  EXPECT_TRUE(read.empty());
+  EXPECT_NE(UnpackRowBlocks(bytes.data(), 4, read, counts), "");
+  bytes[8] ^= 1; // the first block's tag
+  EXPECT_NE(UnpackRowBlocks(bytes.data(), bytes.size(), read, counts), "");
+  EXPECT_TRUE(read.empty());
+  EXPECT_EQ(counts.Candidates, 0u);
+}
+
 // The lamp measured on the lamp (ray fill): blocks without a measured row get their cells'
 // measures as Build's rows do, whichever block holds the first measured row.
 TEST(RowBlocks, MeasuredLampJoinedEqualsSerial)
