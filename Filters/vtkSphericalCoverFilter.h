@@ -44,13 +44,14 @@
  * of threads.
  *
  * Processes (Controller, by default the global controller: MPI under pvbatch, pvserver and
- * `mpiexec sphcover`). With K > 1 ranks the rows of the cover are built on all of them: each
- * rank builds the rows of a range of receivers (characteristic points), the ranges balanced by
- * Core's estimate of each row's work (SphericalCover::EstimateRowCosts), and the row blocks are
- * gathered in receiver order, so the cover is the serial one bit for bit (rows are independent,
- * paper §4.3). When the other ranks hold empty pieces (pvbatch), rank 0's input is broadcast to
- * them first; they help build and keep empty outputs. The refinement's hemispheres (Steps 2
- * and 3) and the direct light's nodes are shared among the ranks too. The output then carries the field
+ * `mpiexec sphcover`). With K > 1 ranks the rows of the cover are built on all of them: the
+ * receivers (characteristic points) are cut into K x 8 chunks of consecutive receivers, of
+ * about equal estimated work (SphericalCover::EstimateRowCosts), dealt round the ranks, and the
+ * row blocks are gathered in receiver order, so the cover is the serial one bit for bit (rows
+ * are independent, paper §4.3). When the other ranks hold empty pieces (pvbatch), rank 0's
+ * input is broadcast to them first; they help build and keep empty outputs. The refinement's
+ * leaves and hemispheres (Steps 1 to 3) and the direct light's nodes are shared among the
+ * ranks too. The output then carries the field
  * array `CoverRankFigures` (per rank: receivers, seconds, bytes of its rows). Every rank must
  * update the filter together (as pvbatch --symmetric, pvserver and mpiexec sphcover do); a
  * failure on any rank is one error on every rank. To build a cover on one rank alone under MPI,

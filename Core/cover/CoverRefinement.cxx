@@ -23,6 +23,13 @@ namespace
 /// Receivers per ParallelFor call; progress and abort are checked between calls.
 constexpr std::size_t BatchSize = 64;
 
+/// One leaf's Step 1 verdict (EnclosureSplitter::Straddles), as the ranks join it.
+struct EnclosureVerdict
+{
+  uint64_t Split = 0;
+  uint64_t Probes = 0;
+};
+
 /// Runs body(k) for every k in [0, count), in batches of BatchSize items shared out by `run`;
 /// after each batch afterBatch(items done so far) reports progress and may stop the loop by
 /// returning false (then so does this).
@@ -127,33 +134,10 @@ bool CoverRefinement::Run(const ProgressCallback& progress, const ParallelFor& p
   // of the time.
   const double receiverShare = this->Settings.AnalyseHemispheres ? 0.05 : 1.0;
   const double probeShare = this->Settings.SplitHorizons ? 0.8 * receiverShare : receiverShare;
-  // Step 1 runs whole on every rank; a rank that fails there still takes part in one join, so
-  // that the others learn it and none waits in the later steps' joins. Step 2's leaves and
-  // Step 3's hemispheres are shared among the ranks (RankShare.h), joined every round.
-  bool completed = true;
-  std::exception_ptr failure;
-  try
-  {
-    completed = !this->Settings.SplitEnclosureBoundaries ||
-      this->SplitAcrossEnclosures(progress, run, probeShare);
-  }
-  catch (...)
-  {
-    failure = std::current_exception();
-  }
-  if (this->Share.Distributed())
-  {
-    std::vector<std::vector<char>> all;
-    const bool everyRankOk = this->Share.Join({}, completed && !failure, all);
-    if (completed && !failure && !everyRankOk)
-    {
-      throw RankShare::PeerFailure();
-    }
-  }
-  if (failure)
-  {
-    std::rethrow_exception(failure);
-  }
+  // Steps 1 and 2's leaves and Step 3's hemispheres are shared among the ranks (RankShare.h),
+  // joined every round.
+  const bool completed = !this->Settings.SplitEnclosureBoundaries ||
+    this->SplitAcrossEnclosures(progress, run, probeShare);
   if (!completed ||
     (this->Settings.SplitHorizons &&
       !this->SplitAcrossHorizons(
@@ -198,46 +182,120 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   const ParallelFor& run,
   double progressShare)
 {
-  const EnclosureSplitter splitter(this->Environment, this->Extents, this->Settings);
-  if (splitter.Empty())
+  // Built on every rank; the ranks agree that it was before they share its probes, so that a
+  // rank whose build failed leaves no other waiting in a round's join.
+  std::unique_ptr<const EnclosureSplitter> splitter;
+  std::exception_ptr failure;
+  try
+  {
+    splitter =
+      std::make_unique<const EnclosureSplitter>(this->Environment, this->Extents, this->Settings);
+  }
+  catch (...)
+  {
+    failure = std::current_exception();
+  }
+  if (this->Share.Distributed())
+  {
+    std::vector<std::vector<char>> all;
+    if (!this->Share.Join({}, !failure, all) && !failure)
+    {
+      throw RankShare::PeerFailure();
+    }
+  }
+  if (failure)
+  {
+    std::rethrow_exception(failure);
+  }
+  if (splitter->Empty())
   {
     return true;
   }
-  // Every leaf independently (its pieces split recursively), merged in leaf order.
-  const size_t count = this->Leaves.size();
-  std::vector<std::vector<Patch>> pieces(count);
-  std::vector<std::size_t> splits(count, 0);
-  std::vector<std::size_t> probes(count, 0);
-  const bool finished = ForEachInBatches(
-    count,
-    run,
-    [&](size_t k)
-    {
-      splitter.Split(
-        this->Nodes[static_cast<size_t>(this->Leaves[k])], pieces[k], splits[k], probes[k]);
-    },
-    [&](size_t done) { return !progress || progress(progressShare * double(done) / count); });
-  if (!finished)
+  // Rounds, as Step 2's: the leaves not yet probed are probed (each rank its share, the
+  // verdicts joined in leaf order), those straddling a boundary are split in three in place and
+  // their pieces probed in the next round. A patch's verdict depends on the patch alone, so a
+  // probed leaf keeps it: the leaves come out as splitting each leaf recursively, depth first,
+  // gives them. Each round deepens by one level: at most MaxLevel + 1 rounds.
+  const double expectedRounds = this->Settings.MaxLevel + 1.0;
+  std::vector<char> probed(this->Leaves.size(), 0);
+  for (int round = 0;; ++round)
   {
-    return false;
-  }
-  std::vector<int> nextLeaves;
-  for (size_t k = 0; k < count; ++k)
-  {
-    this->Stats.Probes += probes[k];
-    if (pieces[k].empty())
+    std::vector<std::size_t> untested;
+    for (std::size_t k = 0; k < probed.size(); ++k)
     {
-      nextLeaves.push_back(this->Leaves[k]);
-      continue;
+      if (!probed[k])
+      {
+        untested.push_back(k);
+      }
     }
-    this->Stats.Splits += splits[k];
-    this->Stats.EnclosureSplits += splits[k];
-    for (Patch& piece : pieces[k])
+    if (untested.empty())
     {
-      nextLeaves.push_back(this->AddNode(std::move(piece)));
+      break;
     }
+    std::vector<EnclosureVerdict> verdicts(untested.size());
+    const bool finished = ShareItems(this->Share,
+      untested.size(),
+      verdicts,
+      [&](const std::vector<std::size_t>& mine)
+      {
+        return ForEachInBatches(
+          mine.size(),
+          run,
+          [&](std::size_t n)
+          {
+            const Patch& leaf =
+              this->Nodes[static_cast<std::size_t>(this->Leaves[untested[mine[n]]])];
+            std::size_t probes = 0;
+            EnclosureVerdict& verdict = verdicts[mine[n]];
+            verdict.Split =
+              leaf.Level < this->Settings.MaxLevel && splitter->Straddles(leaf, probes) ? 1 : 0;
+            verdict.Probes = probes;
+          },
+          [&](std::size_t done)
+          {
+            const double share = std::min(1.0,
+              (round + double(done) / double(std::max<std::size_t>(1, mine.size()))) /
+                expectedRounds);
+            return !progress || progress(progressShare * share);
+          });
+      });
+    if (!finished)
+    {
+      return false;
+    }
+    std::vector<int> nextLeaves;
+    std::vector<char> nextProbed;
+    std::size_t tested = 0;
+    std::size_t splits = 0;
+    for (std::size_t k = 0; k < this->Leaves.size(); ++k)
+    {
+      const bool split = !probed[k] && verdicts[tested].Split != 0;
+      if (!probed[k])
+      {
+        this->Stats.Probes += static_cast<std::size_t>(verdicts[tested++].Probes);
+      }
+      if (!split)
+      {
+        nextLeaves.push_back(this->Leaves[k]);
+        nextProbed.push_back(1);
+        continue;
+      }
+      ++splits;
+      const Patch& leaf = this->Nodes[static_cast<std::size_t>(this->Leaves[k])];
+      const BezierPatch& surface =
+        this->Environment.Surfaces[static_cast<std::size_t>(leaf.SurfaceIndex)].Patch;
+      std::array<Patch, 3> three = SplitInThree(leaf, surface, SplitReason::RBuffer);
+      for (Patch& piece : three)
+      {
+        nextLeaves.push_back(this->AddNode(std::move(piece)));
+        nextProbed.push_back(0);
+      }
+    }
+    this->Leaves = std::move(nextLeaves);
+    probed = std::move(nextProbed);
+    this->Stats.Splits += splits;
+    this->Stats.EnclosureSplits += splits;
   }
-  this->Leaves = std::move(nextLeaves);
   this->Stats.OutputPatches = this->Leaves.size();
   return true;
 }

@@ -8,8 +8,9 @@
  *
  * Data flow, one way: IntervalSubdivision -> CoverRefinement -> SphericalCover::Build over
  * Patches(). Run() applies, in this order, each when its setting is on:
- *  1. the receiver side, enclosure boundaries (EnclosureSplit.h): every leaf split
- *     recursively, independently, merged in leaf order;
+ *  1. the receiver side, enclosure boundaries (EnclosureSplit.h): rounds, each probing the
+ *     leaves not yet probed and splitting in place those that straddle a boundary (the leaves
+ *     of splitting each recursively, depth first), one level per round;
  *  2. the receiver side, horizons (HorizonSplit.h): rounds over the current list, one level
  *     per round;
  *  3. Step 3 from the source side (HiddenPartAnalysis.h): rounds of projection fills of the
@@ -94,11 +95,10 @@ public:
   void SetProbeExtents(std::vector<UVRect> extents, std::vector<int> groups);
 
   /**
-   * Under MPI: the ranks test the leaves of each round of Step 2 and analyse the hemispheres
-   * of each round of Step 3 in turn and join their verdicts (RankShare.h), so every rank
-   * refines alike, to the serial result bit for bit. Run is then collective, and throws
-   * RankShare::PeerFailure when another rank failed. Step 1 (per leaf, its pieces split
-   * recursively) runs whole on every rank.
+   * Under MPI: the ranks probe the leaves of each round of Steps 1 and 2 and analyse the
+   * hemispheres of each round of Step 3 in turn and join their verdicts (RankShare.h), so
+   * every rank refines alike, to the serial result bit for bit. Run is then collective, and
+   * throws RankShare::PeerFailure when another rank failed.
    */
   void SetRankShare(RankShare share) { this->Share = std::move(share); }
 

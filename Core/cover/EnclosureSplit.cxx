@@ -147,37 +147,4 @@ bool EnclosureSplitter::Straddles(const Patch& patch, std::size_t& probes) const
   return false;
 }
 
-void EnclosureSplitter::Split(const Patch& leaf,
-  std::vector<Patch>& pieces,
-  std::size_t& splits,
-  std::size_t& probes) const
-{
-  if (leaf.Level >= this->Settings.MaxLevel || !this->Straddles(leaf, probes))
-  {
-    return;
-  }
-  const BezierPatch& surface =
-    this->Environment.Surfaces[static_cast<size_t>(leaf.SurfaceIndex)].Patch;
-  // Depth first, so that the pieces come out in their parent's order.
-  std::vector<Patch> stack{ leaf };
-  const std::size_t splitsBefore = splits;
-  while (!stack.empty())
-  {
-    const Patch patch = std::move(stack.back());
-    stack.pop_back();
-    if (patch.Level >= this->Settings.MaxLevel ||
-      (splits > splitsBefore && !this->Straddles(patch, probes)))
-    {
-      pieces.push_back(patch);
-      continue;
-    }
-    ++splits;
-    std::array<Patch, 3> three = SplitInThree(patch, surface, SplitReason::RBuffer);
-    for (int t = 2; t >= 0; --t)
-    {
-      stack.push_back(std::move(three[static_cast<size_t>(t)]));
-    }
-  }
-}
-
 } // namespace sphcover

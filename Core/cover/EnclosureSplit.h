@@ -18,7 +18,8 @@
  * The probes are rays (RayCaster) against the scene's whole surfaces, from tNear = 1e-7 of the
  * scene's size, hits of the probe's own surface group within twice the tessellation tolerance
  * skipped. Cost: up to 5 rays per probe point, (ProbesPerSide (1 + 2 margin))^2 points per
- * tested patch. Thread-safe: Split() may run for several leaves at once.
+ * tested patch. Thread-safe: Straddles() may run for several patches at once (CoverRefinement
+ * splits in rounds, probing a round's patches in parallel and on several ranks).
  */
 #ifndef SPHCOVER_ENCLOSURESPLIT_H
 #define SPHCOVER_ENCLOSURESPLIT_H
@@ -47,14 +48,10 @@ public:
   bool Empty() const { return this->Rays == nullptr; }
 
   /**
-   * Splits `leaf` recursively while its pieces straddle an enclosure boundary; appends the
-   * pieces in order to `pieces` (nothing when `leaf` needs no split) and counts the splits
-   * and the probe rays cast.
+   * Whether the patch straddles an enclosure boundary: some of its probe points are enclosed
+   * and some not (it is to be split). Adds the probe rays cast to `probes`.
    */
-  void Split(const Patch& leaf,
-    std::vector<Patch>& pieces,
-    std::size_t& splits,
-    std::size_t& probes) const;
+  bool Straddles(const Patch& patch, std::size_t& probes) const;
 
 private:
   /// The side of the first surface met along one ray: 1 back, 0 front or none, -1 undecided.
@@ -65,8 +62,6 @@ private:
   /// 1 when the point at (u, v) of the patch (may lie around it) is enclosed, 0 when not, -1
   /// without a verdict.
   int Enclosed(const Patch& patch, double u, double v, std::size_t& probes) const;
-  /// Some probes of the patch enclosed and some not.
-  bool Straddles(const Patch& patch, std::size_t& probes) const;
 
   const Scene& Environment;
   const ProbeExtents& Extents;

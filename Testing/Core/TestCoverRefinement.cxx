@@ -347,6 +347,49 @@ TEST(CoverRefinement, DeterministicWhateverTheThreads)
 // Under MPI the ranks test each round's leaves (Step 2) and analyse each round's hemispheres
 // (Step 3) in turn and join their verdicts (RankShare.h): every rank refines to the serial
 // patches, with the serial statistics.
+// Step 1 alone (enclosure boundaries: the Cornell box's blocks stand on the floor) shared
+// among ranks: each round's leaves probed in turn give the serial patches, splits and probe
+// rays, and the pieces still tile their surfaces.
+TEST(CoverRefinement, EnclosureSplitsSharedAmongRanksEqualSerial)
+{
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  Pipeline pipeline(8, 2, 2);
+  pipeline.Refinement.SplitHorizons = false;
+  pipeline.Refinement.AnalyseHemispheres = false;
+  const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
+  CoverRefinement serial(scene, before, pipeline.Refinement);
+  ASSERT_TRUE(serial.Run(nullptr, ThreadedFor(2)));
+  const std::vector<Patch> expected = serial.Patches();
+  ASSERT_GT(serial.Statistics().EnclosureSplits, 0u);
+  ExpectTiling(scene, expected);
+  for (const int ranks : { 2, 3 })
+  {
+    InProcessRanks world(ranks);
+    std::vector<std::vector<Patch>> results(static_cast<std::size_t>(ranks));
+    std::vector<RefinementStatistics> statistics(static_cast<std::size_t>(ranks));
+    world.Run(
+      [&](const RankShare& share, int rank)
+      {
+        CoverRefinement refinement(scene, before, pipeline.Refinement);
+        refinement.SetRankShare(share);
+        if (refinement.Run(nullptr, SequentialFor))
+        {
+          results[static_cast<std::size_t>(rank)] = refinement.Patches();
+          statistics[static_cast<std::size_t>(rank)] = refinement.Statistics();
+        }
+      });
+    for (int rank = 0; rank < ranks; ++rank)
+    {
+      SCOPED_TRACE(testing::Message() << "rank " << rank << " of " << ranks);
+      ExpectSamePatches(results[static_cast<std::size_t>(rank)], expected);
+      const RefinementStatistics& s = statistics[static_cast<std::size_t>(rank)];
+      EXPECT_EQ(s.EnclosureSplits, serial.Statistics().EnclosureSplits);
+      EXPECT_EQ(s.Splits, serial.Statistics().Splits);
+      EXPECT_EQ(s.Probes, serial.Statistics().Probes);
+    }
+  }
+}
+
 TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
 {
   const Scene scene = FurnaceBoxWithOccluder();
