@@ -648,7 +648,7 @@ bool ComputeDirectIrradianceOf(vtkSphericalCoverFilter* self,
 }
 
 /// How many chunks of rows each rank builds (BuildRowChunks).
-constexpr std::size_t RowChunksPerRank = 8;
+constexpr std::size_t RowChunksPerRank = 32;
 
 /**
  * This rank's rows of the cover, under MPI, into `bytes` (one AppendRowBlock per chunk) and

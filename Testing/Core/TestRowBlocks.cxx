@@ -149,7 +149,7 @@ TEST(RowBlocks, ASharedCasterGivesTheSameRows)
 }
 
 // A process's several blocks in one buffer (AppendRowBlock, UnpackRowBlocks): the filter's
-// ranks each build every K-th of K x 8 chunks of rows; the chunks, read back from the ranks'
+// ranks each build every K-th of K x 32 chunks of rows; the chunks, read back from the ranks'
 // buffers and put in receiver order, join to the serial cover. Damaged buffers are refused.
 TEST(RowBlocks, ChunksDealtRoundTheRanksJoinToSerial)
 {
@@ -161,7 +161,7 @@ TEST(RowBlocks, ChunksDealtRoundTheRanksJoinToSerial)
   SphericalCover serial;
   ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
   const std::size_t ranks = 3;
-  const std::size_t chunks = 8 * ranks;
+  const std::size_t chunks = 32 * ranks;
   const std::vector<std::size_t> bounds =
     SphericalCover::PartitionRows(SphericalCover::EstimateRowCosts(patches, options), chunks);
   std::vector<std::vector<char>> buffers(ranks);
