@@ -344,9 +344,47 @@ TEST(CoverRefinement, DeterministicWhateverTheThreads)
   EXPECT_EQ(sequential.Statistics().LimitedRequests, threaded.Statistics().LimitedRequests);
 }
 
-// Under MPI the ranks test each round's leaves (Step 2) and analyse each round's hemispheres
-// (Step 3) in turn and join their verdicts (RankShare.h): every rank refines to the serial
-// patches, with the serial statistics.
+/// The refinement of `before` on 2 and 3 ranks (threads, InProcessRanks) gives every rank
+/// `serial`'s patches and statistics.
+void ExpectSharedRefinementEqualsSerial(const Scene& scene,
+  const std::vector<Patch>& before,
+  const RefinementSettings& settings,
+  const CoverRefinement& serial)
+{
+  const std::vector<Patch> expected = serial.Patches();
+  const RefinementStatistics& want = serial.Statistics();
+  for (const int ranks : { 2, 3 })
+  {
+    InProcessRanks world(ranks);
+    std::vector<std::vector<Patch>> results(static_cast<std::size_t>(ranks));
+    std::vector<RefinementStatistics> statistics(static_cast<std::size_t>(ranks));
+    world.Run(
+      [&](const RankShare& share, int rank)
+      {
+        CoverRefinement refinement(scene, before, settings);
+        refinement.SetRankShare(share);
+        if (refinement.Run(nullptr, SequentialFor))
+        {
+          results[static_cast<std::size_t>(rank)] = refinement.Patches();
+          statistics[static_cast<std::size_t>(rank)] = refinement.Statistics();
+        }
+      });
+    for (int rank = 0; rank < ranks; ++rank)
+    {
+      SCOPED_TRACE(testing::Message() << "rank " << rank << " of " << ranks);
+      ExpectSamePatches(results[static_cast<std::size_t>(rank)], expected);
+      const RefinementStatistics& s = statistics[static_cast<std::size_t>(rank)];
+      EXPECT_EQ(s.Rounds, want.Rounds);
+      EXPECT_EQ(s.RowsAnalysed, want.RowsAnalysed);
+      EXPECT_EQ(s.Splits, want.Splits);
+      EXPECT_EQ(s.EnclosureSplits, want.EnclosureSplits);
+      EXPECT_EQ(s.Probes, want.Probes);
+      EXPECT_EQ(s.HorizonSplits, want.HorizonSplits);
+      EXPECT_EQ(s.LimitedRequests, want.LimitedRequests);
+    }
+  }
+}
+
 // Step 1 alone (enclosure boundaries: the Cornell box's blocks stand on the floor) shared
 // among ranks: each round's leaves probed in turn give the serial patches, splits and probe
 // rays, and the pieces still tile their surfaces.
@@ -359,37 +397,14 @@ TEST(CoverRefinement, EnclosureSplitsSharedAmongRanksEqualSerial)
   const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
   CoverRefinement serial(scene, before, pipeline.Refinement);
   ASSERT_TRUE(serial.Run(nullptr, ThreadedFor(2)));
-  const std::vector<Patch> expected = serial.Patches();
   ASSERT_GT(serial.Statistics().EnclosureSplits, 0u);
-  ExpectTiling(scene, expected);
-  for (const int ranks : { 2, 3 })
-  {
-    InProcessRanks world(ranks);
-    std::vector<std::vector<Patch>> results(static_cast<std::size_t>(ranks));
-    std::vector<RefinementStatistics> statistics(static_cast<std::size_t>(ranks));
-    world.Run(
-      [&](const RankShare& share, int rank)
-      {
-        CoverRefinement refinement(scene, before, pipeline.Refinement);
-        refinement.SetRankShare(share);
-        if (refinement.Run(nullptr, SequentialFor))
-        {
-          results[static_cast<std::size_t>(rank)] = refinement.Patches();
-          statistics[static_cast<std::size_t>(rank)] = refinement.Statistics();
-        }
-      });
-    for (int rank = 0; rank < ranks; ++rank)
-    {
-      SCOPED_TRACE(testing::Message() << "rank " << rank << " of " << ranks);
-      ExpectSamePatches(results[static_cast<std::size_t>(rank)], expected);
-      const RefinementStatistics& s = statistics[static_cast<std::size_t>(rank)];
-      EXPECT_EQ(s.EnclosureSplits, serial.Statistics().EnclosureSplits);
-      EXPECT_EQ(s.Splits, serial.Statistics().Splits);
-      EXPECT_EQ(s.Probes, serial.Statistics().Probes);
-    }
-  }
+  ExpectTiling(scene, serial.Patches());
+  ExpectSharedRefinementEqualsSerial(scene, before, pipeline.Refinement, serial);
 }
 
+// Under MPI the ranks test each round's leaves (Step 2) and analyse each round's hemispheres
+// (Step 3) in turn and join their verdicts (RankShare.h): every rank refines to the serial
+// patches, with the serial statistics.
 TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
 {
   const Scene scene = FurnaceBoxWithOccluder();
@@ -398,38 +413,10 @@ TEST(CoverRefinement, SharedAmongRanksEqualsSerial)
   const std::vector<Patch> before = Subdivide(scene, pipeline.Subdivision);
   CoverRefinement serial(scene, before, pipeline.Refinement);
   ASSERT_TRUE(serial.Run(nullptr, ThreadedFor(2)));
-  const std::vector<Patch> expected = serial.Patches();
   ASSERT_GT(serial.Statistics().Rounds, 1);
   // Step 2's leaves are shared too: the scene has horizons to split across.
   ASSERT_GT(serial.Statistics().HorizonSplits, 0u);
-  for (const int ranks : { 2, 3 })
-  {
-    InProcessRanks world(ranks);
-    std::vector<std::vector<Patch>> results(static_cast<std::size_t>(ranks));
-    std::vector<RefinementStatistics> statistics(static_cast<std::size_t>(ranks));
-    world.Run(
-      [&](const RankShare& share, int rank)
-      {
-        CoverRefinement refinement(scene, before, pipeline.Refinement);
-        refinement.SetRankShare(share);
-        if (refinement.Run(nullptr, SequentialFor))
-        {
-          results[static_cast<std::size_t>(rank)] = refinement.Patches();
-          statistics[static_cast<std::size_t>(rank)] = refinement.Statistics();
-        }
-      });
-    for (int rank = 0; rank < ranks; ++rank)
-    {
-      SCOPED_TRACE(testing::Message() << "rank " << rank << " of " << ranks);
-      ExpectSamePatches(results[static_cast<std::size_t>(rank)], expected);
-      const RefinementStatistics& s = statistics[static_cast<std::size_t>(rank)];
-      EXPECT_EQ(s.Rounds, serial.Statistics().Rounds);
-      EXPECT_EQ(s.RowsAnalysed, serial.Statistics().RowsAnalysed);
-      EXPECT_EQ(s.Splits, serial.Statistics().Splits);
-      EXPECT_EQ(s.HorizonSplits, serial.Statistics().HorizonSplits);
-      EXPECT_EQ(s.LimitedRequests, serial.Statistics().LimitedRequests);
-    }
-  }
+  ExpectSharedRefinementEqualsSerial(scene, before, pipeline.Refinement, serial);
 }
 
 TEST(CoverRefinement, ProgressAndAbort)

@@ -78,6 +78,20 @@ SphericalCover BuildInBlocks(const std::vector<Patch>& patches,
   return cover;
 }
 
+/// The ray fill on an 8 x 32 grid, the Cornell box's lamp measured on the lamp.
+SphericalCoverOptions MeasuredLampOptions(const Scene& scene)
+{
+  SphericalCoverOptions options;
+  options.ThetaBins = 8;
+  options.PhiBins = 32;
+  options.Fill = RBufferFill::RayCasting;
+  const int lamp = SurfaceNamed(scene, "light");
+  EXPECT_GE(lamp, 0);
+  options.MeasuredSurfaces.assign(scene.Surfaces.size(), false);
+  options.MeasuredSurfaces.at(static_cast<size_t>(lamp)) = true;
+  return options;
+}
+
 std::vector<Patch> CornellPatches(const Scene& scene)
 {
   std::vector<Patch> patches;
@@ -119,14 +133,7 @@ TEST(RowBlocks, ASharedCasterGivesTheSameRows)
 {
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
   const std::vector<Patch> patches = CornellPatches(scene);
-  SphericalCoverOptions options;
-  options.ThetaBins = 8;
-  options.PhiBins = 32;
-  options.Fill = RBufferFill::RayCasting;
-  const int lamp = SurfaceNamed(scene, "light");
-  ASSERT_GE(lamp, 0);
-  options.MeasuredSurfaces.assign(scene.Surfaces.size(), false);
-  options.MeasuredSurfaces[static_cast<size_t>(lamp)] = true;
+  const SphericalCoverOptions options = MeasuredLampOptions(scene);
   SphericalCover own;
   ASSERT_TRUE(own.Build(patches, options, ThreadedFor(2)));
   ASSERT_EQ(own.ExportArrays().Measures.size(), own.EntryCount());
@@ -211,14 +218,7 @@ TEST(RowBlocks, MeasuredLampJoinedEqualsSerial)
 {
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
   const std::vector<Patch> patches = CornellPatches(scene);
-  const int lamp = SurfaceNamed(scene, "light");
-  ASSERT_GE(lamp, 0);
-  SphericalCoverOptions options;
-  options.ThetaBins = 8;
-  options.PhiBins = 32;
-  options.Fill = RBufferFill::RayCasting;
-  options.MeasuredSurfaces.assign(scene.Surfaces.size(), false);
-  options.MeasuredSurfaces[static_cast<size_t>(lamp)] = true;
+  const SphericalCoverOptions options = MeasuredLampOptions(scene);
   SphericalCover serial;
   ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
   ASSERT_EQ(serial.ExportArrays().Measures.size(), serial.EntryCount());
