@@ -654,24 +654,23 @@ constexpr std::size_t RowChunksPerRank = 32;
  * This rank's rows of the cover, under MPI, into `bytes` (one AppendRowBlock per chunk) and
  * their count into `receivers`; progress from the cover's start to 0.9. The receivers are cut
  * into K x RowChunksPerRank consecutive chunks of about equal estimated cost
- * (SphericalCover::EstimateRowCosts) and rank r builds chunks r, r + K, ...: consecutive
- * receivers lie on one surface and cost alike, so dealing the chunks round the ranks evens out
- * what the estimate misses, as the direct light's interleaved nodes do. False, with a warning,
- * when aborted; throws what BuildRowBlock throws.
+ * (SphericalCover::EstimateRowCosts) and rank r builds chunks r, r + K, ... (share.MyItems):
+ * consecutive receivers lie on one surface and cost alike, so dealing the chunks round the
+ * ranks evens out what the estimate misses, as the direct light's interleaved nodes do. False,
+ * with a warning, when aborted; throws what BuildRowBlock throws.
  */
 bool BuildRowChunks(vtkSphericalCoverFilter* self,
   const CoverInput& prepared,
-  int rank,
-  int ranks,
+  const sphcover::RankShare& share,
   std::vector<char>& bytes,
   double& receivers)
 {
-  const std::size_t k = static_cast<std::size_t>(ranks);
-  const std::size_t chunks = k * RowChunksPerRank;
+  const std::size_t chunks = static_cast<std::size_t>(share.Ranks()) * RowChunksPerRank;
   const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
     sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options), chunks);
+  const std::vector<std::size_t> myChunks = share.MyItems(chunks);
   std::size_t mine = 0;
-  for (std::size_t c = static_cast<std::size_t>(rank); c < chunks; c += k)
+  for (const std::size_t c : myChunks)
   {
     mine += bounds[c + 1] - bounds[c];
   }
@@ -679,7 +678,7 @@ bool BuildRowChunks(vtkSphericalCoverFilter* self,
   vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
   bytes.clear();
   std::size_t done = 0;
-  for (std::size_t c = static_cast<std::size_t>(rank); c < chunks; c += k)
+  for (const std::size_t c : myChunks)
   {
     const std::size_t size = bounds[c + 1] - bounds[c];
     sphcover::SphericalCover::Arrays block;
@@ -828,7 +827,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
           return false;
         }
         const auto start = std::chrono::steady_clock::now();
-        if (!BuildRowChunks(self, prepared, rank, ranks, bytes, mine.Receivers))
+        if (!BuildRowChunks(self, prepared, share, bytes, mine.Receivers))
         {
           return false;
         }
@@ -861,7 +860,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
   {
     return 1; // an empty piece (vtkScenePieces.h)
   }
-  // Chunk c is the (c / K)-th block of rank c mod K (BuildRowChunks).
+  // Chunk c is the (c / K)-th block of rank c mod K (BuildRowChunks, RankShare::MyItems).
   std::vector<sphcover::SphericalCover::Arrays> blocks(RowChunksPerRank * received.size());
   sphcover::CullingStatistics culling;
   for (size_t r = 0; r < received.size(); ++r)

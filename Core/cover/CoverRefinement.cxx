@@ -169,6 +169,27 @@ void CoverRefinement::SetProbeExtents(std::vector<UVRect> extents, std::vector<i
   this->Extents.Groups = std::move(groups);
 }
 
+void CoverRefinement::SplitLeaves(const std::vector<char>& split)
+{
+  std::vector<int> nextLeaves;
+  for (std::size_t k = 0; k < this->Leaves.size(); ++k)
+  {
+    if (!split[k])
+    {
+      nextLeaves.push_back(this->Leaves[k]);
+      continue;
+    }
+    const Patch& leaf = this->Nodes[static_cast<std::size_t>(this->Leaves[k])];
+    const BezierPatch& surface =
+      this->Environment.Surfaces[static_cast<std::size_t>(leaf.SurfaceIndex)].Patch;
+    for (Patch& piece : SplitInThree(leaf, surface, SplitReason::RBuffer))
+    {
+      nextLeaves.push_back(this->AddNode(std::move(piece)));
+    }
+  }
+  this->Leaves = std::move(nextLeaves);
+}
+
 int CoverRefinement::AddNode(Patch piece)
 {
   const int node = static_cast<int>(this->Nodes.size());
@@ -195,13 +216,9 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   {
     failure = std::current_exception();
   }
-  if (this->Share.Distributed())
+  if (!this->Share.EveryRankOk(!failure) && !failure)
   {
-    std::vector<std::vector<char>> all;
-    if (!this->Share.Join({}, !failure, all) && !failure)
-    {
-      throw RankShare::PeerFailure();
-    }
+    throw RankShare::PeerFailure();
   }
   if (failure)
   {
@@ -217,13 +234,14 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
   // probed leaf keeps it: the leaves come out as splitting each leaf recursively, depth first,
   // gives them. Each round deepens by one level: at most MaxLevel + 1 rounds.
   const double expectedRounds = this->Settings.MaxLevel + 1.0;
-  std::vector<char> probed(this->Leaves.size(), 0);
+  // The leaves not yet probed: nodes from this index on (pieces of the last round's splits).
+  std::size_t firstUnprobed = 0;
   for (int round = 0;; ++round)
   {
     std::vector<std::size_t> untested;
-    for (std::size_t k = 0; k < probed.size(); ++k)
+    for (std::size_t k = 0; k < this->Leaves.size(); ++k)
     {
-      if (!probed[k])
+      if (static_cast<std::size_t>(this->Leaves[k]) >= firstUnprobed)
       {
         untested.push_back(k);
       }
@@ -263,36 +281,16 @@ bool CoverRefinement::SplitAcrossEnclosures(const ProgressCallback& progress,
     {
       return false;
     }
-    std::vector<int> nextLeaves;
-    std::vector<char> nextProbed;
-    std::size_t tested = 0;
+    std::vector<char> split(this->Leaves.size(), 0);
     std::size_t splits = 0;
-    for (std::size_t k = 0; k < this->Leaves.size(); ++k)
+    for (std::size_t u = 0; u < untested.size(); ++u)
     {
-      const bool split = !probed[k] && verdicts[tested].Split != 0;
-      if (!probed[k])
-      {
-        this->Stats.Probes += static_cast<std::size_t>(verdicts[tested++].Probes);
-      }
-      if (!split)
-      {
-        nextLeaves.push_back(this->Leaves[k]);
-        nextProbed.push_back(1);
-        continue;
-      }
-      ++splits;
-      const Patch& leaf = this->Nodes[static_cast<std::size_t>(this->Leaves[k])];
-      const BezierPatch& surface =
-        this->Environment.Surfaces[static_cast<std::size_t>(leaf.SurfaceIndex)].Patch;
-      std::array<Patch, 3> three = SplitInThree(leaf, surface, SplitReason::RBuffer);
-      for (Patch& piece : three)
-      {
-        nextLeaves.push_back(this->AddNode(std::move(piece)));
-        nextProbed.push_back(0);
-      }
+      split[untested[u]] = verdicts[u].Split != 0 ? 1 : 0;
+      splits += split[untested[u]];
+      this->Stats.Probes += static_cast<std::size_t>(verdicts[u].Probes);
     }
-    this->Leaves = std::move(nextLeaves);
-    probed = std::move(nextProbed);
+    firstUnprobed = this->Nodes.size();
+    this->SplitLeaves(split);
     this->Stats.Splits += splits;
     this->Stats.EnclosureSplits += splits;
   }
@@ -340,26 +338,9 @@ bool CoverRefinement::SplitAcrossHorizons(const ProgressCallback& progress,
     {
       return false;
     }
-    std::vector<int> nextLeaves;
-    size_t splits = 0;
-    for (size_t k = 0; k < count; ++k)
-    {
-      if (!split[k])
-      {
-        nextLeaves.push_back(this->Leaves[k]);
-        continue;
-      }
-      ++splits;
-      const Patch& leaf = this->Nodes[static_cast<size_t>(this->Leaves[k])];
-      const BezierPatch& surface =
-        this->Environment.Surfaces[static_cast<size_t>(leaf.SurfaceIndex)].Patch;
-      std::array<Patch, 3> three = SplitInThree(leaf, surface, SplitReason::RBuffer);
-      for (Patch& piece : three)
-      {
-        nextLeaves.push_back(this->AddNode(std::move(piece)));
-      }
-    }
-    this->Leaves = std::move(nextLeaves);
+    const std::size_t splits =
+      static_cast<std::size_t>(std::count_if(split.begin(), split.end(), [](char s) { return s; }));
+    this->SplitLeaves(split);
     this->Stats.Splits += splits;
     this->Stats.HorizonSplits += splits;
     this->Stats.OutputPatches = this->Leaves.size();
@@ -548,38 +529,32 @@ bool CoverRefinement::ReplaceSplitPatches(const std::vector<char>& hidden,
 {
   // Every split patch is replaced by its three pieces, in its place.
   const size_t count = this->Leaves.size();
-  std::vector<int> nextLeaves;
+  std::vector<char> split(count, 0);
   std::vector<char> splitNode(this->Nodes.size(), 0);
   for (size_t k = 0; k < count; ++k)
   {
-    const int node = this->Leaves[k];
     if (!hidden[k] && !disconnected[k])
     {
-      nextLeaves.push_back(node);
       continue;
     }
+    const int node = this->Leaves[k];
+    split[k] = 1;
     splitNode[static_cast<size_t>(node)] = 1;
     ++this->Stats.Splits;
     if (!hidden[k])
     {
       ++this->Stats.DisconnectedSplits;
     }
-    const Patch& parent = this->Nodes[static_cast<size_t>(node)];
-    const BezierPatch& surface =
-      this->Environment.Surfaces[static_cast<size_t>(parent.SurfaceIndex)].Patch;
-    for (Patch& piece : SplitInThree(parent, surface, SplitReason::RBuffer))
-    {
-      nextLeaves.push_back(this->AddNode(std::move(piece)));
-    }
     this->VisibleNodes[static_cast<size_t>(node)].clear();
   }
-  if (nextLeaves.size() == count)
+  this->SplitLeaves(split);
+  if (this->Leaves.size() == count)
   {
     return false;
   }
   // A hemisphere in which a split patch was visible must be analysed again (its pieces may
   // be hidden differently); one in which it was hidden keeps its verdicts.
-  for (int node : nextLeaves)
+  for (int node : this->Leaves)
   {
     const std::vector<int>& visible = this->VisibleNodes[static_cast<size_t>(node)];
     if (this->Analysed[static_cast<size_t>(node)] &&
@@ -590,7 +565,6 @@ bool CoverRefinement::ReplaceSplitPatches(const std::vector<char>& hidden,
       this->Analysed[static_cast<size_t>(node)] = false;
     }
   }
-  this->Leaves = std::move(nextLeaves);
   this->Stats.OutputPatches = this->Leaves.size();
   return true;
 }

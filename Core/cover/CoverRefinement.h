@@ -141,6 +141,9 @@ private:
   /// Step 5: replaces the marked leaves by their pieces and marks for analysis the
   /// hemispheres in which a split patch was visible; false when nothing was split.
   bool ReplaceSplitPatches(const std::vector<char>& hidden, const std::vector<char>& disconnected);
+  /// Replaces every leaf k with split[k] set by its three pieces (SplitInThree, new nodes), in
+  /// its place: Steps 1, 2 and 5 split alike.
+  void SplitLeaves(const std::vector<char>& split);
   /// Appends a new node (a piece of a split) and returns its index.
   int AddNode(Patch piece);
 

@@ -98,6 +98,14 @@ public:
     return this->JoinBytes(mine, ok, false, all);
   }
 
+  /// Whether every rank gave `ok` true: a verdict only this rank can reach (its own check or
+  /// failure), joined so that the ranks go on or stop together. Collective; one process: `ok`.
+  bool EveryRankOk(bool ok) const
+  {
+    std::vector<std::vector<char>> all;
+    return this->Join({}, ok, all);
+  }
+
   /// Join when every rank gives as many bytes: one collective instead of two (the per-shot
   /// exchanges of a shared propagation).
   bool JoinSameSize(const std::vector<char>& mine,

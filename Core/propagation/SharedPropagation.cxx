@@ -195,7 +195,7 @@ void LightPropagation::ExchangeShotNeeds()
         fits && this->SentPositions[j].back() < this->Cover.EntryEnd(j) - this->Cover.EntryBegin(j);
     }
   }
-  if (!this->Share.Join({}, fits, all))
+  if (!this->Share.EveryRankOk(fits))
   {
     Expect(fits, "shot needs");
     throw RankShare::PeerFailure();
