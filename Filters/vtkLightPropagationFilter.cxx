@@ -239,8 +239,6 @@ struct PropagationRanks
   vtkMultiProcessController* Controller = nullptr;
   bool EveryRankWrites = true;
   sphcover::RankShare Share;
-  std::size_t First = 0;
-  std::size_t Last = 0;
 };
 
 /// Core's progress callback through `progress`, noting in `aborted` that the user stopped it.
@@ -253,137 +251,67 @@ std::function<bool(double)> NotingAbort(vtkStageProgress& progress, bool& aborte
   };
 }
 
-/// The exchange balance of the whole `cover` (ExchangeBalance.h; the first 5% of the
-/// progress): its factors, by entry. False, with a warning, when aborted.
+/// The exchange balance of `rows` (ExchangeBalance.h; the first 5% of the progress): its
+/// factors, by entry. Under MPI (`share`) the ranks balance together, each its own rows, and a
+/// rank that stops stops them all. False when stopped, with a warning on the rank whose user
+/// stopped it.
 bool BalanceFactors(vtkLightPropagationFilter* self,
-  const sphcover::SphericalCover& cover,
+  const sphcover::SphericalCover& rows,
+  const sphcover::RankShare& share,
   std::vector<double>& factors)
 {
   // The balance is a few passes over the entries (~1 s for the Cornell box's 6.5M).
   vtkStageProgress progress(self, "Light Propagation: balancing", 0.0, 0.05);
   bool aborted = false;
-  const sphcover::ExchangeBalance balance(cover, {}, NotingAbort(progress, aborted));
+  const sphcover::ExchangeBalance balance(rows, {}, NotingAbort(progress, aborted), share);
   if (aborted)
   {
     vtkWarningWithObjectMacro(self, "Light propagation aborted.");
-    return false;
   }
   factors = balance.EntryFactors();
-  return true;
+  return !balance.Aborted();
 }
 
-/// The factors of the rows of receivers [first, last) of `cover` among `all` (by entry; none
-/// stay none).
-std::vector<double> FactorsOfRows(const std::vector<double>& all,
-  const sphcover::SphericalCover& cover,
-  std::size_t first,
-  std::size_t last)
+/// Rank `rank`'s (of `ranks`) rows of `cover`: those of its receivers rank, rank + K, ...
+/// (RankShare::MyItems, as LightPropagation::SetRankShare takes them).
+sphcover::SphericalCover RowsOfRank(const sphcover::SphericalCover& cover, int rank, int ranks)
 {
-  if (all.empty())
-  {
-    return all;
-  }
-  return std::vector<double>(all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(first)),
-    all.begin() + static_cast<std::ptrdiff_t>(cover.EntryBegin(last)));
-}
-
-/// Rank r's receivers [bounds[r], bounds[r + 1]) of `cover`, split by their estimated cost
-/// (LightPropagation::EstimateRowCosts: their entries and their non-diffuse shots), for the
-/// controller's K ranks.
-std::vector<std::size_t> ReceiverBounds(const sphcover::SphericalCover& cover,
-  const std::vector<sphcover::Material>& materials,
-  int ranks)
-{
-  return sphcover::SphericalCover::PartitionRows(
-    sphcover::LightPropagation::EstimateRowCosts(cover, materials),
-    static_cast<std::size_t>(ranks));
-}
-
-/// What one rank propagates: its receivers [First, Last), their rows (SphericalCover::RowsOf)
-/// and the rows' exchange factors.
-struct RankRows
-{
-  std::size_t First = 0;
-  std::size_t Last = 0;
-  sphcover::SphericalCover Rows;
-  std::vector<double> Factors;
-};
-
-/// Rank `rank`'s receivers of `bounds`, their rows of `cover` and their factors among `all`.
-RankRows RowsOfRank(const sphcover::SphericalCover& cover,
-  const std::vector<double>& all,
-  const std::vector<std::size_t>& bounds,
-  std::size_t rank)
-{
-  RankRows rows;
-  rows.First = bounds[rank];
-  rows.Last = bounds[rank + 1];
-  rows.Rows = cover.RowsOf(rows.First, rows.Last);
-  rows.Factors = FactorsOfRows(all, cover, rows.First, rows.Last);
-  return rows;
+  return cover.RowsOf(sphcover::RankShare::ItemsOf(rank, ranks, cover.PatchCount()));
 }
 
 /**
- * Rank 0 holds the whole `cover` and its exchange factors `allFactors` (by entry), keeps its
- * own rows and deals every other rank its rows and their factors
- * (vtkCoverDistribution::DealFromFirst), one rank at a time; the other ranks hold neither and
+ * Rank 0 holds the whole `cover`, keeps its own rows and deals every other rank its rows
+ * (vtkCoverDistribution::DealFromFirst), one rank at a time; the other ranks hold none and
  * receive theirs. Collective; throws what the bytes' reading finds wrong.
  */
-RankRows DealRows(vtkMultiProcessController* controller,
-  const sphcover::SphericalCover& cover,
-  const std::vector<sphcover::Material>& materials,
-  const std::vector<double>& allFactors)
+sphcover::SphericalCover DealRows(vtkMultiProcessController* controller,
+  const sphcover::SphericalCover& cover)
 {
   const bool dealer = controller->GetLocalProcessId() == 0;
-  const std::vector<std::size_t> bounds = dealer
-    ? ReceiverBounds(cover, materials, controller->GetNumberOfProcesses())
-    : std::vector<std::size_t>();
+  const int ranks = controller->GetNumberOfProcesses();
   const std::vector<char> bytes = vtkCoverDistribution::DealFromFirst(controller,
     [&](int rank)
     {
       // One copy of the rank's rows at a time beside the cover (they are a K-th of it).
-      std::vector<char> block;
-      {
-        RankRows rows = RowsOfRank(cover, allFactors, bounds, static_cast<std::size_t>(rank));
-        sphcover::ByteWriter out(block);
-        out.Value(static_cast<uint64_t>(rows.First));
-        out.Value(static_cast<uint64_t>(rows.Last));
-        out.Array(rows.Factors);
-        sphcover::SphericalCover::Arrays arrays = rows.Rows.ExportArrays();
-        rows = RankRows();
-        const std::vector<char> packed = sphcover::PackRowBlock(arrays, {});
-        arrays = sphcover::SphericalCover::Arrays();
-        out.Array(packed);
-      }
-      return block;
+      sphcover::SphericalCover::Arrays arrays = RowsOfRank(cover, rank, ranks).ExportArrays();
+      return sphcover::PackRowBlock(arrays, {});
     });
   if (dealer)
   {
-    return RowsOfRank(cover, allFactors, bounds, 0);
+    return RowsOfRank(cover, 0, ranks);
   }
-  RankRows mine;
-  sphcover::ByteReader in(bytes);
-  uint64_t first = 0;
-  uint64_t last = 0;
-  std::vector<char> rows;
-  if (!(in.Value(first) && in.Value(last) && in.Array(mine.Factors) && in.Array(rows) &&
-        in.AtEnd()))
-  {
-    throw std::runtime_error("the rows dealt to this rank are damaged");
-  }
+  sphcover::SphericalCover mine;
   sphcover::SphericalCover::Arrays arrays;
   sphcover::CullingStatistics culling;
-  std::string problem = sphcover::UnpackRowBlock(rows.data(), rows.size(), arrays, culling);
+  std::string problem = sphcover::UnpackRowBlock(bytes.data(), bytes.size(), arrays, culling);
   if (problem.empty())
   {
-    problem = mine.Rows.ImportArrays(std::move(arrays));
+    problem = mine.ImportArrays(std::move(arrays));
   }
-  if (!problem.empty() || first > last || last > mine.Rows.PatchCount())
+  if (!problem.empty())
   {
     throw std::runtime_error("the rows dealt to this rank are damaged: " + problem);
   }
-  mine.First = static_cast<std::size_t>(first);
-  mine.Last = static_cast<std::size_t>(last);
   return mine;
 }
 
@@ -416,7 +344,7 @@ bool Propagate(vtkLightPropagationFilter* self,
   }
   if (ranks.Share.Distributed())
   {
-    propagation.SetRankShare(ranks.Share, ranks.First, ranks.Last);
+    propagation.SetRankShare(ranks.Share);
   }
   bool aborted = false;
   vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
@@ -503,12 +431,14 @@ bool LampPatchesOf(vtkPolyData* points,
   return true;
 }
 
-/// This rank's part of the results: per own patch its irradiance, radiosity, brightness and lamp
-/// irradiance, the incident radiance of its rows' regions, and the energy. Collective under
-/// MPI (the lamps' irradiance and the energy join inside).
+/// This rank's part of the results: per own patch (RankShare::MyItems) its irradiance,
+/// radiosity, brightness and lamp irradiance, its row's length and the incident radiance of its
+/// row's regions, and the energy. Collective under MPI (the lamps' irradiance and the energy
+/// join inside).
 struct OwnResults
 {
   std::vector<glm::dvec3> PerPatch;
+  std::vector<uint64_t> RowLengths;
   std::vector<glm::dvec3> Incident;
   sphcover::EnergyBalance Energy;
   std::size_t Count = 0;
@@ -516,6 +446,7 @@ struct OwnResults
 };
 
 OwnResults OwnResultsOf(const sphcover::LightPropagation& propagation,
+  const sphcover::SphericalCover& rows,
   const std::vector<bool>& lampPatch,
   bool firstBounce)
 {
@@ -526,47 +457,64 @@ OwnResults OwnResultsOf(const sphcover::LightPropagation& propagation,
     ? propagation.LampIrradiance(lampPatch, firstBounce)
     : std::vector<glm::dvec3>();
   own.Energy = propagation.Energy();
-  for (std::size_t i = propagation.OwnedBegin(); i < propagation.OwnedEnd(); ++i)
+  for (std::size_t i = 0; i < own.Count; ++i)
   {
+    if (!propagation.Owns(i))
+    {
+      continue;
+    }
     own.PerPatch.push_back(propagation.Irradiance(i));
     own.PerPatch.push_back(propagation.ExitantRadiance(i));
     own.PerPatch.push_back(propagation.Brightness(i));
     own.PerPatch.push_back(own.Lamps ? lamp[i] : glm::dvec3(0.0));
+    own.RowLengths.push_back(rows.EntryEnd(i) - rows.EntryBegin(i));
   }
   own.Incident = propagation.IncidentRadiances();
   return own;
 }
 
 /// The results of every patch and region: this rank's own alone, or under MPI (collective)
-/// each rank's patches and rows joined in rank order (the ranks' ranges tile the patches).
+/// each rank's patches and rows put back in patch order (the ranks' own patches are dealt
+/// round them: RankShare::MyItems), on every rank or on rank 0 alone.
 PropagationResults JoinResults(const PropagationRanks& ranks, OwnResults own)
 {
-  // Every rank's values in rank order, on every rank or on rank 0 alone.
-  const auto join = [&ranks](const std::vector<glm::dvec3>& values)
+  const bool everyRank = ranks.EveryRankWrites || !ranks.Controller;
+  const bool writer = everyRank || ranks.Controller->GetLocalProcessId() == 0;
+  // Every rank's values of its own patches, item k's lengths[k] of them, in patch order on the
+  // ranks that write (empty on the others).
+  const auto join = [&ranks, everyRank, writer](
+                      const auto& values, const std::vector<std::size_t>& lengths)
   {
-    if (ranks.EveryRankWrites || !ranks.Controller)
-    {
-      return sphcover::JoinValues(ranks.Share, values.data(), values.size());
-    }
+    using Value = typename std::decay_t<decltype(values)>::value_type;
     std::vector<char> bytes;
     sphcover::ByteWriter(bytes).Values(values.data(), values.size());
-    return sphcover::ValuesOfRanks<glm::dvec3>(
-      vtkCoverDistribution::GatherBytes(ranks.Controller, bytes, false));
+    std::vector<std::vector<char>> all;
+    if (everyRank)
+    {
+      if (!ranks.Share.Join(bytes, true, all))
+      {
+        throw sphcover::RankShare::PeerFailure();
+      }
+    }
+    else
+    {
+      all = vtkCoverDistribution::GatherBytes(ranks.Controller, bytes, false);
+    }
+    return writer ? sphcover::ItemsFromRanks<Value>(all, lengths) : std::vector<Value>();
   };
   PropagationResults results;
   results.Energy = own.Energy;
-  const std::vector<glm::dvec3> perPatch = join(own.PerPatch);
+  const std::vector<uint64_t> rowLengths =
+    join(own.RowLengths, std::vector<std::size_t>(own.Count, 1));
+  const std::vector<glm::dvec3> perPatch =
+    join(own.PerPatch, std::vector<std::size_t>(own.Count, 4));
   own.PerPatch = std::vector<glm::dvec3>();
-  results.Incident = join(own.Incident);
+  results.Incident =
+    join(own.Incident, std::vector<std::size_t>(rowLengths.begin(), rowLengths.end()));
   own.Incident = std::vector<glm::dvec3>();
-  if (!ranks.EveryRankWrites && ranks.Controller->GetLocalProcessId() != 0)
+  if (!writer)
   {
     return results; // rank 0 writes the solution
-  }
-  if (perPatch.size() != 4 * own.Count)
-  {
-    throw std::runtime_error("the ranks' results cover " + std::to_string(perPatch.size() / 4) +
-      " of " + std::to_string(own.Count) + " points");
   }
   for (std::size_t i = 0; i < own.Count; ++i)
   {
@@ -899,7 +847,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   }
 
   PropagationRanks ranks;
-  RankRows mine;
+  sphcover::SphericalCover rows;
   std::vector<bool> lampPatch;
   bool firstBounce = false;
   PropagationResults results;
@@ -922,64 +870,50 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       }
       return stopped.empty();
     };
-    // The exchange balance needs the whole cover: each holder computes it.
-    std::vector<double> factors;
-    if (this->BalanceExchanges &&
-      !completedOnEveryRank([&] { return !holder || BalanceFactors(this, cover, factors); }))
-    {
-      return 0;
-    }
     if (!controller)
     {
-      mine.Last = cover.PatchCount();
-      mine.Rows = std::move(cover);
-      mine.Factors = std::move(factors);
+      rows = std::move(cover);
     }
     else
     {
       // Rank r shoots into the rows of its receivers. A rank keeps (or is dealt) its rows and
-      // the whole cover goes before the propagation's state exists: the memory that falls with
-      // the ranks. Its state must fit MemoryLimit, not the whole cover's.
-      if (dealt)
-      {
-        mine = DealRows(controller, cover, materials, factors);
-      }
-      else
-      {
-        mine = RowsOfRank(cover,
-          factors,
-          ReceiverBounds(cover, materials, controller->GetNumberOfProcesses()),
-          static_cast<std::size_t>(controller->GetLocalProcessId()));
-      }
+      // the whole cover goes before the balance and the propagation's state exist: the memory
+      // that falls with the ranks. Its state must fit MemoryLimit, not the whole cover's.
+      rows = dealt
+        ? DealRows(controller, cover)
+        : RowsOfRank(cover, controller->GetLocalProcessId(), controller->GetNumberOfProcesses());
       cover = sphcover::SphericalCover();
-      factors = std::vector<double>();
       ranks.Share = vtkCoverDistribution::ShareOf(controller);
-      ranks.First = mine.First;
-      ranks.Last = mine.Last;
       ranks.Controller = controller;
       ranks.EveryRankWrites = !dealt;
-      problem = agree(MemoryProblem(mine.Rows, materials, this->MemoryLimit));
+      problem = agree(MemoryProblem(rows, materials, this->MemoryLimit));
       if (!problem.empty())
       {
         vtkErrorMacro(<< "Cannot propagate light: " << problem);
         return 0;
       }
     }
-    LampPatchesOf(input, mine.Rows, materials, lampPatch, firstBounce);
-    auto propagation = std::make_unique<sphcover::LightPropagation>(mine.Rows, materials);
-    if (!completedOnEveryRank(
-          [&] { return Propagate(this, input, ranks, mine.Factors, *propagation); }))
+    // Under MPI the ranks balance the exchange together, each its own rows.
+    std::vector<double> factors;
+    if (this->BalanceExchanges &&
+      !completedOnEveryRank([&] { return BalanceFactors(this, rows, ranks.Share, factors); }))
     {
       return 0;
     }
-    OwnResults own = OwnResultsOf(*propagation, lampPatch, firstBounce);
+    LampPatchesOf(input, rows, materials, lampPatch, firstBounce);
+    auto propagation = std::make_unique<sphcover::LightPropagation>(rows, materials);
+    if (!completedOnEveryRank([&] { return Propagate(this, input, ranks, factors, *propagation); }))
+    {
+      return 0;
+    }
+    OwnResults own = OwnResultsOf(*propagation, rows, lampPatch, firstBounce);
     const std::vector<sphcover::ShotRecord>& shots = propagation->History();
     if (controller)
     {
       // What each rank held and did (GetRankFigures), gathered in rank order.
-      const double done[4] = { static_cast<double>(ranks.Last - ranks.First),
-        static_cast<double>(mine.Rows.EntryCount()),
-        static_cast<double>(sphcover::LightPropagation::EstimateBytes(mine.Rows, materials)),
+      const double done[4] = { static_cast<double>(own.RowLengths.size()),
+        static_cast<double>(rows.EntryCount()),
+        static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)),
         shots.empty() ? 0.0 : shots.back().Seconds };
       this->RankFigures = sphcover::JoinValues(ranks.Share, done, 4, true);
       this->RankCount = controller->GetNumberOfProcesses();
@@ -992,7 +926,8 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     // The propagation's state goes before the ranks' results are joined: the join holds every
     // rank's regions, and beside the state it was each rank's peak memory.
     propagation.reset();
-    mine = RankRows();
+    rows = sphcover::SphericalCover();
+    factors = std::vector<double>();
     results = JoinResults(ranks, std::move(own));
   }
   catch (const std::exception& e)

@@ -48,14 +48,16 @@
  * Processes (Controller, by default the global controller): when every one of K > 1 processes
  * holds the whole cover (`mpiexec -n K sphcover`, whose cover filter gives every rank the
  * gathered rows), the K ranks propagate together (LightPropagation::SetRankShare): rank r
- * shoots into the rows of its range of receivers, split by their entries, and the results are
- * gathered, so every rank's outputs are the serial ones (the per-patch values and the regions'
+ * shoots into the rows of its receivers r, r + K, ... (dealt round the ranks one by one, so
+ * that each rank has a K-th of every surface and of each batch's shooters), and the results
+ * are gathered, so every rank's outputs are the serial ones (the per-patch values and the regions'
  * incident radiances bit for bit; the energy sums up to the order of addition). When rank 0
  * holds the cover and the others empty pieces (pvbatch, pvserver), rank 0 deals each rank its
- * rows (the other ranks never hold the whole cover) and the K ranks propagate together in the
- * same way; the results are gathered on rank 0, which writes the solution, and the others keep
- * empty outputs, as above. FixedOrder runs on each process alone, as described
- * above. Every process must update the filter together, as for vtkSphericalCoverFilter.
+ * rows (the other ranks never hold the whole cover) and the K ranks balance the exchange
+ * (ExchangeBalance under a share: each its own rows, the factors the whole cover's bit for bit)
+ * and propagate together in the same way; the results are gathered on rank 0, which writes the
+ * solution, and the others keep empty outputs, as above. FixedOrder runs on each process alone, as
+ * described above. Every process must update the filter together, as for vtkSphericalCoverFilter.
  */
 #ifndef vtkLightPropagationFilter_h
 #define vtkLightPropagationFilter_h

@@ -691,51 +691,66 @@ void SphericalCover::Adopt(Arrays arrays, const SphericalCoverOptions& options)
   this->BuildColumns();
 }
 
-SphericalCover SphericalCover::RowsOf(std::size_t first, std::size_t last) const
+SphericalCover SphericalCover::RowsOf(const std::vector<std::size_t>& receivers) const
 {
   const std::size_t n = this->PatchCount();
-  if (first > last || last > n)
+  for (std::size_t k = 0; k < receivers.size(); ++k)
   {
-    throw std::invalid_argument("SphericalCover::RowsOf: rows [" + std::to_string(first) + ", " +
-      std::to_string(last) + ") of " + std::to_string(n));
+    if (receivers[k] >= n || (k > 0 && receivers[k] <= receivers[k - 1]))
+    {
+      throw std::invalid_argument("SphericalCover::RowsOf: receiver " +
+        std::to_string(receivers[k]) + " of " + std::to_string(n) +
+        (receivers[k] >= n ? "" : ", not after the previous one"));
+    }
   }
-  const std::size_t entryBegin = n == 0 ? 0 : this->RowOffsets[first];
-  const std::size_t entryEnd = n == 0 ? 0 : this->RowOffsets[last];
-  const std::size_t stripBegin = entryBegin < entryEnd ? this->Entries[entryBegin].FirstStrip : 0;
-  const std::size_t stripEnd = entryBegin < entryEnd ? this->StripEnd(entryEnd - 1) : 0;
   Arrays kept;
   kept.ThetaBins = this->Grid().ThetaBins();
   kept.PhiBins = this->Grid().PhiBins();
   kept.SamplesTheta = this->Grid().SamplesTheta();
   kept.SamplesPhi = this->Grid().SamplesPhi();
   kept.Fill = static_cast<int>(this->BuildOptions.Fill);
-  kept.RowOffsets.resize(n + 1);
-  for (std::size_t i = 0; i <= n; ++i)
+  kept.RowOffsets.assign(n + 1, 0);
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < n; ++i)
   {
-    const std::size_t offset = this->RowOffsets[std::min(std::max(i, first), last)];
-    kept.RowOffsets[i] = offset - entryBegin;
+    const bool keep = next < receivers.size() && receivers[next] == i;
+    std::size_t rowEntries = 0;
+    if (keep)
+    {
+      ++next;
+      const std::size_t begin = this->RowOffsets[i];
+      const std::size_t end = this->RowOffsets[i + 1];
+      rowEntries = end - begin;
+      // The row's strips are consecutive: its first entry's first to its last entry's end.
+      const std::size_t stripBegin = begin < end ? this->Entries[begin].FirstStrip : 0;
+      const std::size_t stripEnd = begin < end ? this->StripEnd(end - 1) : 0;
+      const std::size_t keptStrips = kept.Strips.size();
+      for (std::size_t e = begin; e < end; ++e)
+      {
+        Entry entry = this->Entries[e];
+        entry.FirstStrip = static_cast<uint32_t>(entry.FirstStrip - stripBegin + keptStrips);
+        kept.Entries.push_back(entry);
+      }
+      auto append = [](auto& to, const auto& from, std::size_t b, std::size_t e, std::size_t width)
+      {
+        if (!from.empty())
+        {
+          to.insert(to.end(),
+            from.begin() + static_cast<std::ptrdiff_t>(b * width),
+            from.begin() + static_cast<std::ptrdiff_t>(e * width));
+        }
+      };
+      append(kept.Unoccluded, this->Unoccluded, begin, end, 1);
+      append(kept.Strips, this->Strips, stripBegin, stripEnd, 1);
+      append(kept.StripDepths, this->StripDepths, stripBegin, stripEnd, 1);
+      append(kept.Measures, this->Measures, begin, end, 1);
+      append(kept.Layers, this->Layers, begin, end, 1);
+      append(kept.Filters, this->Filters, begin, end, 3);
+    }
+    kept.RowOffsets[i + 1] = kept.RowOffsets[i] + rowEntries;
   }
-  kept.Entries.assign(this->Entries.begin() + static_cast<std::ptrdiff_t>(entryBegin),
-    this->Entries.begin() + static_cast<std::ptrdiff_t>(entryEnd));
-  for (Entry& entry : kept.Entries)
-  {
-    entry.FirstStrip -= static_cast<uint32_t>(stripBegin);
-  }
-  auto slice = [](const auto& values, std::size_t begin, std::size_t end, std::size_t width)
-  {
-    using Vector = std::decay_t<decltype(values)>;
-    return values.empty() ? Vector()
-                          : Vector(values.begin() + static_cast<std::ptrdiff_t>(begin * width),
-                              values.begin() + static_cast<std::ptrdiff_t>(end * width));
-  };
-  kept.Unoccluded = slice(this->Unoccluded, entryBegin, entryEnd, 1);
   kept.UnoccludedKnown = this->UnoccludedKnown;
-  kept.Strips = slice(this->Strips, stripBegin, stripEnd, 1);
-  kept.StripDepths = slice(this->StripDepths, stripBegin, stripEnd, 1);
   kept.Areas = this->Areas;
-  kept.Measures = slice(this->Measures, entryBegin, entryEnd, 1);
-  kept.Layers = slice(this->Layers, entryBegin, entryEnd, 1);
-  kept.Filters = slice(this->Filters, entryBegin, entryEnd, 3);
   kept.Transmittances = this->Transmittances;
   const std::string problem = CheckArrays(kept);
   if (!problem.empty())
@@ -746,6 +761,20 @@ SphericalCover SphericalCover::RowsOf(std::size_t first, std::size_t last) const
   cover.Adopt(std::move(kept), this->BuildOptions);
   cover.CullingCounts = this->CullingCounts;
   return cover;
+}
+
+std::vector<std::size_t> SphericalCover::KeptEntries(
+  const std::vector<std::size_t>& receivers) const
+{
+  std::vector<std::size_t> entries;
+  for (const std::size_t i : receivers)
+  {
+    for (std::size_t e = this->EntryBegin(i); e < this->EntryEnd(i); ++e)
+    {
+      entries.push_back(e);
+    }
+  }
+  return entries;
 }
 
 std::vector<double> SphericalCover::EstimateRowCosts(const std::vector<Patch>& patches,

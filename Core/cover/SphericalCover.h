@@ -327,12 +327,17 @@ public:
     const CullingStatistics& culling);
 
   /**
-   * A copy that keeps the rows of receivers [first, last) and empties the others (their areas
-   * and the panes' transmittances stay): the part of the cover one rank of a distributed
-   * propagation holds (LightPropagation::SetRankShare). Entry e of the copy is entry
-   * e + EntryBegin(first) of this cover. Throws std::invalid_argument for a bad range.
+   * A copy that keeps the rows of `receivers` (ascending, each once) and empties the others
+   * (their areas and the panes' transmittances stay): the part of the cover one rank of a
+   * distributed propagation holds (LightPropagation::SetRankShare). The copy's entries are the
+   * kept rows' entries in receiver order (KeptEntries). Throws std::invalid_argument for a
+   * receiver out of range or out of order.
    */
-  SphericalCover RowsOf(std::size_t first, std::size_t last) const;
+  SphericalCover RowsOf(const std::vector<std::size_t>& receivers) const;
+
+  /// The indices of the entries of `receivers`' rows in receiver order: entry e of
+  /// RowsOf(receivers) is entry KeptEntries(receivers)[e] of this cover.
+  std::vector<std::size_t> KeptEntries(const std::vector<std::size_t>& receivers) const;
 
   // --- statistics and memory -------------------------------------------------------------------
   /// Candidate culling counts summed over all receivers (projection fill only).

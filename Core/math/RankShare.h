@@ -82,13 +82,26 @@ public:
   /// surface), are spread over the ranks and the ranks' loads are balanced without an estimate.
   std::vector<std::size_t> MyItems(std::size_t count) const
   {
+    return ItemsOf(this->ThisRank, this->RankCount, count);
+  }
+
+  /// Rank `rank`'s items of [0, count) among `ranks` (MyItems of that rank).
+  static std::vector<std::size_t> ItemsOf(int rank, int ranks, std::size_t count)
+  {
     std::vector<std::size_t> items;
-    const std::size_t k = static_cast<std::size_t>(this->RankCount);
-    for (std::size_t item = static_cast<std::size_t>(this->ThisRank); item < count; item += k)
+    const std::size_t k = static_cast<std::size_t>(ranks);
+    for (std::size_t item = static_cast<std::size_t>(rank); item < count; item += k)
     {
       items.push_back(item);
     }
     return items;
+  }
+
+  /// Whether `item` is among this rank's items (MyItems): item mod K = Rank().
+  bool Owns(std::size_t item) const
+  {
+    return item % static_cast<std::size_t>(this->RankCount) ==
+      static_cast<std::size_t>(this->ThisRank);
   }
 
   /// Every rank's `mine`, in rank order, into `all`; false (and `all` empty) when some rank
@@ -272,6 +285,62 @@ std::vector<Value> JoinValues(const RankShare& share,
     throw RankShare::PeerFailure();
   }
   return ValuesOfRanks<Value>(all);
+}
+
+/**
+ * The values of items [0, lengths.size()) in item order, item k's lengths[k] of them, from
+ * every rank's bytes in rank order (as Join or a gather gives them): rank r's are the values of
+ * its items r, r + K, ... (RankShare::MyItems), in that order, written by ByteWriter::Values.
+ * Throws std::runtime_error when a rank's bytes are not exactly its items' values.
+ */
+template<typename Value>
+std::vector<Value> ItemsFromRanks(const std::vector<std::vector<char>>& all,
+  const std::vector<std::size_t>& lengths)
+{
+  const std::size_t count = lengths.size();
+  std::vector<std::size_t> offsets(count + 1, 0);
+  for (std::size_t item = 0; item < count; ++item)
+  {
+    offsets[item + 1] = offsets[item] + lengths[item];
+  }
+  std::vector<Value> values(offsets[count]);
+  const std::size_t ranks = all.size();
+  for (std::size_t r = 0; r < ranks; ++r)
+  {
+    ByteReader reader(all[r]);
+    bool whole = true;
+    for (std::size_t item = r; whole && item < count; item += ranks)
+    {
+      whole = reader.Values(values.data() + offsets[item], lengths[item]);
+    }
+    if (!whole || !reader.AtEnd())
+    {
+      throw std::runtime_error("ItemsFromRanks: rank " + std::to_string(r) + " sent " +
+        std::to_string(all[r].size()) + " bytes, not its items' values");
+    }
+  }
+  return values;
+}
+
+/**
+ * Every item's `lengths[k]` values in item order, on every rank, from each rank's `mine`: the
+ * values of its own items (RankShare::MyItems) in that order. Collective; throws
+ * RankShare::PeerFailure when a rank failed, std::runtime_error when a rank's values do not
+ * match `lengths`. One process: a copy.
+ */
+template<typename Value>
+std::vector<Value> JoinItems(const RankShare& share,
+  const std::vector<Value>& mine,
+  const std::vector<std::size_t>& lengths)
+{
+  std::vector<char> bytes;
+  ByteWriter(bytes).Values(mine.data(), mine.size());
+  std::vector<std::vector<char>> all;
+  if (!share.Join(bytes, true, all))
+  {
+    throw RankShare::PeerFailure();
+  }
+  return ItemsFromRanks<Value>(all, lengths);
 }
 
 /**

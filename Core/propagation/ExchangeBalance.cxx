@@ -5,19 +5,29 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace sphcover
 {
 namespace
 {
 
+/// Bits below a column's largest term (rounded up to a power of two, 2^e) that its fixed-point
+/// sum keeps: each term's truncation costs less than 2^(e - 100), and 2^28 terms still fit the
+/// 128 bits.
+constexpr int FixedPointBits = 100;
+__extension__ typedef unsigned __int128 FixedPoint; // GCC's and Clang's 128-bit integer
+
 /// The matrix scaling of the balance (see the header): the throughputs G_ij = A_i Omega_ij by
 /// entry (row order) and in column order, the targets r_i, and the factors x (rows), y (columns).
+/// Under a share the cover holds this rank's rows; x is known for them, y and r for every patch.
 class MatrixScaling
 {
 public:
-  explicit MatrixScaling(const SphericalCover& cover)
-    : Cover(cover)
+  MatrixScaling(const SphericalCover& cover, const RankShare& share)
+    : Share(share)
+    , Cover(cover)
     , RowThroughput(cover.EntryCount())
     , ColumnThroughput(cover.EntryCount())
     , Target(cover.PatchCount(), 0.0)
@@ -39,29 +49,112 @@ public:
     {
       this->ColumnThroughput[k] = this->RowThroughput[cover.ColumnAt(k).EntryIndex];
     }
+    if (share.Distributed())
+    {
+      // r_j is its row's: every rank needs every source's.
+      std::vector<double> mine;
+      for (const std::size_t i : share.MyItems(cover.PatchCount()))
+      {
+        mine.push_back(this->Target[i]);
+      }
+      this->Target = JoinItems(share, mine, std::vector<std::size_t>(cover.PatchCount(), 1));
+    }
+  }
+
+  /**
+   * sum_i x_i G_ij of every column j over every rank's rows, the same whatever the order of
+   * the terms or the ranks: each term is truncated to a multiple of 2^(e_j - FixedPointBits),
+   * 2^e_j above the column's largest term, and the integers are added. False (after the joins,
+   * so that no rank waits) when some rank's `stop` is true.
+   */
+  bool ExactColumnSums(std::vector<double>& sums, bool stop)
+  {
+    const SphericalCover& cover = this->Cover;
+    const std::size_t n = cover.PatchCount();
+    // The largest term of each column, and this rank's stop, joined: the maxima are the same
+    // whatever the order.
+    std::vector<double> largest(n + 1, 0.0);
+    for (std::size_t j = 0; j < n; ++j)
+    {
+      for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
+      {
+        largest[j] = std::max(largest[j], this->Term(k));
+      }
+    }
+    largest[n] = stop ? 1.0 : 0.0;
+    if (this->Share.Distributed())
+    {
+      const std::vector<double> all = JoinValues(this->Share, largest.data(), n + 1, true);
+      for (std::size_t at = 0; at < all.size(); at += n + 1)
+      {
+        for (std::size_t j = 0; j <= n; ++j)
+        {
+          largest[j] = std::max(largest[j], all[at + j]);
+        }
+      }
+    }
+    if (largest[n] != 0.0)
+    {
+      return false;
+    }
+    std::vector<int> exponent(n, 0);
+    std::vector<FixedPoint> fixed(n, 0);
+    for (std::size_t j = 0; j < n; ++j)
+    {
+      if (!std::isfinite(largest[j]))
+      {
+        continue; // an overflowed column: its sum is its largest term (below)
+      }
+      std::frexp(largest[j], &exponent[j]);
+      // A power of two: the product is exact (below 2^FixedPointBits), its truncation is not.
+      const double scale = std::ldexp(1.0, FixedPointBits - exponent[j]);
+      for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
+      {
+        const double term = this->Term(k);
+        if (term > 0.0)
+        {
+          fixed[j] += static_cast<FixedPoint>(term * scale);
+        }
+      }
+    }
+    if (this->Share.Distributed())
+    {
+      const std::vector<FixedPoint> all = JoinValues(this->Share, fixed.data(), n, true);
+      std::fill(fixed.begin(), fixed.end(), 0);
+      for (std::size_t at = 0; at < all.size(); at += n)
+      {
+        for (std::size_t j = 0; j < n; ++j)
+        {
+          fixed[j] += all[at + j];
+        }
+      }
+    }
+    sums.resize(n);
+    for (std::size_t j = 0; j < n; ++j)
+    {
+      sums[j] = std::isfinite(largest[j])
+        ? std::ldexp(static_cast<double>(fixed[j]), exponent[j] - FixedPointBits)
+        : largest[j];
+    }
+    return true;
   }
 
   /// Column sums of x_i G_ij y_j against r_j, over the sources that are seen (r_j = 0 gives
   /// y_j = 0, see the header): the largest relative residual, or with `update` the column step
-  /// (y_j = r_j / sum) and its largest relative change.
-  double ColumnStep(bool update)
+  /// (y_j = r_j / sum) and its largest relative change. False when some rank's `stop` is true.
+  bool ColumnStep(bool update, double& result, bool stop = false)
   {
-    const SphericalCover& cover = this->Cover;
-    std::vector<double>& x = this->X;
     std::vector<double>& y = this->Y;
+    std::vector<double> sums;
+    if (!this->ExactColumnSums(sums, stop))
+    {
+      return false;
+    }
     double residual = 0.0;
     double largestChange = 0.0;
-    for (std::size_t j = 0; j < cover.PatchCount(); ++j)
+    for (std::size_t j = 0; j < sums.size(); ++j)
     {
-      if (cover.ColumnBegin(j) == cover.ColumnEnd(j))
-      {
-        continue;
-      }
-      double sum = 0.0;
-      for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
-      {
-        sum += x[cover.ColumnAt(k).Receiver] * this->ColumnThroughput[k];
-      }
+      const double sum = sums[j];
       if (!(sum > 0.0))
       {
         continue;
@@ -75,7 +168,8 @@ public:
         y[j] = next;
       }
     }
-    return update ? largestChange : residual;
+    result = update ? largestChange : residual;
+    return true;
   }
 
   /// x_i = r_i / sum_j G_ij y_j: every hemisphere gathers exactly its covered measure.
@@ -128,6 +222,13 @@ public:
   }
 
 private:
+  /// x_i G_ij of the entry at column position k.
+  double Term(std::size_t k) const
+  {
+    return this->X[this->Cover.ColumnAt(k).Receiver] * this->ColumnThroughput[k];
+  }
+
+  const RankShare& Share;
   const SphericalCover& Cover;
   std::vector<double> RowThroughput;
   std::vector<double> ColumnThroughput;
@@ -140,16 +241,43 @@ private:
 
 ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
   const ExchangeBalanceSettings& settings,
-  const ProgressCallback& progress)
+  const ProgressCallback& progress,
+  const RankShare& share)
 {
-  MatrixScaling scaling(cover);
-  this->InitialResidual = scaling.ColumnStep(false);
+  if (share.Distributed())
+  {
+    // A rank holding another's row fails; the others learn it in the join, not by waiting.
+    std::size_t foreign = cover.PatchCount();
+    for (std::size_t i = 0; i < cover.PatchCount() && foreign == cover.PatchCount(); ++i)
+    {
+      foreign = !share.Owns(i) && cover.EntryEnd(i) > cover.EntryBegin(i) ? i : foreign;
+    }
+    const bool own = foreign == cover.PatchCount();
+    if (!share.EveryRankOk(own))
+    {
+      if (own)
+      {
+        throw RankShare::PeerFailure();
+      }
+      throw std::invalid_argument("ExchangeBalance: row " + std::to_string(foreign) +
+        " is another rank's receiver's but not empty (SphericalCover::RowsOf)");
+    }
+  }
+  MatrixScaling scaling(cover, share);
+  scaling.ColumnStep(false, this->InitialResidual);
   // The change of every iteration, to tell a slow convergence from a stall.
   std::vector<double> changes;
+  bool stop = false;
   while (this->IterationCount < settings.MaximumIterations)
   {
     scaling.RowStep();
-    const double change = scaling.ColumnStep(true);
+    double change = 0.0;
+    // A rank's stop reaches every rank in the next column step's join.
+    if (!scaling.ColumnStep(true, change, stop))
+    {
+      this->WasAborted = true;
+      return;
+    }
     ++this->IterationCount;
     if (change <= settings.Tolerance)
     {
@@ -165,17 +293,17 @@ ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
       this->HasStalled = true;
       break;
     }
-    if (progress &&
+    stop = progress &&
       !progress(static_cast<double>(this->IterationCount) /
-        static_cast<double>(settings.MaximumIterations)))
-    {
-      this->WasAborted = true;
-      return;
-    }
+        static_cast<double>(settings.MaximumIterations));
   }
   // A row step last: each hemisphere gathers exactly its covered measure.
   scaling.RowStep();
-  this->Residual = scaling.ColumnStep(false);
+  if (!scaling.ColumnStep(false, this->Residual, stop))
+  {
+    this->WasAborted = true;
+    return;
+  }
   this->Factors = scaling.EntryFactors();
   if (progress)
   {

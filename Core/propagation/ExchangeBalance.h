@@ -25,12 +25,19 @@
  * exact). Why the marginals and not the pairs, and the imbalances measured:
  * Documentation/notes/propagation.md.
  *
- * Cost: O(entries) per iteration, sequential in a fixed order (deterministic).
+ * Cost: O(entries) per iteration. Deterministic whatever the order of the entries: a column
+ * sum is summed exactly in fixed point (each term truncated to 2^-100 of the column's largest,
+ * ExactColumnSums), so that the ranks of a distributed propagation, each holding the rows of its
+ * receivers, get the factors of the whole cover bit for bit.
+ *
+ * Under a share (math/RankShare.h), collective: per iteration two joins of n values per rank
+ * (the columns' largest terms, then their fixed-point sums).
  */
 #ifndef SPHCOVER_EXCHANGEBALANCE_H
 #define SPHCOVER_EXCHANGEBALANCE_H
 
 #include "math/ParallelFor.h"
+#include "math/RankShare.h"
 
 #include <cstddef>
 #include <vector>
@@ -52,11 +59,20 @@ class ExchangeBalance
 public:
   /// No factors (every f_ij = 1).
   ExchangeBalance() = default;
-  /// Balances the exchange of `cover`. Progress is the iteration count over MaximumIterations;
-  /// returning false from `progress` stops early (Aborted()).
+  /**
+   * Balances the exchange of `cover`. Progress is the iteration count over MaximumIterations;
+   * returning false from `progress` stops early (Aborted()). Under `share` the ranks balance
+   * together, `cover` holding this rank's receivers' rows (SphericalCover::RowsOf of
+   * share.MyItems, as LightPropagation::SetRankShare): EntryFactors are then those of its
+   * entries, equal to the whole cover's bit for bit, and a rank that stops stops every rank
+   * (each is Aborted() after the same iteration). Collective under a share; throws
+   * RankShare::PeerFailure when another rank failed, std::invalid_argument when `cover` holds
+   * another rank's row.
+   */
   explicit ExchangeBalance(const SphericalCover& cover,
     const ExchangeBalanceSettings& settings = {},
-    const ProgressCallback& progress = nullptr);
+    const ProgressCallback& progress = nullptr,
+    const RankShare& share = RankShare());
 
   /// f_e = x_i y_j of every entry of the cover, by entry index (empty: none computed).
   const std::vector<double>& EntryFactors() const { return this->Factors; }

@@ -119,7 +119,6 @@ LightPropagation::LightPropagation(const SphericalCover& cover,
     this->TotalEmitted += Pi * cover.PatchArea(i) * BandSum(this->Le[i]);
   }
   this->ModelOfPatch.assign(n, -1);
-  this->OwnedLast = n;
   this->Reset();
 }
 
@@ -239,7 +238,7 @@ std::vector<ShotRecord> LightPropagation::ShootBatch(const std::vector<Candidate
       records[m].Shooter = shooter;
       records[m].ShotPower = batch[m].Power;
       records[m].RelativeChange = batch[m].Power / this->TotalEmitted;
-      if (shooter < this->OwnedFirst || shooter >= this->OwnedLast)
+      if (!this->Owns(shooter))
       {
         increments[m] = batch[m].Increment;
         directional[m] = batch[m].Directional;
@@ -352,14 +351,18 @@ std::size_t LightPropagation::Brightest(double& power, double& total) const
   std::size_t best = 0;
   power = -1.0;
   double partial[4] = { 0.0, 0.0, 0.0, 0.0 };
-  const std::size_t n = this->OwnedLast - this->OwnedFirst;
-  const double* values = this->Power.data() + this->OwnedFirst;
+  // The own patches are rank, rank + K, ... (K = 1 without a share).
+  const std::size_t stride = static_cast<std::size_t>(this->Share.Ranks());
+  const std::size_t first = static_cast<std::size_t>(this->Share.Rank());
+  const std::size_t patches = this->PatchCount();
+  const std::size_t n = patches > first ? (patches - first + stride - 1) / stride : 0;
+  const double* values = n > 0 ? this->Power.data() + first : nullptr;
   std::size_t i = 0;
   for (; i + 4 <= n; i += 4)
   {
     for (std::size_t lane = 0; lane < 4; ++lane)
     {
-      const double p = values[i + lane];
+      const double p = values[(i + lane) * stride];
       partial[lane] += p;
       // Strictly greater, in index order: ties go to the lowest index.
       if (p > power)
@@ -371,15 +374,16 @@ std::size_t LightPropagation::Brightest(double& power, double& total) const
   }
   for (; i < n; ++i)
   {
-    partial[0] += values[i];
-    if (values[i] > power)
+    const double p = values[i * stride];
+    partial[0] += p;
+    if (p > power)
     {
-      power = values[i];
+      power = p;
       best = i;
     }
   }
   total = (partial[0] + partial[1]) + (partial[2] + partial[3]);
-  return this->OwnedFirst + best;
+  return first + best * stride;
 }
 
 std::vector<LightPropagation::Candidate> LightPropagation::LocalBatch(std::size_t best,
@@ -406,7 +410,9 @@ std::vector<LightPropagation::Candidate> LightPropagation::LocalBatch(std::size_
     return batch;
   }
   const double threshold = BatchPowerFraction * largest;
-  for (std::size_t j = this->OwnedFirst; j < this->OwnedLast; ++j)
+  const std::size_t stride = static_cast<std::size_t>(this->Share.Ranks());
+  for (std::size_t j = static_cast<std::size_t>(this->Share.Rank()); j < this->PatchCount();
+       j += stride)
   {
     if (this->Power[j] >= threshold)
     {
@@ -452,25 +458,6 @@ std::size_t LightPropagation::EstimateBytes(const SphericalCover& cover,
   const SphericalCoverOptions& options = cover.Options();
   return cover.EntryCount() * BytesPerEntry + cover.PatchCount() * BytesPerPatch +
     PointReflectances::EstimateBytes(options.ThetaBins, options.PhiBins, materialOfPatch);
-}
-
-std::vector<double> LightPropagation::EstimateRowCosts(const SphericalCover& cover,
-  const std::vector<Material>& materialOfPatch)
-{
-  if (materialOfPatch.size() != cover.PatchCount())
-  {
-    throw std::invalid_argument(
-      "LightPropagation::EstimateRowCosts: " + std::to_string(materialOfPatch.size()) +
-      " materials for " + std::to_string(cover.PatchCount()) + " patches");
-  }
-  const double directional = static_cast<double>(cover.Grid().CellCount());
-  std::vector<double> costs(cover.PatchCount());
-  for (std::size_t i = 0; i < costs.size(); ++i)
-  {
-    costs[i] = 1.0 + static_cast<double>(cover.VisibleSourceCount(i)) +
-      (materialOfPatch[i].Type == MaterialType::Diffuse ? 0.0 : directional);
-  }
-  return costs;
 }
 
 bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCallback& progress)
@@ -708,14 +695,13 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
   }
   if (this->Shared())
   {
-    // Each patch's direct light is known to its owner alone; the ranks' own patches tile the
-    // patches in rank order.
-    direct = JoinValues(
-      this->Share, direct.data() + this->OwnedFirst, this->OwnedLast - this->OwnedFirst);
-    if (direct.size() != count)
+    // Each patch's direct light is known to its owner alone.
+    std::vector<glm::dvec3> mine;
+    for (const std::size_t i : this->Share.MyItems(count))
     {
-      throw std::runtime_error("LightPropagation: the ranks' lamp irradiances are damaged");
+      mine.push_back(direct[i]);
     }
+    direct = JoinItems(this->Share, mine, std::vector<std::size_t>(count, 1));
   }
   std::vector<glm::dvec3> lamp = direct;
   for (std::size_t j = 0; firstBounce && j < count; ++j)
@@ -733,7 +719,7 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
 EnergyBalance LightPropagation::Energy() const
 {
   EnergyBalance balance;
-  for (std::size_t i = this->OwnedFirst; i < this->OwnedLast; ++i)
+  for (const std::size_t i : this->Share.MyItems(this->PatchCount()))
   {
     const double area = this->Cover.PatchArea(i);
     balance.Emitted += Pi * area * this->Le[i];

@@ -183,18 +183,6 @@ public:
   static std::size_t EstimateBytes(const SphericalCover& cover,
     const std::vector<Material>& materialOfPatch);
 
-  /**
-   * The estimated cost of propagating into each receiver's row, for splitting the receivers
-   * among ranks (SphericalCover::PartitionRows): a column walk updates each entry of the row
-   * whenever its source shoots, so the row counts its entries; a non-diffuse receiver also
-   * computes its own directional shots (DirectionalShot), each about the cost of updating one
-   * entry per cell of the hemisphere grid (the grid's reflection, O(D log PhiBins), measured:
-   * Documentation/notes/distributed-solve.md), counted with the patches shooting about equally
-   * often. Plus 1 per row. Throws std::invalid_argument when the sizes differ.
-   */
-  static std::vector<double> EstimateRowCosts(const SphericalCover& cover,
-    const std::vector<Material>& materialOfPatch);
-
   /// The material of every patch: Scene::Materials of its surface.
   static std::vector<Material> MaterialsOfPatches(const Scene& scene,
     const std::vector<Patch>& patches);
@@ -221,26 +209,28 @@ public:
 
   /**
    * Under MPI (math/RankShare.h): the ranks propagate together, each over the rows of its own
-   * receivers [firstOwned, lastOwned), which is all the cover given to the constructor holds
-   * (SphericalCover::RowsOf; the ranks' ranges tile the patches in rank order). Every batch,
-   * the ranks agree on its shooters (from every rank's candidates, chosen as the serial scan
-   * chooses), their owners send what they shoot (the unshot radiance, with the scan; for the
-   * non-diffuse shooters, all in one exchange, their reflected radiance toward the regions and
-   * the fallback cells the other ranks' receivers read: ExchangeShotNeeds) and each rank updates its own receivers
-   * in column order. So every owned patch's state,
-   * and each result of an owned patch (Irradiance, ExitantRadiance, Brightness, the incident
-   * radiances of its row), is the serial one bit for bit; the history's shooters and powers
-   * are serial's, its sums over the ranks (UnshotEnergy, ReceiverUpdates) equal up to the order
-   * of addition. Call after the constructor and SetExchangeFactors (whose factors are then the
-   * kept rows'); collective (the ranks exchange the keys of their non-diffuse rows once). Run
-   * is then collective and BrightestFirst only, Energy and LampIrradiance are collective, the
-   * other results are of owned patches only. Throws std::invalid_argument for a range out of
-   * bounds or a row outside it that is not empty.
+   * receivers, i with i mod K = the rank (RankShare::MyItems), which are all the rows the cover
+   * given to the constructor holds (SphericalCover::RowsOf). Receivers dealt round the ranks
+   * one by one give each rank about a K-th of every surface (neighbouring patches cost alike),
+   * so the ranks' work is balanced without an estimate, and so are the non-diffuse shooters of
+   * each batch, whose owners reflect them at the same time. Every batch, the ranks agree on its
+   * shooters (from every rank's candidates, chosen as the serial scan chooses), their owners
+   * send what they shoot (the unshot radiance, with the scan; for the non-diffuse shooters, all
+   * in one exchange, their reflected radiance toward the regions and the fallback cells the
+   * other ranks' receivers read: ExchangeShotNeeds) and each rank updates its own receivers in
+   * column order. So every owned patch's state, and each result of an owned patch (Irradiance,
+   * ExitantRadiance, Brightness, the incident radiances of its row), is the serial one bit for
+   * bit; the history's shooters and powers are serial's, its sums over the ranks
+   * (UnshotEnergy, ReceiverUpdates) equal up to the order of addition. Call after the
+   * constructor and SetExchangeFactors (whose factors are then the kept rows'); collective (the
+   * ranks exchange the keys of their non-diffuse rows once). Run is then collective and
+   * BrightestFirst only, Energy and LampIrradiance are collective, the other results are of
+   * owned patches only. Throws std::invalid_argument for a row of another rank's receiver that
+   * is not empty.
    */
-  void SetRankShare(RankShare share, std::size_t firstOwned, std::size_t lastOwned);
-  /// The patches whose rows and results this rank holds (every patch without a share).
-  std::size_t OwnedBegin() const { return this->OwnedFirst; }
-  std::size_t OwnedEnd() const { return this->OwnedLast; }
+  void SetRankShare(RankShare share);
+  /// Whether this rank holds the patch's row and results (every patch without a share).
+  bool Owns(std::size_t patch) const { return this->Share.Owns(patch); }
 
   /// Back to the start: E = 0, unshot radiance = emission, no history.
   void Reset();
@@ -524,10 +514,8 @@ private:
   ReflectanceWeights::Scratch ReflectScratch;
   DirectionalMethod Method = DirectionalMethod::Automatic;
   std::vector<HemisphereFrame> Frames;
-  /// Under MPI (SetRankShare): the ranks and this rank's receivers.
+  /// Under MPI (SetRankShare): the ranks, which say this rank's receivers (RankShare::Owns).
   RankShare Share;
-  std::size_t OwnedFirst = 0;
-  std::size_t OwnedLast = 0;
   /// ExchangeShotNeeds' unions, by row, and whether they are up to date.
   std::vector<std::vector<uint32_t>> SentPositions;
   std::vector<std::vector<uint32_t>> SentCells;

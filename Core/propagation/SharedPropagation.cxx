@@ -45,26 +45,19 @@ void SortUnique(std::vector<uint32_t>& values)
 
 } // namespace
 
-void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std::size_t lastOwned)
+void LightPropagation::SetRankShare(RankShare share)
 {
   const std::size_t n = this->PatchCount();
-  if (firstOwned > lastOwned || lastOwned > n)
-  {
-    throw std::invalid_argument("LightPropagation: receivers [" + std::to_string(firstOwned) +
-      ", " + std::to_string(lastOwned) + ") of " + std::to_string(n));
-  }
   for (std::size_t i = 0; i < n; ++i)
   {
-    if ((i < firstOwned || i >= lastOwned) && this->Cover.EntryEnd(i) > this->Cover.EntryBegin(i))
+    if (!share.Owns(i) && this->Cover.EntryEnd(i) > this->Cover.EntryBegin(i))
     {
-      throw std::invalid_argument("LightPropagation: row " + std::to_string(i) +
-        " is outside this rank's receivers [" + std::to_string(firstOwned) + ", " +
-        std::to_string(lastOwned) + ") but not empty (SphericalCover::RowsOf)");
+      throw std::invalid_argument("LightPropagation: row " + std::to_string(i) + " is rank " +
+        std::to_string(i % static_cast<std::size_t>(share.Ranks())) + "'s receiver's, not rank " +
+        std::to_string(share.Rank()) + "'s, but not empty (SphericalCover::RowsOf)");
     }
   }
   this->Share = std::move(share);
-  this->OwnedFirst = firstOwned;
-  this->OwnedLast = lastOwned;
   this->ShotNeedsKnown = false;
   if (this->Reflectances.Empty() || !this->Shared())
   {
@@ -75,7 +68,7 @@ void LightPropagation::SetRankShare(RankShare share, std::size_t firstOwned, std
   // here from the keys of every rank's non-diffuse rows.
   std::vector<char> mine;
   ByteWriter out(mine);
-  for (std::size_t j = firstOwned; j < lastOwned; ++j)
+  for (const std::size_t j : this->Share.MyItems(n))
   {
     if (this->ModelOfPatch[j] < 0)
     {
@@ -127,7 +120,7 @@ void LightPropagation::ExchangeShotNeeds()
   std::vector<uint32_t> cells;
   for (std::size_t j = 0; j < n; ++j)
   {
-    if (this->ModelOfPatch[j] < 0 || (j >= this->OwnedFirst && j < this->OwnedLast))
+    if (this->ModelOfPatch[j] < 0 || this->Owns(j))
     {
       continue;
     }
@@ -189,7 +182,7 @@ void LightPropagation::ExchangeShotNeeds()
     SortUnique(this->SentCells[j]);
     // An owner's row must hold every position its receivers elsewhere read. Only the owner
     // can tell, so the ranks join its verdict: none goes on alone.
-    if (j >= this->OwnedFirst && j < this->OwnedLast && !this->SentPositions[j].empty())
+    if (this->Owns(j) && !this->SentPositions[j].empty())
     {
       fits =
         fits && this->SentPositions[j].back() < this->Cover.EntryEnd(j) - this->Cover.EntryBegin(j);
@@ -303,7 +296,7 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
     for (std::size_t m = 0; m < batch.size(); ++m)
     {
       const std::size_t shooter = batch[m].Shooter;
-      if (!directional[m] || shooter < this->OwnedFirst || shooter >= this->OwnedLast)
+      if (!directional[m] || !this->Owns(shooter))
       {
         continue;
       }

@@ -8,6 +8,7 @@
 
 #include "CoverTestUtilities.h"
 #include "cover/SphericalCover.h"
+#include "math/RankShare.h"
 #include "propagation/LightPropagation.h"
 
 #include <gtest/gtest.h>
@@ -15,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -198,4 +200,109 @@ TEST(ExchangeBalance, RejectsFactorsThatDoNotFit)
   // No factors at all is the cover as built.
   propagation.SetExchangeFactors({});
   EXPECT_FALSE(propagation.HasExchangeFactors());
+}
+
+// The ranks of a distributed propagation balance together, each holding its receivers' rows
+// (RowsOf of RankShare::MyItems): every rank's factors are the whole cover's of its entries bit
+// for bit, after as many iterations and with the same residuals, whatever K (the column sums
+// are exact in fixed point, so their order does not matter).
+TEST(ExchangeBalance, SharedAmongRanksEqualsWhole)
+{
+  const CoveredScene setup("cornell_box_closed.scene", 5);
+  const ExchangeBalance whole(setup.Cover);
+  ASSERT_FALSE(whole.EntryFactors().empty());
+  for (const int ranks : { 2, 3 })
+  {
+    SCOPED_TRACE(testing::Message() << ranks << " ranks");
+    InProcessRanks world(ranks);
+    std::vector<std::string> failures(static_cast<std::size_t>(ranks));
+    world.Run(
+      [&](const RankShare& share, int rank)
+      {
+        std::string& failure = failures[static_cast<std::size_t>(rank)];
+        try
+        {
+          const std::vector<std::size_t> mine = share.MyItems(setup.Cover.PatchCount());
+          const ExchangeBalance shared(setup.Cover.RowsOf(mine), {}, nullptr, share);
+          const std::vector<std::size_t> kept = setup.Cover.KeptEntries(mine);
+          if (shared.EntryFactors().size() != kept.size())
+          {
+            failure = "factors of " + std::to_string(shared.EntryFactors().size()) + " entries";
+          }
+          for (std::size_t e = 0; failure.empty() && e < kept.size(); ++e)
+          {
+            if (std::memcmp(
+                  &shared.EntryFactors()[e], &whole.EntryFactors()[kept[e]], sizeof(double)) != 0)
+            {
+              failure = "entry " + std::to_string(kept[e]) + "'s factor differs";
+            }
+          }
+          if (failure.empty() &&
+            (shared.Iterations() != whole.Iterations() || shared.Converged() != whole.Converged() ||
+              shared.Stalled() != whole.Stalled() ||
+              shared.ColumnResidual() != whole.ColumnResidual() ||
+              shared.InitialColumnResidual() != whole.InitialColumnResidual()))
+          {
+            failure = "its iterations or residuals differ";
+          }
+        }
+        catch (const std::exception& e)
+        {
+          failure = e.what();
+        }
+      });
+    for (int rank = 0; rank < ranks; ++rank)
+    {
+      EXPECT_EQ(failures[static_cast<std::size_t>(rank)], "") << "rank " << rank;
+    }
+  }
+}
+
+// A rank whose progress asks to stop stops every rank after the same iteration (each Aborted,
+// none waiting); a rank holding another rank's row is refused, and the others learn that a
+// peer failed instead of waiting for it.
+TEST(ExchangeBalance, SharedStopsAndRefusalsReachEveryRank)
+{
+  const CoveredScene setup("cornell_box_closed.scene", 3);
+  const std::size_t n = setup.Cover.PatchCount();
+  InProcessRanks world(2);
+  std::vector<int> aborted(2, -1);
+  world.Run(
+    [&](const RankShare& share, int rank)
+    {
+      int calls = 0;
+      const ProgressCallback stopAtThree = [&calls, rank](double)
+      { return !(rank == 1 && ++calls == 3); };
+      const ExchangeBalance shared(setup.Cover.RowsOf(share.MyItems(n)), {}, stopAtThree, share);
+      aborted[static_cast<std::size_t>(rank)] = shared.Aborted() && shared.EntryFactors().empty()
+        ? static_cast<int>(shared.Iterations())
+        : -1;
+    });
+  EXPECT_EQ(aborted[0], 3);
+  EXPECT_EQ(aborted[1], 3);
+
+  std::vector<std::string> failures(2);
+  world.Run(
+    [&](const RankShare& share, int rank)
+    {
+      try
+      {
+        // Rank 0 holds every row, rank 1 its own.
+        const SphericalCover rows = rank == 0 ? setup.Cover.RowsOf(RankShare::ItemsOf(0, 1, n))
+                                              : setup.Cover.RowsOf(share.MyItems(n));
+        const ExchangeBalance shared(rows, {}, nullptr, share);
+      }
+      catch (const RankShare::PeerFailure& e)
+      {
+        failures[static_cast<std::size_t>(rank)] = std::string("peer: ") + e.what();
+      }
+      catch (const std::invalid_argument& e)
+      {
+        failures[static_cast<std::size_t>(rank)] = std::string("refused: ") + e.what();
+      }
+    });
+  EXPECT_NE(
+    failures[0].find("refused: ExchangeBalance: row 1 is another rank's"), std::string::npos)
+    << failures[0];
+  EXPECT_EQ(failures[1], std::string("peer: ") + RankShare::PeerFailure::Text);
 }

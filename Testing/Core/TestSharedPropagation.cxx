@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The propagation shared among ranks (LightPropagation::SetRankShare): each rank holds the rows
-// of its own receivers (SphericalCover::RowsOf), the ranks agree on every shooter and its owner
-// sends what it shoots. Every owned patch's results must be the serial ones bit for bit, for
-// Lambertian, mirror, phong and tabulated shooters (strip-pair and grid shots), whatever the
-// number of ranks (run here as threads, InProcessRanks).
+// of its own receivers, dealt round the ranks (SphericalCover::RowsOf), the ranks agree on every
+// shooter and its owner sends what it shoots. Every owned patch's results must be the serial ones
+// bit for bit, for Lambertian, mirror, phong and tabulated shooters (strip-pair and grid shots),
+// whatever the number of ranks (run here as threads, InProcessRanks).
 #include "CoverTestUtilities.h"
 #include "MaterialTestUtilities.h"
 #include "cover/BrightEmitters.h"
@@ -49,8 +49,7 @@ struct RankResult
 {
   bool Converged = false;
   std::string Failure;
-  std::size_t First = 0;
-  std::size_t Last = 0;
+  std::vector<std::size_t> Receivers;
   std::vector<ShotRecord> History;
   std::vector<glm::dvec3> Irradiance;
   std::vector<glm::dvec3> Brightness;
@@ -102,19 +101,15 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
       RankResult& result = results[static_cast<std::size_t>(rank)];
       try
       {
-        // Equal counts of rows (the filter splits by entries; any tiling in rank order does).
-        const std::vector<std::size_t> bounds = SphericalCover::PartitionRows(
-          std::vector<double>(cover.PatchCount(), 1.0), static_cast<std::size_t>(ranks));
-        result.First = bounds[static_cast<std::size_t>(rank)];
-        result.Last = bounds[static_cast<std::size_t>(rank) + 1];
-        const SphericalCover rows = cover.RowsOf(result.First, result.Last);
+        result.Receivers = share.MyItems(cover.PatchCount());
+        const SphericalCover rows = cover.RowsOf(result.Receivers);
         LightPropagation shared(rows, materials);
         shared.SetFrames(frames);
         shared.SetDirectionalMethod(method);
-        shared.SetRankShare(share, result.First, result.Last);
+        shared.SetRankShare(share);
         result.Converged = shared.Run(settings);
         result.History = shared.History();
-        for (std::size_t i = result.First; i < result.Last; ++i)
+        for (const std::size_t i : result.Receivers)
         {
           result.Irradiance.push_back(shared.Irradiance(i));
           result.Brightness.push_back(shared.Brightness(i));
@@ -150,9 +145,9 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
       ASSERT_EQ(a.GridShot, b.GridShot) << "shot " << s;
       ASSERT_NEAR(a.UnshotEnergy, b.UnshotEnergy, 1e-12 * b.UnshotEnergy + 1e-300);
     }
-    for (std::size_t i = result.First; i < result.Last; ++i)
+    for (std::size_t k = 0; k < result.Receivers.size(); ++k)
     {
-      const std::size_t k = i - result.First;
+      const std::size_t i = result.Receivers[k];
       ASSERT_TRUE(SameBits(result.Irradiance[k], serial.Irradiance(i))) << "patch " << i;
       ASSERT_TRUE(SameBits(result.Brightness[k], serial.Brightness(i))) << "patch " << i;
       ASSERT_TRUE(SameBits(result.Toward[k], serial.ExitantRadianceToward(i, oblique)))
@@ -160,13 +155,13 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
       ASSERT_TRUE(SameBits(result.Lamp[i], serialLamp[i])) << "patch " << i;
     }
     // The rows' incident radiances are the serial ones, entry e of the rank's rows being entry
-    // e + EntryBegin(First) of the cover.
-    const std::size_t offset = cover.EntryBegin(result.First);
-    ASSERT_EQ(result.Incident.size(), cover.EntryBegin(result.Last) - offset);
+    // KeptEntries(Receivers)[e] of the cover.
+    const std::vector<std::size_t> kept = cover.KeptEntries(result.Receivers);
+    ASSERT_EQ(result.Incident.size(), kept.size());
     const std::vector<glm::dvec3>& serialIncident = serial.IncidentRadiances();
     for (std::size_t e = 0; e < result.Incident.size(); ++e)
     {
-      ASSERT_TRUE(SameBits(result.Incident[e], serialIncident[offset + e])) << "entry " << e;
+      ASSERT_TRUE(SameBits(result.Incident[e], serialIncident[kept[e]])) << "entry " << e;
     }
     for (int b = 0; b < 3; ++b)
     {
@@ -188,7 +183,7 @@ struct RankEnd
 
 /// Runs the propagation of `cover` (batches of 16, the strip-pair method, to 1e-3 of the
 /// emitted power unshot) on `ranks` ranks, rank r joining through share(world, r) and reporting
-/// progress to progress(r); the ranks split the rows equally.
+/// progress to progress(r); the receivers dealt round the ranks.
 std::vector<RankEnd> RunOnRanks(const SphericalCover& cover,
   const std::vector<Patch>& patches,
   const std::vector<Material>& materials,
@@ -208,15 +203,12 @@ std::vector<RankEnd> RunOnRanks(const SphericalCover& cover,
       RankEnd& end = ends[static_cast<std::size_t>(rank)];
       try
       {
-        const std::vector<std::size_t> bounds = SphericalCover::PartitionRows(
-          std::vector<double>(cover.PatchCount(), 1.0), static_cast<std::size_t>(ranks));
-        const std::size_t first = bounds[static_cast<std::size_t>(rank)];
-        const std::size_t last = bounds[static_cast<std::size_t>(rank) + 1];
-        const SphericalCover rows = cover.RowsOf(first, last);
+        const RankShare rankShare = share(world, rank);
+        const SphericalCover rows = cover.RowsOf(rankShare.MyItems(cover.PatchCount()));
         LightPropagation shared(rows, materials);
         shared.SetFrames(frames);
         shared.SetDirectionalMethod(DirectionalMethod::StripPairs);
-        shared.SetRankShare(share(world, rank), first, last);
+        shared.SetRankShare(rankShare);
         end.Converged = shared.Run(settings, progress(rank));
         end.Shots = shared.History().size();
       }
@@ -321,36 +313,67 @@ TEST(SharedPropagation, PanesEqualSerial)
   }
 }
 
-// A rank whose rows are not its own is refused; so is a range out of bounds.
-TEST(SharedPropagation, RefusesRowsOutsideTheRange)
+// A rank holding another rank's rows is refused (the whole cover on rank 0 of 2; rank 1's rows
+// on rank 0); its own rows alone, and an empty cover's, are taken.
+TEST(SharedPropagation, RefusesAnotherRanksRows)
 {
   const CoveredScene setup("cornell_box.scene", 1);
-  LightPropagation whole(setup.Cover, setup.Materials);
+  const std::size_t n = setup.Cover.PatchCount();
   InProcessRanks world(2);
-  EXPECT_THROW(whole.SetRankShare(world.Share(0), 0, 3), std::invalid_argument);
-  EXPECT_THROW(whole.SetRankShare(world.Share(0), 3, 2), std::invalid_argument);
-  EXPECT_THROW(
-    whole.SetRankShare(world.Share(0), 0, setup.Cover.PatchCount() + 1), std::invalid_argument);
+  LightPropagation whole(setup.Cover, setup.Materials);
+  EXPECT_THROW(whole.SetRankShare(world.Share(0)), std::invalid_argument);
+  LightPropagation others(setup.Cover.RowsOf(RankShare::ItemsOf(1, 2, n)), setup.Materials);
+  EXPECT_THROW(others.SetRankShare(world.Share(0)), std::invalid_argument);
+  LightPropagation empty(setup.Cover.RowsOf({}), setup.Materials);
+  EXPECT_NO_THROW(empty.SetRankShare(RankShare()));
 }
 
-// The rows' estimated costs (what the filter splits the receivers by): every row its entries
-// and 1, a non-diffuse row one entry per cell of the grid more; materials of another count are
-// refused.
-TEST(SharedPropagation, RowCostsCountEntriesAndDirectionalShots)
+// RowsOf keeps the given rows whole and in order (strips, measures, the entries' strips
+// re-based) and empties the others; receivers out of range or order are refused.
+TEST(SharedPropagation, RowsOfKeepsTheGivenRows)
 {
-  const CoveredScene setup("cornell_box.scene", 1);
-  std::vector<Material> materials = setup.Materials;
-  materials[1] = Mirror(glm::dvec3(0.9));
-  const std::vector<double> costs = LightPropagation::EstimateRowCosts(setup.Cover, materials);
-  ASSERT_EQ(costs.size(), setup.Cover.PatchCount());
-  const double cells = static_cast<double>(setup.Cover.Grid().CellCount());
-  for (std::size_t i = 0; i < costs.size(); ++i)
+  const CoveredScene setup("cornell_box.scene", 2);
+  const SphericalCover& cover = setup.Cover;
+  const std::vector<std::size_t> receivers = RankShare::ItemsOf(1, 3, cover.PatchCount());
+  const SphericalCover rows = cover.RowsOf(receivers);
+  const std::vector<std::size_t> kept = cover.KeptEntries(receivers);
+  ASSERT_EQ(rows.PatchCount(), cover.PatchCount());
+  ASSERT_EQ(rows.EntryCount(), kept.size());
+  std::size_t next = 0;
+  for (std::size_t i = 0; i < cover.PatchCount(); ++i)
   {
-    const double entries = static_cast<double>(setup.Cover.EntryEnd(i) - setup.Cover.EntryBegin(i));
-    EXPECT_EQ(costs[i], 1.0 + entries + (i == 1 ? cells : 0.0)) << "row " << i;
+    const bool own = next < receivers.size() && receivers[next] == i;
+    next += own ? 1 : 0;
+    EXPECT_EQ(rows.PatchArea(i), cover.PatchArea(i));
+    ASSERT_EQ(
+      rows.EntryEnd(i) - rows.EntryBegin(i), own ? cover.EntryEnd(i) - cover.EntryBegin(i) : 0u)
+      << "row " << i;
+    for (std::size_t e = rows.EntryBegin(i); e < rows.EntryEnd(i); ++e)
+    {
+      const std::size_t original = kept[e];
+      EXPECT_EQ(rows.EntryAt(e).Source, cover.EntryAt(original).Source);
+      EXPECT_EQ(rows.ProjectedSolidAngle(e), cover.ProjectedSolidAngle(original));
+      if (cover.HasUnoccluded())
+      {
+        EXPECT_EQ(
+          rows.UnoccludedProjectedSolidAngle(e), cover.UnoccludedProjectedSolidAngle(original));
+      }
+      ASSERT_EQ(rows.StripEnd(e) - rows.StripBegin(e),
+        cover.StripEnd(original) - cover.StripBegin(original));
+      for (std::size_t k = 0; k < rows.StripEnd(e) - rows.StripBegin(e); ++k)
+      {
+        const SphericalCover::Strip& a = rows.StripAt(rows.StripBegin(e) + k);
+        const SphericalCover::Strip& b = cover.StripAt(cover.StripBegin(original) + k);
+        EXPECT_EQ(a.Row, b.Row);
+        EXPECT_EQ(a.PhiBegin, b.PhiBegin);
+        EXPECT_EQ(a.PhiEnd, b.PhiEnd);
+        EXPECT_EQ(rows.StripDepth(rows.StripBegin(e) + k),
+          cover.StripDepth(cover.StripBegin(original) + k));
+      }
+    }
   }
-  materials.pop_back();
-  EXPECT_THROW(LightPropagation::EstimateRowCosts(setup.Cover, materials), std::invalid_argument);
+  EXPECT_THROW(cover.RowsOf({ 2, 1 }), std::invalid_argument);
+  EXPECT_THROW(cover.RowsOf({ cover.PatchCount() }), std::invalid_argument);
 }
 
 // A rank whose progress asks to stop (ParaView's abort on one rank) stops every rank after the
