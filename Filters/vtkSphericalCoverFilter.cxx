@@ -494,7 +494,6 @@ void WriteStrips(const sphcover::SphericalCover& cover, std::size_t patchCount, 
       }
     }
   }
-  stripsOut->Initialize();
   stripsOut->AddColumn(receiver);
   stripsOut->AddColumn(source);
   stripsOut->AddColumn(theta);
@@ -733,7 +732,11 @@ void WriteOutputs(vtkSphericalCoverFilter* self,
     bounce->SetValue(0, self->GetDirectBounceRays());
     pointsOut->GetFieldData()->AddArray(bounce);
   }
-  WriteStrips(cover, patches.size(), stripsOut);
+  stripsOut->Initialize();
+  if (self->GetGenerateStripTable())
+  {
+    WriteStrips(cover, patches.size(), stripsOut);
+  }
 }
 
 /**
@@ -1003,6 +1006,7 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FillMethod: " << (this->FillMethod == PROJECTION ? "Projection" : "RayCasting")
      << "\n";
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
+  os << indent << "GenerateStripTable: " << this->GenerateStripTable << "\n";
   os << indent << "MeasureLamps: " << this->MeasureLamps << "\n";
   os << indent << "DirectIrradianceNodes: " << this->DirectIrradianceNodes << "\n";
   os << indent << "DirectBounceRays: " << this->DirectBounceRays << "\n";

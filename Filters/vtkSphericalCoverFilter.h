@@ -23,7 +23,7 @@
  * and the cover itself (vtkSphericalCoverArrays), which VTK's XML writers save bit for bit.
  *
  * Output 1 (vtkTable): the strips, `Receiver`, `Source`, `Theta` (row), `PhiBegin`, `PhiEnd`
- * (columns, end exclusive), `R` (mean distance).
+ * (columns, end exclusive), `R` (mean distance); empty when GenerateStripTable is off.
  *
  * Before the cover is built, the patches may be refined (Refinement, sphcover::CoverRefinement):
  * the points are then those of the refined patches, each with the cell data of the input patch
@@ -168,6 +168,18 @@ public:
   vtkBooleanMacro(BackFacesOcclude, bool);
   ///@}
 
+  ///@{
+  /**
+   * Fill output 1, the table of every strip (for ParaView's spreadsheet view). It is as large
+   * as the cover's strips again (24 bytes a strip: 69 MB for the teapot room at max_level=3)
+   * and stays in memory with the pipeline's outputs: a pipeline that only propagates and renders
+   * (the sphcover command line) turns it off. Default is on.
+   */
+  vtkSetMacro(GenerateStripTable, bool);
+  vtkGetMacro(GenerateStripTable, bool);
+  vtkBooleanMacro(GenerateStripTable, bool);
+  ///@}
+
   enum RefinementModes
   {
     REFINEMENT_OFF = 0,
@@ -242,6 +254,7 @@ protected:
   int SamplesPerCell = 3;
   int FillMethod = RAY_CASTING;
   bool BackFacesOcclude = true;
+  bool GenerateStripTable = true;
   bool MeasureLamps = true;
   int DirectIrradianceNodes = 3;
   int DirectBounceRays = 32;

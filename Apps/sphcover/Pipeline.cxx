@@ -103,6 +103,9 @@ void Solution::Solve(const Options& options)
   // (vtkLightPropagationFilter): no other rank holds the whole cover or the solution.
   this->Subdivide(options);
   this->Cover->SetMemoryLimit(options.MemoryLimit);
+  // Nothing here reads the strip table (a spreadsheet's): it would stay in memory, as large as
+  // the cover's strips again, beside the solve.
+  this->Cover->GenerateStripTableOff();
   this->Propagation->SetMemoryLimit(options.MemoryLimit);
   const int piece = options.Ranks > 1 ? options.Rank : 0;
   if (piece > 0)

@@ -130,6 +130,19 @@ int TestSphericalCoverFilter(int, char*[])
       static_cast<vtkIdType>(built.StripCount()) ==
         vtkTable::SafeDownCast(cover->GetOutputDataObject(1))->GetNumberOfRows(),
     "the strip table has one row per strip");
+  {
+    // Without the table (the command line's pipeline): the same cover, an empty table.
+    vtkNew<vtkSphericalCoverFilter> withoutTable;
+    withoutTable->SetInputConnection(boxPatches->GetOutputPort(0));
+    withoutTable->GenerateStripTableOff();
+    withoutTable->Update();
+    sphcover::SphericalCover same;
+    Check(vtkSphericalCoverArrays::Load(withoutTable->GetOutput(), same).empty() &&
+        SameCover(built, same) &&
+        vtkTable::SafeDownCast(withoutTable->GetOutputDataObject(1))->GetNumberOfRows() == 0 &&
+        vtkTable::SafeDownCast(withoutTable->GetOutputDataObject(1))->GetNumberOfColumns() == 0,
+      "GenerateStripTable off: the same cover and an empty strip table");
+  }
 
   const std::string file =
     std::string(SPHCOVER_BINARY_DIR) + "/Testing/Temporary/TestSphericalCoverFilter.vtp";

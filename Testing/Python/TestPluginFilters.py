@@ -86,7 +86,8 @@ if abs(total / expected - 1) > 1e-6:
 # The spherical cover of the (coarsely) subdivided box.
 cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0))
 check_properties(cover, vtkSphericalCoverFilter(), ["ThetaBins", "PhiBins", "SamplesPerCell", "FillMethod",
-                 "BackFacesOcclude", "MemoryLimit", "Refinement", "RefinementLevels"])
+                 "BackFacesOcclude", "GenerateStripTable", "MemoryLimit", "Refinement",
+                 "RefinementLevels"])
 subdivision.MaxLevel = 1
 # Without refinement one point per patch; with the default refinement the floor patches along
 # the blocks' footprints (and the ceiling's around the light) are split, the area unchanged.
