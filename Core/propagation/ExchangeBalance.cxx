@@ -106,14 +106,17 @@ public:
         continue; // an overflowed column: its sum is its largest term (below)
       }
       std::frexp(largest[j], &exponent[j]);
-      // A power of two: the product is exact (below 2^FixedPointBits), its truncation is not.
-      const double scale = std::ldexp(1.0, FixedPointBits - exponent[j]);
+      // Powers of two: the products are exact (below 2^FixedPointBits), the truncation is not.
+      // Two of them, as 2^(FixedPointBits - e) alone overflows for a column of subnormal terms.
+      const int shift = FixedPointBits - exponent[j];
+      const double scaleA = std::ldexp(1.0, shift / 2);
+      const double scaleB = std::ldexp(1.0, shift - shift / 2);
       for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
       {
         const double term = this->Term(k);
         if (term > 0.0)
         {
-          fixed[j] += static_cast<FixedPoint>(term * scale);
+          fixed[j] += static_cast<FixedPoint>(term * scaleA * scaleB);
         }
       }
     }

@@ -322,9 +322,12 @@ TEST(SharedPropagation, RefusesAnotherRanksRows)
   InProcessRanks world(2);
   LightPropagation whole(setup.Cover, setup.Materials);
   EXPECT_THROW(whole.SetRankShare(world.Share(0)), std::invalid_argument);
-  LightPropagation others(setup.Cover.RowsOf(RankShare::ItemsOf(1, 2, n)), setup.Materials);
+  // The propagation keeps a reference to its cover: the rows outlive it.
+  const SphericalCover rank1Rows = setup.Cover.RowsOf(RankShare::ItemsOf(1, 2, n));
+  LightPropagation others(rank1Rows, setup.Materials);
   EXPECT_THROW(others.SetRankShare(world.Share(0)), std::invalid_argument);
-  LightPropagation empty(setup.Cover.RowsOf({}), setup.Materials);
+  const SphericalCover noRows = setup.Cover.RowsOf({});
+  LightPropagation empty(noRows, setup.Materials);
   EXPECT_NO_THROW(empty.SetRankShare(RankShare()));
 }
 
