@@ -46,18 +46,18 @@
  * error, as in serial.
  *
  * Processes (Controller, by default the global controller): when every one of K > 1 processes
- * holds the whole cover (`mpiexec -n K sphcover`, whose cover filter gives every rank the
- * gathered rows), the K ranks propagate together (LightPropagation::SetRankShare): rank r
- * shoots into the rows of its receivers r, r + K, ... (dealt round the ranks one by one, so
- * that each rank has a K-th of every surface and of each batch's shooters), and the results
- * are gathered, so every rank's outputs are the serial ones (the per-patch values and the regions'
- * incident radiances bit for bit; the energy sums up to the order of addition). When rank 0
- * holds the cover and the others empty pieces (pvbatch, pvserver), rank 0 deals each rank its
- * rows (the other ranks never hold the whole cover) and the K ranks balance the exchange
- * (ExchangeBalance under a share: each its own rows, the factors the whole cover's bit for bit)
- * and propagate together in the same way; the results are gathered on rank 0, which writes the
- * solution, and the others keep empty outputs, as above. FixedOrder runs on each process alone, as
- * described above. Every process must update the filter together, as for vtkSphericalCoverFilter.
+ * holds the whole cover (a VTK pipeline whose every rank holds piece 0), each rank keeps the
+ * rows of its receivers r, r + K, ... (dealt round the ranks one by one, so that each rank has
+ * a K-th of every surface and of each batch's shooters); when rank 0 holds the cover and the
+ * others empty pieces (pvbatch, pvserver, `mpiexec sphcover`), rank 0 deals each rank those
+ * rows (the other ranks never hold the whole cover). Either way the K ranks then balance the
+ * exchange (ExchangeBalance under a share: each its own rows, the factors the whole cover's bit
+ * for bit) and propagate together (LightPropagation::SetRankShare), and the results are
+ * gathered: on every rank in the first case, on rank 0 alone in the second (it writes the
+ * solution, the others keep empty outputs, as above). So the outputs are the serial ones (the
+ * per-patch values and the regions' incident radiances bit for bit; the energy sums up to the
+ * order of addition). FixedOrder runs on each process alone, as described above. Every process
+ * must update the filter together, as for vtkSphericalCoverFilter.
  */
 #ifndef vtkLightPropagationFilter_h
 #define vtkLightPropagationFilter_h

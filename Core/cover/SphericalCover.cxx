@@ -4,6 +4,7 @@
 #include "cover/RayCastFill.h"
 #include "math/Constants.h"
 #include "math/IntervalVector.h"
+#include "math/RankShare.h"
 
 #include "subdivision/Patch.h"
 
@@ -775,6 +776,18 @@ std::vector<std::size_t> SphericalCover::KeptEntries(
     }
   }
   return entries;
+}
+
+std::size_t SphericalCover::FirstForeignRow(const RankShare& share) const
+{
+  for (std::size_t i = 0; i < this->PatchCount(); ++i)
+  {
+    if (!share.Owns(i) && this->EntryEnd(i) > this->EntryBegin(i))
+    {
+      return i;
+    }
+  }
+  return this->PatchCount();
 }
 
 std::vector<double> SphericalCover::EstimateRowCosts(const std::vector<Patch>& patches,

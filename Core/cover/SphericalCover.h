@@ -88,6 +88,7 @@ namespace sphcover
 {
 
 struct Patch;
+class RankShare;
 class RayCastFiller;
 class RayCaster;
 
@@ -338,6 +339,10 @@ public:
   /// The indices of the entries of `receivers`' rows in receiver order: entry e of
   /// RowsOf(receivers) is entry KeptEntries(receivers)[e] of this cover.
   std::vector<std::size_t> KeptEntries(const std::vector<std::size_t>& receivers) const;
+
+  /// The first receiver whose row is not empty though another rank owns it (RankShare::Owns),
+  /// or PatchCount() when there is none, as for RowsOf(share.MyItems(PatchCount())).
+  std::size_t FirstForeignRow(const RankShare& share) const;
 
   // --- statistics and memory -------------------------------------------------------------------
   /// Candidate culling counts summed over all receivers (projection fill only).

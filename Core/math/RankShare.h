@@ -19,6 +19,7 @@
 
 #include "math/ByteBuffer.h"
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstddef>
 #include <exception>
@@ -344,11 +345,53 @@ std::vector<Value> JoinItems(const RankShare& share,
 }
 
 /**
+ * `values` has one value per item of [0, values.size()), valid on its owner (RankShare::Owns):
+ * returns every item's value from its owner, on every rank. Collective; one process: a copy.
+ */
+template<typename Value>
+std::vector<Value> JoinOwnedItems(const RankShare& share, const std::vector<Value>& values)
+{
+  std::vector<Value> mine;
+  for (const std::size_t item : share.MyItems(values.size()))
+  {
+    mine.push_back(values[item]);
+  }
+  return JoinItems(share, mine, std::vector<std::size_t>(values.size(), 1));
+}
+
+/**
+ * Every rank's `values` (as many on every rank) combined element by element, into `values` on
+ * every rank: values[k] = combine(... combine(combine(Value(), rank 0's), rank 1's) ..., rank
+ * K - 1's). Gives the same on every rank whatever K when `combine` is associative and
+ * commutative on the values given (a maximum of non-negative values, an integer sum).
+ * Collective; one process: nothing changes.
+ */
+template<typename Value, typename Combine>
+void CombineOverRanks(const RankShare& share, std::vector<Value>& values, const Combine& combine)
+{
+  if (!share.Distributed())
+  {
+    return;
+  }
+  const std::size_t count = values.size();
+  const std::vector<Value> all = JoinValues(share, values.data(), count, true);
+  std::fill(values.begin(), values.end(), Value());
+  for (std::size_t at = 0; at < all.size(); at += count)
+  {
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      values[k] = combine(values[k], all[at + k]);
+    }
+  }
+}
+
+/**
  * `values[k]` for every k of [0, count) on every rank: `computeMine(items)` computes those of
  * this rank's items (RankShare::MyItems; returns false when aborted), and the ranks' values are
  * joined. `Value` is trivially copyable. Returns false when this rank aborted; throws what
- * computeMine threw (after joining, so no rank waits), and RankShare::PeerFailure when another
- * rank failed. One process: computeMine gets every item, nothing is copied.
+ * computeMine threw (after joining, so no rank waits), RankShare::PeerFailure when another
+ * rank failed, and std::runtime_error when a rank's bytes are not its items' values
+ * (ItemsFromRanks). One process: computeMine gets every item, nothing is copied.
  */
 template <typename Value, typename ComputeMine>
 bool ShareItems(const RankShare& share,
@@ -392,19 +435,8 @@ bool ShareItems(const RankShare& share,
   {
     throw RankShare::PeerFailure();
   }
-  const std::size_t ranks = static_cast<std::size_t>(share.Ranks());
-  for (std::size_t r = 0; r < ranks; ++r)
-  {
-    ByteReader reader(all[r]);
-    for (std::size_t item = r; item < count; item += ranks)
-    {
-      if (!reader.Value(values[item]))
-      {
-        throw std::runtime_error("ShareItems: rank " + std::to_string(r) + " sent " +
-          std::to_string(all[r].size()) + " bytes, fewer than its items' values");
-      }
-    }
-  }
+  const std::vector<Value> joined = ItemsFromRanks<Value>(all, std::vector<std::size_t>(count, 1));
+  std::copy(joined.begin(), joined.end(), values.begin());
   return true;
 }
 

@@ -52,12 +52,7 @@ public:
     if (share.Distributed())
     {
       // r_j is its row's: every rank needs every source's.
-      std::vector<double> mine;
-      for (const std::size_t i : share.MyItems(cover.PatchCount()))
-      {
-        mine.push_back(this->Target[i]);
-      }
-      this->Target = JoinItems(share, mine, std::vector<std::size_t>(cover.PatchCount(), 1));
+      this->Target = JoinOwnedItems(share, this->Target);
     }
   }
 
@@ -82,17 +77,7 @@ public:
       }
     }
     largest[n] = stop ? 1.0 : 0.0;
-    if (this->Share.Distributed())
-    {
-      const std::vector<double> all = JoinValues(this->Share, largest.data(), n + 1, true);
-      for (std::size_t at = 0; at < all.size(); at += n + 1)
-      {
-        for (std::size_t j = 0; j <= n; ++j)
-        {
-          largest[j] = std::max(largest[j], all[at + j]);
-        }
-      }
-    }
+    CombineOverRanks(this->Share, largest, [](double a, double b) { return std::max(a, b); });
     if (largest[n] != 0.0)
     {
       return false;
@@ -120,18 +105,7 @@ public:
         }
       }
     }
-    if (this->Share.Distributed())
-    {
-      const std::vector<FixedPoint> all = JoinValues(this->Share, fixed.data(), n, true);
-      std::fill(fixed.begin(), fixed.end(), 0);
-      for (std::size_t at = 0; at < all.size(); at += n)
-      {
-        for (std::size_t j = 0; j < n; ++j)
-        {
-          fixed[j] += all[at + j];
-        }
-      }
-    }
+    CombineOverRanks(this->Share, fixed, [](FixedPoint a, FixedPoint b) { return a + b; });
     sums.resize(n);
     for (std::size_t j = 0; j < n; ++j)
     {
@@ -250,11 +224,7 @@ ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
   if (share.Distributed())
   {
     // A rank holding another's row fails; the others learn it in the join, not by waiting.
-    std::size_t foreign = cover.PatchCount();
-    for (std::size_t i = 0; i < cover.PatchCount() && foreign == cover.PatchCount(); ++i)
-    {
-      foreign = !share.Owns(i) && cover.EntryEnd(i) > cover.EntryBegin(i) ? i : foreign;
-    }
+    const std::size_t foreign = cover.FirstForeignRow(share);
     const bool own = foreign == cover.PatchCount();
     if (!share.EveryRankOk(own))
     {

@@ -696,12 +696,7 @@ std::vector<glm::dvec3> LightPropagation::LampIrradiance(const std::vector<bool>
   if (this->Shared())
   {
     // Each patch's direct light is known to its owner alone.
-    std::vector<glm::dvec3> mine;
-    for (const std::size_t i : this->Share.MyItems(count))
-    {
-      mine.push_back(direct[i]);
-    }
-    direct = JoinItems(this->Share, mine, std::vector<std::size_t>(count, 1));
+    direct = JoinOwnedItems(this->Share, direct);
   }
   std::vector<glm::dvec3> lamp = direct;
   for (std::size_t j = 0; firstBounce && j < count; ++j)

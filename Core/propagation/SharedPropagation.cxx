@@ -48,14 +48,12 @@ void SortUnique(std::vector<uint32_t>& values)
 void LightPropagation::SetRankShare(RankShare share)
 {
   const std::size_t n = this->PatchCount();
-  for (std::size_t i = 0; i < n; ++i)
+  const std::size_t i = this->Cover.FirstForeignRow(share);
+  if (i < n)
   {
-    if (!share.Owns(i) && this->Cover.EntryEnd(i) > this->Cover.EntryBegin(i))
-    {
-      throw std::invalid_argument("LightPropagation: row " + std::to_string(i) + " is rank " +
-        std::to_string(i % static_cast<std::size_t>(share.Ranks())) + "'s receiver's, not rank " +
-        std::to_string(share.Rank()) + "'s, but not empty (SphericalCover::RowsOf)");
-    }
+    throw std::invalid_argument("LightPropagation: row " + std::to_string(i) + " is rank " +
+      std::to_string(i % static_cast<std::size_t>(share.Ranks())) + "'s receiver's, not rank " +
+      std::to_string(share.Rank()) + "'s, but not empty (SphericalCover::RowsOf)");
   }
   this->Share = std::move(share);
   this->ShotNeedsKnown = false;
