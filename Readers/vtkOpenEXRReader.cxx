@@ -19,6 +19,7 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfTileDescription.h>
 #include <ImfVecAttribute.h>
 #include <ImfVersion.h>
 
@@ -319,6 +320,20 @@ ImageLayout ReadLayout(const Imf::Header& header, vtkIdType maximumPixels)
   CheckWindowSize(width, height, maximumPixels);
   layout.Width = static_cast<int>(width);
   layout.Height = static_cast<int>(height);
+  if (header.hasTileDescription())
+  {
+    // OpenEXR reads a tiled file through a buffer of whole tiles: a tile far larger than the
+    // image (a damaged tile description) would allocate gigabytes for a few pixels.
+    const Imf::TileDescription& tile = header.tileDescription();
+    const long long tileWidth = std::max<long long>(width, 1024);
+    const long long tileHeight = std::max<long long>(height, 1024);
+    if (tile.xSize > tileWidth || tile.ySize > tileHeight)
+    {
+      throw std::runtime_error("its tiles of " + std::to_string(tile.xSize) + " x " +
+        std::to_string(tile.ySize) + " pixels are larger than the image (" + std::to_string(width) +
+        " x " + std::to_string(height) + ") and 1024 x 1024");
+    }
+  }
 
   const Imf::ChannelList& channels = header.channels();
   if (channels.begin() == channels.end())

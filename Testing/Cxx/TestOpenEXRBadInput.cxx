@@ -258,6 +258,18 @@ int TestOpenEXRBadInput(int, char*[])
       "data window whose pixel count overflows");
   }
 
+  // Testing/Data/bad/fuzz/exr_tile_larger_than_memory.exr (FuzzOpenEXRReader, OOM): a tiled
+  // file whose tile description makes OpenEXR's setFrameBuffer allocate 4 GiB of tile buffer.
+  {
+    const std::string file =
+      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_tile_larger_than_memory.exr";
+    vtkNew<vtkOpenEXRReader> reader;
+    CheckReaderFails(reader,
+      file,
+      { "Cannot read OpenEXR file", file, "tiles of", "larger than the image" },
+      "tiles far larger than the image");
+  }
+
   // Testing/Data/bad/fuzz/exr_window_exceeds_memory.exr: the writer's 8 x 6 file with its data
   // window changed to 2^22 x 32 pixels (within MaximumPixels; 1.5 GiB for Radiance alone),
   // read under an address-space limit 768 MiB above the current size. The failed allocation
