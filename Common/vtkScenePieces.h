@@ -15,7 +15,11 @@
  *  - a filter asked for a piece > 0 whose input is not empty refuses with an error (a
  *    distributed mesh reader split the scene; merge it first);
  *  - an empty input on piece 0 stays the filter's own error, as in serial.
- * Distributing the work itself (rows of the cover, shots) is a later step.
+ * Under MPI the stages also share the work itself among the ranks (rows of the cover, shots:
+ * vtkSphericalCoverFilter, vtkLightPropagationFilter). One exception to the rule above: the
+ * spherical cover with GatherRows off gives every rank its share of the rows (field array
+ * CoverRowShare), a non-empty piece > 0 that the light propagation takes and every other
+ * filter refuses.
  */
 #ifndef vtkScenePieces_h
 #define vtkScenePieces_h

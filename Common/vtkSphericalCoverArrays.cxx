@@ -22,18 +22,17 @@ namespace names = vtkSphericalCoverArrayNames;
 
 namespace
 {
-/// Copies raw values into a new array of the matching VTK type.
+/// Copies `values` into a new array of the matching VTK type, then lets them go.
 template<typename ArrayType, typename Value>
-vtkSmartPointer<ArrayType> RawArray(const char* name,
-  int components,
-  const Value* values,
-  size_t tuples)
+vtkSmartPointer<ArrayType> RawArray(const char* name, int components, std::vector<Value>& values)
 {
+  const size_t tuples = values.size();
   auto array = vtkNamedArrays::New<ArrayType>(name, components, static_cast<vtkIdType>(tuples));
   if (tuples > 0)
   {
-    std::memcpy(array->GetPointer(0), values, tuples * sizeof(Value));
+    std::memcpy(array->GetPointer(0), values.data(), tuples * sizeof(Value));
   }
+  std::vector<Value>().swap(values);
   return array;
 }
 
@@ -59,7 +58,11 @@ bool ReadRaw(vtkFieldData* fd, const char* name, int components, std::vector<Val
 
 void vtkSphericalCoverArrays::Store(const sphcover::SphericalCover& cover, vtkDataSet* output)
 {
-  const sphcover::SphericalCover::Arrays arrays = cover.ExportArrays();
+  Store(cover.ExportArrays(), output);
+}
+
+void vtkSphericalCoverArrays::Store(sphcover::SphericalCover::Arrays arrays, vtkDataSet* output)
+{
   vtkFieldData* fd = output->GetFieldData();
   auto grid = vtkNamedArrays::Int(names::CoverGrid, 6, 1);
   const int gridValues[6] = { arrays.ThetaBins,
@@ -77,33 +80,26 @@ void vtkSphericalCoverArrays::Store(const sphcover::SphericalCover& cover, vtkDa
     grid->SetComponent(0, k, gridValues[k]);
   }
   fd->AddArray(grid);
-  fd->AddArray(RawArray<vtkTypeUInt64Array>(
-    names::CoverRowOffsets, 1, arrays.RowOffsets.data(), arrays.RowOffsets.size()));
-  fd->AddArray(RawArray<vtkTypeUInt32Array>(
-    names::CoverEntries, 2, arrays.Entries.data(), arrays.Entries.size()));
-  fd->AddArray(RawArray<vtkFloatArray>(
-    names::CoverUnoccluded, 1, arrays.Unoccluded.data(), arrays.Unoccluded.size()));
-  fd->AddArray(RawArray<vtkTypeUInt16Array>(
-    names::CoverStrips, 3, arrays.Strips.data(), arrays.Strips.size()));
-  fd->AddArray(RawArray<vtkFloatArray>(
-    names::CoverStripDepths, 1, arrays.StripDepths.data(), arrays.StripDepths.size()));
+  fd->AddArray(RawArray<vtkTypeUInt64Array>(names::CoverRowOffsets, 1, arrays.RowOffsets));
+  fd->AddArray(RawArray<vtkTypeUInt32Array>(names::CoverEntries, 2, arrays.Entries));
+  fd->AddArray(RawArray<vtkFloatArray>(names::CoverUnoccluded, 1, arrays.Unoccluded));
+  fd->AddArray(RawArray<vtkTypeUInt16Array>(names::CoverStrips, 3, arrays.Strips));
+  fd->AddArray(RawArray<vtkFloatArray>(names::CoverStripDepths, 1, arrays.StripDepths));
   if (!arrays.Measures.empty())
   {
-    fd->AddArray(RawArray<vtkFloatArray>(
-      names::CoverMeasures, 1, arrays.Measures.data(), arrays.Measures.size()));
+    fd->AddArray(RawArray<vtkFloatArray>(names::CoverMeasures, 1, arrays.Measures));
   }
   if (!arrays.Layers.empty())
   {
-    fd->AddArray(RawArray<vtkTypeUInt8Array>(
-      names::CoverLayers, 1, arrays.Layers.data(), arrays.Layers.size()));
-    fd->AddArray(RawArray<vtkFloatArray>(
-      names::CoverFilters, 1, arrays.Filters.data(), arrays.Filters.size()));
-    fd->AddArray(RawArray<vtkFloatArray>(
-      names::CoverTransmittances, 1, arrays.Transmittances.data(), arrays.Transmittances.size()));
+    fd->AddArray(RawArray<vtkTypeUInt8Array>(names::CoverLayers, 1, arrays.Layers));
+    fd->AddArray(RawArray<vtkFloatArray>(names::CoverFilters, 1, arrays.Filters));
+    fd->AddArray(RawArray<vtkFloatArray>(names::CoverTransmittances, 1, arrays.Transmittances));
   }
 }
 
-std::string vtkSphericalCoverArrays::Load(vtkDataSet* input, sphcover::SphericalCover& cover)
+std::string vtkSphericalCoverArrays::Load(vtkDataSet* input,
+  sphcover::SphericalCover& cover,
+  bool share)
 {
   vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
   vtkDataArray* grid = fd ? fd->GetArray(names::CoverGrid) : nullptr;
@@ -111,6 +107,12 @@ std::string vtkSphericalCoverArrays::Load(vtkDataSet* input, sphcover::Spherical
   if (!grid || grid->GetNumberOfComponents() != 6 || grid->GetNumberOfTuples() != 1 || !area)
   {
     return "the input holds no spherical cover (run vtkSphericalCoverFilter first)";
+  }
+  if (!share && fd->GetAbstractArray(names::CoverRowShare))
+  {
+    return "the input holds one rank's share of a spherical cover's rows (CoverRowShare: "
+           "vtkSphericalCoverFilter with GatherRows off), which only the light propagation "
+           "takes; gather the rows (GatherRows on)";
   }
   sphcover::SphericalCover::Arrays arrays;
   arrays.ThetaBins = static_cast<int>(grid->GetComponent(0, 0));

@@ -18,19 +18,22 @@
 #include <string>
 
 class vtkDataSet;
-namespace sphcover
-{
-class SphericalCover;
-}
+#include "cover/SphericalCover.h" // for SphericalCover::Arrays
 
 class SPHERICALCOVERCOMMON_EXPORT vtkSphericalCoverArrays
 {
 public:
   /// Adds the cover's arrays to `output`'s field data (its point data must hold `Area`).
   static void Store(const sphcover::SphericalCover& cover, vtkDataSet* output);
+  /// The same from the cover's exported arrays (SphericalCover::ExportArrays), each let go
+  /// once copied: a cover moved out (`std::move(cover).ExportArrays()`) is stored with at most
+  /// one of its arrays held twice.
+  static void Store(sphcover::SphericalCover::Arrays arrays, vtkDataSet* output);
 
-  /// Reads the cover of `input`; returns what is missing or inconsistent ("" on success).
-  static std::string Load(vtkDataSet* input, sphcover::SphericalCover& cover);
+  /// Reads the cover of `input`; returns what is missing or inconsistent ("" on success). A
+  /// rank's share of a cover (field array `CoverRowShare`, vtkSphericalCoverFilter with
+  /// GatherRows off) holds only some rows: it is refused unless `share` accepts one.
+  static std::string Load(vtkDataSet* input, sphcover::SphericalCover& cover, bool share = false);
 
   /// Whether `name` is one of the field arrays Store adds (nullptr: no).
   static bool IsCoverArray(const char* name);

@@ -8,6 +8,7 @@
 
 #include <exception>
 #include <string>
+#include <utility>
 
 namespace vtkCoverDistribution
 {
@@ -177,7 +178,7 @@ std::vector<RankFigures> GatherFigures(vtkMultiProcessController* controller,
 }
 
 std::vector<std::vector<char>> GatherBytes(vtkMultiProcessController* controller,
-  const std::vector<char>& mine,
+  std::vector<char> mine,
   bool everyRank)
 {
   const int ranks = controller->GetNumberOfProcesses();
@@ -191,21 +192,28 @@ std::vector<std::vector<char>> GatherBytes(vtkMultiProcessController* controller
     offsets[r] = total;
     total += lengths[r];
   }
-  const bool receives = everyRank || controller->GetLocalProcessId() == 0;
-  std::vector<char> all(receives ? static_cast<std::size_t>(total) : 0);
-  if (everyRank)
-  {
-    controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
-  }
-  else
-  {
-    controller->GatherV(mine.data(), all.data(), length, lengths.data(), offsets.data(), 0);
-  }
   std::vector<std::vector<char>> blocks;
-  if (!receives)
+  if (!everyRank)
   {
+    // Rank by rank into their own buffers: one buffer of all, split afterwards, would hold
+    // every byte twice on rank 0.
+    constexpr int BytesTag = 19003;
+    if (controller->GetLocalProcessId() != 0)
+    {
+      controller->Send(mine.data(), length, 0, BytesTag);
+      return blocks;
+    }
+    blocks.resize(lengths.size());
+    blocks[0] = std::move(mine);
+    for (std::size_t r = 1; r < lengths.size(); ++r)
+    {
+      blocks[r].resize(static_cast<std::size_t>(lengths[r]));
+      controller->Receive(blocks[r].data(), lengths[r], static_cast<int>(r), BytesTag);
+    }
     return blocks;
   }
+  std::vector<char> all(static_cast<std::size_t>(total));
+  controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());
   for (std::size_t r = 0; r < lengths.size(); ++r)
   {
     blocks.emplace_back(all.begin() + offsets[r], all.begin() + offsets[r] + lengths[r]);

@@ -73,10 +73,11 @@ std::vector<RankFigures> GatherFigures(vtkMultiProcessController* controller,
 
 /**
  * Every rank's bytes, in rank order: on every rank when `everyRank`, else on rank 0 only (the
- * others get an empty list).
+ * others get an empty list; rank 0 receives each rank's bytes into its own buffer, so that it
+ * holds them once).
  */
 std::vector<std::vector<char>> GatherBytes(vtkMultiProcessController* controller,
-  const std::vector<char>& mine,
+  std::vector<char> mine,
   bool everyRank);
 }
 

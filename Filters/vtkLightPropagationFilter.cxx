@@ -203,13 +203,14 @@ std::string MemoryProblem(const sphcover::SphericalCover& rows,
 /// before the propagation, not after it.
 std::string ReadPropagationInput(vtkPolyData* input,
   bool withCover,
+  bool share,
   double memoryLimit,
   sphcover::SphericalCover& cover,
   std::vector<sphcover::Material>& materials,
   bool& named,
   sphcover::PointIllumination& surfaces)
 {
-  const std::string problem = withCover ? vtkSphericalCoverArrays::Load(input, cover) : "";
+  const std::string problem = withCover ? vtkSphericalCoverArrays::Load(input, cover, share) : "";
   if (!problem.empty())
   {
     return problem;
@@ -270,6 +271,112 @@ bool BalanceFactors(vtkLightPropagationFilter* self,
   }
   factors = balance.EntryFactors();
   return !balance.Aborted();
+}
+
+/// The rank and the rank count whose share of a cover's rows `input` holds (the field array
+/// CoverRowShare of vtkSphericalCoverFilter with GatherRows off); {-1, 0} when it holds no
+/// share, {-2, 0} when the array is malformed (no rank's).
+std::pair<int, int> RowShareOf(vtkDataObject* input)
+{
+  vtkFieldData* fd = input ? input->GetFieldData() : nullptr;
+  vtkDataArray* share = fd ? fd->GetArray(names::CoverRowShare) : nullptr;
+  if (!share)
+  {
+    return { -1, 0 };
+  }
+  if (share->GetNumberOfComponents() != 2 || share->GetNumberOfTuples() != 1)
+  {
+    return { -2, 0 };
+  }
+  return { static_cast<int>(share->GetComponent(0, 0)),
+    static_cast<int>(share->GetComponent(0, 1)) };
+}
+
+/// "rank r of K's share" or "no share" of a RowShareOf.
+std::string ShareName(const std::pair<int, int>& share)
+{
+  if (share.first == -1)
+  {
+    return "no share";
+  }
+  if (share.first < 0)
+  {
+    return "a malformed share (its CoverRowShare is not one pair of ints)";
+  }
+  return "rank " + std::to_string(share.first) + " of " + std::to_string(share.second) + "'s share";
+}
+
+/**
+ * The whole cover into `whole` on rank 0, joined from the ranks' shares that their `input`s
+ * hold (CoverHeld::Shares); nothing on the other ranks. Collective: every rank takes part even
+ * when its share cannot be read, and returns what it found wrong ("" when nothing), for the
+ * ranks to agree on.
+ */
+std::string GatherShares(vtkMultiProcessController* controller,
+  vtkPolyData* input,
+  sphcover::SphericalCover& whole)
+{
+  std::vector<char> bytes;
+  sphcover::SphericalCoverOptions options;
+  std::string problem;
+  {
+    sphcover::SphericalCover mine;
+    problem = vtkSphericalCoverArrays::Load(input, mine, true);
+    if (problem.empty())
+    {
+      options = mine.Options();
+      bytes = sphcover::PackRowBlock(std::move(mine).ExportArrays(), {});
+    }
+    else
+    {
+      problem = "this rank's share of the cover: " + problem;
+    }
+  }
+  std::vector<std::vector<char>> all =
+    vtkCoverDistribution::GatherBytes(controller, std::move(bytes), false);
+  if (all.empty() || !problem.empty())
+  {
+    return problem; // rank 0 joins
+  }
+  std::vector<sphcover::SphericalCover::Arrays> shares(all.size());
+  for (std::size_t r = 0; r < all.size() && problem.empty(); ++r)
+  {
+    sphcover::CullingStatistics culling;
+    problem = sphcover::UnpackRowBlock(all[r].data(), all[r].size(), shares[r], culling);
+    if (!problem.empty())
+    {
+      problem = "rank " + std::to_string(r) + "'s share of the cover: " + problem;
+    }
+    all[r] = std::vector<char>();
+  }
+  if (problem.empty())
+  {
+    problem = whole.JoinRows(std::move(shares), options, {});
+    if (!problem.empty())
+    {
+      problem = "the ranks' shares of the cover: " + problem;
+    }
+  }
+  return problem;
+}
+
+/// Warns once when the scene has panes (a material's transmittance) but `cover`, a whole
+/// cover, does not see through them: a cover saved before panes were seen through
+/// (SphericalCover.h, "Panes").
+void WarnOfOpaquePanes(vtkLightPropagationFilter* self,
+  const sphcover::SphericalCover& cover,
+  const std::vector<sphcover::Material>& materials)
+{
+  if (!cover.HasPanes() &&
+    std::any_of(materials.begin(),
+      materials.end(),
+      [](const sphcover::Material& material) { return material.IsTransmitter(); }))
+  {
+    vtkWarningWithObjectMacro(self,
+      << "The scene has panes (a material's transmittance) but its spherical cover does not "
+         "see through them: they are solved as opaque, the transmitted light absorbed. "
+         "Rebuild the cover.");
+  }
 }
 
 /// Rank `rank`'s (of `ranks`) rows of `cover`: those of its receivers rank, rank + K, ...
@@ -498,7 +605,7 @@ PropagationResults JoinResults(const PropagationRanks& ranks, OwnResults own)
     }
     else
     {
-      all = vtkCoverDistribution::GatherBytes(ranks.Controller, bytes, false);
+      all = vtkCoverDistribution::GatherBytes(ranks.Controller, std::move(bytes), false);
     }
     return writer ? sphcover::ItemsFromRanks<Value>(all, lengths) : std::vector<Value>();
   };
@@ -684,8 +791,31 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
   // comes before any rank returns.
   vtkMultiProcessController* controller = this->Controller;
   const int ranks = controller ? controller->GetNumberOfProcesses() : 1;
+  const std::pair<int, int> rowShare = RowShareOf(inputData);
   if (ranks > 1 && this->ShootingOrder == BRIGHTEST_FIRST)
   {
+    const int rank = controller->GetLocalProcessId();
+    if (vtkCoverDistribution::Count(controller, rowShare.first != -1) > 0)
+    {
+      // The cover kept on the ranks (vtkSphericalCoverFilter's GatherRows off): each must hold
+      // its own share.
+      std::string problem;
+      if (rowShare.first != rank || rowShare.second != ranks)
+      {
+        problem = "this rank's input holds " + ShareName(rowShare) + " of the cover's rows, not " +
+          ShareName({ rank, ranks }) + ": build the cover on these ranks, or gather its rows " +
+          "(vtkSphericalCoverFilter's GatherRows)";
+      }
+      problem = vtkCoverDistribution::Agree(controller, problem);
+      if (!problem.empty())
+      {
+        output->Initialize();
+        history->Initialize();
+        vtkErrorMacro(<< "Cannot propagate light: " << problem << ".");
+        return 0;
+      }
+      return this->PropagateOnRanks(controller, input, output, history, CoverHeld::Shares);
+    }
     const bool whole = role == vtkScenePieces::Role::WholeScene;
     if (vtkCoverDistribution::Count(controller, whole) == ranks)
     {
@@ -693,6 +823,17 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     }
     return this->PropagateFromFirst(
       controller, static_cast<int>(role), outputVector, input, output, history);
+  }
+  if (rowShare.first != -1)
+  {
+    // One process, or FixedOrder on each alone: a share lacks the other ranks' rows.
+    output->Initialize();
+    history->Initialize();
+    vtkErrorMacro(<< "Cannot propagate light: the input holds " << ShareName(rowShare)
+                  << " of a cover's rows (vtkSphericalCoverFilter with GatherRows off), which "
+                     "propagates only on those ranks together in the BrightestFirst order; "
+                     "gather the rows (GatherRows on) to propagate it here.");
+    return 0;
   }
   if (role != vtkScenePieces::Role::WholeScene)
   {
@@ -772,23 +913,28 @@ int vtkLightPropagationFilter::PropagateFromFirst(vtkMultiProcessController* con
     points->SetFieldData(withoutCover);
   }
   vtkCoverDistribution::BroadcastFromFirst(controller, points);
-  return this->PropagateOnRanks(controller, rank == 0 ? input : points.Get(), output, history, true);
+  return this->PropagateOnRanks(
+    controller, rank == 0 ? input : points.Get(), output, history, CoverHeld::FirstRank);
 }
 
 int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* controller,
   vtkPolyData* input,
   vtkPolyData* output,
   vtkTable* history,
-  bool dealt)
+  CoverHeld held)
 {
   // One process, or the ranks together (see the header): every rank reads the same cover (or,
-  // `dealt`, rank 0 reads it and the others its points) and agrees on each step before the next
-  // collective one, so that a failure is one error on every rank and none waits for ever
-  // (vtkCoverDistribution.h).
+  // FirstRank, rank 0 reads it and the others its points; or, Shares, every rank its share) and
+  // agrees on each step before the next collective one, so that a failure is one error on
+  // every rank and none waits for ever (vtkCoverDistribution.h).
   auto agree = [controller](const std::string& problem)
   { return controller ? vtkCoverDistribution::Agree(controller, problem) : problem; };
-  // Whether this rank holds the whole cover, and then writes the solution.
-  const bool holder = !dealt || controller->GetLocalProcessId() == 0;
+  const bool first = !controller || controller->GetLocalProcessId() == 0;
+  // Whether this rank reads a cover from its input, whether that cover is the whole one, and
+  // whether this rank writes the solution.
+  const bool readsCover = held != CoverHeld::FirstRank || first;
+  const bool wholeCover = readsCover && held != CoverHeld::Shares;
+  const bool writer = held == CoverHeld::EveryRank || first;
   std::string problem;
   if (!input)
   {
@@ -803,7 +949,8 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   {
     // Under MPI a rank propagates its rows: their state must fit, checked when they are known.
     problem = ReadPropagationInput(input,
-      holder,
+      readsCover,
+      held == CoverHeld::Shares,
       controller ? std::numeric_limits<double>::infinity() : this->MemoryLimit,
       cover,
       materials,
@@ -819,10 +966,10 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   {
     problem = "Cannot propagate light: " + problem;
   }
-  else if (holder && named)
+  else if (wholeCover && named)
   {
     // The cover's part of the figures now: under MPI the cover is let go before the
-    // propagation (below).
+    // propagation (below). Of shares, on rank 0 once it has gathered them.
     problem = CoverFiguresOf(cover, surfaces, figures);
     if (!problem.empty())
     {
@@ -835,19 +982,15 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     vtkErrorMacro(<< problem);
     return 0;
   }
-  if (holder && !cover.HasPanes() &&
-    std::any_of(materials.begin(),
-      materials.end(),
-      [](const sphcover::Material& material) { return material.IsTransmitter(); }))
+  if (wholeCover)
   {
-    // A cover saved before panes were seen through (SphericalCover.h, "Panes"): say so, once.
-    vtkWarningMacro(<< "The scene has panes (a material's transmittance) but its spherical "
-                       "cover does not see through them: they are solved as opaque, the "
-                       "transmitted light absorbed. Rebuild the cover.");
+    WarnOfOpaquePanes(this, cover, materials);
   }
 
   PropagationRanks ranks;
   sphcover::SphericalCover rows;
+  // Shares: the whole cover's arrays, gathered on rank 0 for the solution.
+  vtkNew<vtkPolyData> gatheredCover;
   std::vector<bool> lampPatch;
   bool firstBounce = false;
   PropagationResults results;
@@ -879,14 +1022,28 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       // Rank r shoots into the rows of its receivers. A rank keeps (or is dealt) its rows and
       // the whole cover goes before the balance and the propagation's state exist: the memory
       // that falls with the ranks. Its state must fit MemoryLimit, not the whole cover's.
-      rows = dealt
-        ? DealRows(controller, cover)
-        : RowsOfRank(cover, controller->GetLocalProcessId(), controller->GetNumberOfProcesses());
-      cover = sphcover::SphericalCover();
       ranks.Share = vtkCoverDistribution::ShareOf(controller);
       ranks.Controller = controller;
-      ranks.EveryRankWrites = !dealt;
-      problem = agree(MemoryProblem(rows, materials, this->MemoryLimit));
+      ranks.EveryRankWrites = held == CoverHeld::EveryRank;
+      if (held == CoverHeld::Shares)
+      {
+        rows = std::move(cover);
+        const std::size_t foreign = rows.FirstForeignRow(ranks.Share);
+        if (foreign < rows.PatchCount())
+        {
+          problem = "this rank's share of the cover holds the row of receiver " +
+            std::to_string(foreign) + ", which another rank owns";
+        }
+      }
+      else
+      {
+        rows = held == CoverHeld::FirstRank
+          ? DealRows(controller, cover)
+          : RowsOfRank(cover, controller->GetLocalProcessId(), controller->GetNumberOfProcesses());
+      }
+      cover = sphcover::SphericalCover();
+      problem =
+        agree(problem.empty() ? MemoryProblem(rows, materials, this->MemoryLimit) : problem);
       if (!problem.empty())
       {
         vtkErrorMacro(<< "Cannot propagate light: " << problem);
@@ -919,7 +1076,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       this->RankCount = controller->GetNumberOfProcesses();
     }
     this->Shots = static_cast<int>(shots.size());
-    if (holder)
+    if (writer)
     {
       WriteShotHistory(shots, watts, history);
     }
@@ -928,6 +1085,37 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     propagation.reset();
     rows = sphcover::SphericalCover();
     factors = std::vector<double>();
+    if (held == CoverHeld::Shares)
+    {
+      // The solution holds the whole cover: rank 0 gathers the shares now, holding neither
+      // the propagation's state nor the joined results, then sums up its figures and keeps
+      // its arrays alone (the whole cover goes before the results come).
+      problem = GatherShares(controller, input, cover);
+      if (first && problem.empty() && named)
+      {
+        problem = CoverFiguresOf(cover, surfaces, figures);
+        if (!problem.empty())
+        {
+          problem = "Cannot sum up the solution: " + problem;
+        }
+      }
+      else if (!problem.empty())
+      {
+        problem = "Light propagation failed: " + problem;
+      }
+      problem = agree(problem);
+      if (!problem.empty())
+      {
+        history->Initialize();
+        vtkErrorMacro(<< problem);
+        return 0;
+      }
+      if (first)
+      {
+        WarnOfOpaquePanes(this, cover, materials);
+        vtkSphericalCoverArrays::Store(std::move(cover).ExportArrays(), gatheredCover);
+      }
+    }
     results = JoinResults(ranks, std::move(own));
   }
   catch (const std::exception& e)
@@ -935,11 +1123,21 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     vtkErrorMacro(<< "Light propagation failed: " << e.what());
     return 0;
   }
-  if (!holder)
+  if (!writer)
   {
     return 1; // rank 0 writes the solution
   }
   output->ShallowCopy(input);
+  if (held == CoverHeld::Shares)
+  {
+    // The whole cover's arrays in place of this rank's share (referenced, not copied).
+    vtkFieldData* fd = gatheredCover->GetFieldData();
+    for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+    {
+      output->GetFieldData()->AddArray(fd->GetAbstractArray(a));
+    }
+    output->GetFieldData()->RemoveArray(names::CoverRowShare);
+  }
   WriteIllumination(results, this->Shots, watts, output);
   if (named)
   {

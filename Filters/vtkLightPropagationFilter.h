@@ -50,10 +50,14 @@
  * rows of its receivers r, r + K, ... (dealt round the ranks one by one, so that each rank has
  * a K-th of every surface and of each batch's shooters); when rank 0 holds the cover and the
  * others empty pieces (pvbatch, pvserver, `mpiexec sphcover`), rank 0 deals each rank those
- * rows (the other ranks never hold the whole cover). Either way the K ranks then balance the
+ * rows (the other ranks never hold the whole cover); when every rank holds its share of the
+ * cover (the field array `CoverRowShare` of vtkSphericalCoverFilter with GatherRows off, as
+ * `mpiexec sphcover` builds it), each propagates its rows as they are, no rank holding the
+ * whole cover until rank 0 gathers it for the solution once the propagation's state is gone.
+ * Either way the K ranks then balance the
  * exchange (ExchangeBalance under a share: each its own rows, the factors the whole cover's bit
  * for bit) and propagate together (LightPropagation::SetRankShare), and the results are
- * gathered: on every rank in the first case, on rank 0 alone in the second (it writes the
+ * gathered: on every rank in the first case, on rank 0 alone in the others (it writes the
  * solution, the others keep empty outputs, as above). So the outputs are the serial ones (the
  * per-patch values and the regions' incident radiances bit for bit; the energy sums up to the
  * order of addition). FixedOrder runs on each process alone, as described above. Every process
@@ -181,15 +185,20 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// RequestData's work on the whole cover: alone (`controller` null), or together with the
-  /// controller's ranks, each of which holds the whole cover.
-  /// `dealt`: rank 0 holds the cover and deals the rows, the other ranks' `input` being its
-  /// points without the cover.
+  /// Where the cover is when the ranks propagate together.
+  enum class CoverHeld
+  {
+    EveryRank, ///< every rank's input holds the whole cover (or one process)
+    FirstRank, ///< rank 0's; the others' `input` is its points without the cover
+    Shares     ///< every rank's input holds its share (CoverRowShare)
+  };
+  /// RequestData's work: alone (`controller` null), or together with the controller's ranks,
+  /// the cover `held` as said.
   int PropagateOnRanks(vtkMultiProcessController* controller,
     vtkPolyData* input,
     vtkPolyData* output,
     vtkTable* history,
-    bool dealt = false);
+    CoverHeld held = CoverHeld::EveryRank);
   /// RequestData's work when not every rank holds the cover: rank 0's (piece 0) propagated by
   /// every rank together, `role` (vtkScenePieces::Role) this rank's piece.
   int PropagateFromFirst(vtkMultiProcessController* controller,

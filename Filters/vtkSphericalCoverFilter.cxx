@@ -418,17 +418,44 @@ void CopyCellDataOfPatches(vtkDataSet* input,
   }
 }
 
+/// Per characteristic point the projected solid angle its hemisphere covers and the sources
+/// it sees. Of a share of the cover (GatherRows off: `share`) a rank knows its own rows' only,
+/// so each point's come from its owner (collective).
+struct PointCoverage
+{
+  std::vector<double> Covered;
+  std::vector<int> Visible;
+};
+
+PointCoverage CoverageOf(const sphcover::SphericalCover& cover, const sphcover::RankShare* share)
+{
+  PointCoverage coverage;
+  for (size_t i = 0; i < cover.PatchCount(); ++i)
+  {
+    coverage.Covered.push_back(cover.CoveredProjectedSolidAngle(i));
+    coverage.Visible.push_back(static_cast<int>(cover.VisibleSourceCount(i)));
+  }
+  if (share)
+  {
+    coverage.Covered = sphcover::JoinOwnedItems(*share, coverage.Covered);
+    coverage.Visible = sphcover::JoinOwnedItems(*share, coverage.Visible);
+  }
+  return coverage;
+}
+
 /// Output 0: the characteristic points with PatchId and Area; the patches' cell arrays
 /// (SurfaceId, materials, UV, Level, ...) become their point data, then the cover's own
-/// arrays, which take precedence.
+/// arrays, which take precedence. `share`: the cover is this rank's share (see CoverageOf).
 void WriteCharacteristicPoints(vtkDataSet* input,
   const std::vector<sphcover::Patch>& patches,
   const std::vector<vtkIdType>& cellOfPatch,
   bool refined,
   const sphcover::SphericalCover& cover,
+  const sphcover::RankShare* share,
   vtkPolyData* pointsOut)
 {
   const vtkIdType count = static_cast<vtkIdType>(patches.size());
+  const PointCoverage coverage = CoverageOf(cover, share);
   auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
   auto tangents = vtkNamedArrays::Double(names::Tangents, 3, count);
   auto covered = vtkNamedArrays::Double(names::CoveredProjectedSolidAngle, 1, count);
@@ -439,8 +466,8 @@ void WriteCharacteristicPoints(vtkDataSet* input,
     const sphcover::HemisphereFrame frame = sphcover::HemisphereFrame::OfPatch(patch);
     normals->SetTuple(i, &frame.Normal[0]);
     tangents->SetTuple(i, &frame.Tangent[0]);
-    covered->SetValue(i, cover.CoveredProjectedSolidAngle(static_cast<size_t>(i)));
-    visible->SetValue(i, static_cast<int>(cover.VisibleSourceCount(static_cast<size_t>(i))));
+    covered->SetValue(i, coverage.Covered[static_cast<size_t>(i)]);
+    visible->SetValue(i, coverage.Visible[static_cast<size_t>(i)]);
   }
   vtkNew<vtkPolyData> characteristic;
   vtkSurfaceGridBuilder::BuildCharacteristicPoints(patches, characteristic);
@@ -704,12 +731,43 @@ bool BuildRowChunks(vtkSphericalCoverFilter* self,
   return true;
 }
 
-/// Both outputs of a built cover: the characteristic points with the direct light's nodes,
-/// and the strips.
+/**
+ * GatherRows off: this rank's rows, those of receivers r, r + K, ... (share.MyItems, the light
+ * propagation's share), built into `rows` and kept; their count into `receivers`; progress from
+ * the cover's start to 0.9. One by one round the ranks, every rank gets a K-th of every surface:
+ * no estimate of the rows' costs is needed to even the work out. False, with a warning, when
+ * aborted; throws what BuildRowsOf throws.
+ */
+bool BuildOwnRows(vtkSphericalCoverFilter* self,
+  const CoverInput& prepared,
+  const sphcover::RankShare& share,
+  sphcover::SphericalCover& rows,
+  double& receivers)
+{
+  const std::vector<std::size_t> mine = share.MyItems(prepared.Patches.size());
+  receivers = static_cast<double>(mine.size());
+  vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
+  if (!rows.BuildRowsOf(
+        prepared.Patches,
+        prepared.Options,
+        mine,
+        vtkSMPParallelFor::Make(),
+        [&progress](double fraction) { return progress(fraction); },
+        prepared.Rays))
+  {
+    vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+    return false;
+  }
+  return true;
+}
+
+/// Both outputs of a built cover (or of this rank's share of it, `share`: GatherRows off):
+/// the characteristic points with the direct light's nodes, and the strips.
 void WriteOutputs(vtkSphericalCoverFilter* self,
   vtkDataSet* input,
   const CoverInput& prepared,
   const sphcover::SphericalCover& cover,
+  const sphcover::RankShare* share,
   const sphcover::DirectIrradianceNodes& direct,
   vtkPolyData* pointsOut,
   vtkTable* stripsOut)
@@ -720,6 +778,7 @@ void WriteOutputs(vtkSphericalCoverFilter* self,
     prepared.CellOfPatch,
     self->GetRefinement() != vtkSphericalCoverFilter::REFINEMENT_OFF,
     cover,
+    share,
     pointsOut);
   if (!direct.Empty())
   {
@@ -791,7 +850,10 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
 
   CoverInput prepared;
   sphcover::DirectIrradianceNodes direct;
+  // GatherRows on: this rank's row blocks, as bytes to gather; off: its rows, kept.
+  const bool keepRows = !self->GetGatherRows();
   std::vector<char> bytes;
+  sphcover::SphericalCover ownRows;
   vtkCoverDistribution::RankFigures mine;
   const sphcover::RankShare share = vtkCoverDistribution::ShareOf(controller);
   // Each step's messages are held until the ranks agree on them (vtkHeldMessages); an exception
@@ -830,13 +892,14 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
           return false;
         }
         const auto start = std::chrono::steady_clock::now();
-        if (!BuildRowChunks(self, prepared, share, bytes, mine.Receivers))
+        if (keepRows ? !BuildOwnRows(self, prepared, share, ownRows, mine.Receivers)
+                     : !BuildRowChunks(self, prepared, share, bytes, mine.Receivers))
         {
           return false;
         }
         mine.Seconds = SecondsSince(start);
         self->RecordStageSeconds(1, mine.Seconds);
-        mine.Bytes = static_cast<double>(bytes.size());
+        mine.Bytes = static_cast<double>(keepRows ? ownRows.MemoryBytes() : bytes.size());
         return true;
       });
     agreed = vtkCoverDistribution::Agree(controller, problem);
@@ -853,12 +916,35 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
     return 0;
   }
 
-  // Every rank is ready: the row blocks move, to every rank that writes the cover.
   const std::vector<vtkCoverDistribution::RankFigures> figures =
     vtkCoverDistribution::GatherFigures(controller, mine);
+  auto rankFigures = vtkNamedArrays::Double(names::CoverRankFigures, 3, ranks);
+  for (vtkIdType r = 0; r < ranks; ++r)
+  {
+    const vtkCoverDistribution::RankFigures& f = figures[static_cast<size_t>(r)];
+    const double tuple[3] = { f.Receivers, f.Seconds, f.Bytes };
+    rankFigures->SetTuple(r, tuple);
+  }
+  if (keepRows)
+  {
+    // Every rank writes its share: every point, its own rows. The entries carry measures of
+    // their own on every rank or on none, as the whole cover's (SphericalCover::BuildRowsOf).
+    if (vtkCoverDistribution::Count(controller, ownRows.HasMeasures()) > 0)
+    {
+      ownRows.KeepCellMeasures();
+    }
+    WriteOutputs(self, scene, prepared, ownRows, &share, direct, pointsOut, stripsOut);
+    pointsOut->GetFieldData()->AddArray(rankFigures);
+    auto rowShare = vtkNamedArrays::Int(names::CoverRowShare, 2, 1);
+    rowShare->SetComponent(0, 0, rank);
+    rowShare->SetComponent(0, 1, ranks);
+    pointsOut->GetFieldData()->AddArray(rowShare);
+    self->UpdateProgress(1.0);
+    return 1;
+  }
+  // Every rank is ready: the row blocks move, to every rank that writes the cover.
   std::vector<std::vector<char>> received =
-    vtkCoverDistribution::GatherBytes(controller, bytes, everyRankWhole);
-  bytes = std::vector<char>();
+    vtkCoverDistribution::GatherBytes(controller, std::move(bytes), everyRankWhole);
   if (!whole)
   {
     return 1; // an empty piece (vtkScenePieces.h)
@@ -896,14 +982,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
     vtkErrorWithObjectMacro(self, << "Spherical cover failed: the gathered rows: " << problem);
     return 0;
   }
-  WriteOutputs(self, scene, prepared, cover, direct, pointsOut, stripsOut);
-  auto rankFigures = vtkNamedArrays::Double(names::CoverRankFigures, 3, ranks);
-  for (vtkIdType r = 0; r < ranks; ++r)
-  {
-    const vtkCoverDistribution::RankFigures& f = figures[static_cast<size_t>(r)];
-    const double tuple[3] = { f.Receivers, f.Seconds, f.Bytes };
-    rankFigures->SetTuple(r, tuple);
-  }
+  WriteOutputs(self, scene, prepared, cover, nullptr, direct, pointsOut, stripsOut);
   pointsOut->GetFieldData()->AddArray(rankFigures);
   self->UpdateProgress(1.0);
   return 1;
@@ -992,7 +1071,7 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     return 0;
   }
   prepared.Rays.reset();
-  WriteOutputs(this, input, prepared, cover, direct, pointsOut, stripsOut);
+  WriteOutputs(this, input, prepared, cover, nullptr, direct, pointsOut, stripsOut);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -1007,6 +1086,7 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
   os << indent << "GenerateStripTable: " << this->GenerateStripTable << "\n";
+  os << indent << "GatherRows: " << this->GatherRows << "\n";
   os << indent << "MeasureLamps: " << this->MeasureLamps << "\n";
   os << indent << "DirectIrradianceNodes: " << this->DirectIrradianceNodes << "\n";
   os << indent << "DirectBounceRays: " << this->DirectBounceRays << "\n";

@@ -52,7 +52,11 @@
  * input is broadcast to them first; they help build and keep empty outputs. The refinement's
  * leaves and hemispheres (Steps 1 to 3) and the direct light's nodes are shared among the
  * ranks too. The output then carries the field
- * array `CoverRankFigures` (per rank: receivers, seconds, bytes of its rows). Every rank must
+ * array `CoverRankFigures` (per rank: receivers, seconds, bytes of its rows). With GatherRows
+ * off the rows are not gathered: rank r builds and keeps the rows of receivers r, r + K, ...
+ * (the light propagation's share, vtkLightPropagationFilter), and every rank's output holds
+ * every characteristic point but only its own rows (field array `CoverRowShare`), so that no
+ * rank ever holds the whole cover before the propagation. Every rank must
  * update the filter together (as pvbatch --symmetric, pvserver and mpiexec sphcover do); a
  * failure on any rank is one error on every rank. To build a cover on one rank alone under MPI,
  * set the Controller to nullptr.
@@ -180,6 +184,21 @@ public:
   vtkBooleanMacro(GenerateStripTable, bool);
   ///@}
 
+  ///@{
+  /**
+   * Under MPI (K > 1 ranks): gather the rows built on the ranks into the whole cover on the
+   * ranks that hold the whole scene (rank 0 under pvbatch, whose output ParaView shows). Off:
+   * each rank keeps the rows of its receivers r, r + K, ... and outputs them with every
+   * characteristic point, marked by the field array `CoverRowShare`: the input the light
+   * propagation takes without any rank holding the whole cover (sphcover under mpiexec turns
+   * it off). Other filters that read the cover need it gathered. Default is on; ignored on one
+   * process.
+   */
+  vtkSetMacro(GatherRows, bool);
+  vtkGetMacro(GatherRows, bool);
+  vtkBooleanMacro(GatherRows, bool);
+  ///@}
+
   enum RefinementModes
   {
     REFINEMENT_OFF = 0,
@@ -255,6 +274,7 @@ protected:
   int FillMethod = RAY_CASTING;
   bool BackFacesOcclude = true;
   bool GenerateStripTable = true;
+  bool GatherRows = true;
   bool MeasureLamps = true;
   int DirectIrradianceNodes = 3;
   int DirectBounceRays = 32;

@@ -99,10 +99,12 @@ void Solution::Solve(const Options& options)
   CheckCoverGrid(settings, options);
   // Every rank subdivides (so that all fail alike on a bad scene), but under mpiexec only rank 0
   // gives the cover the patches: the other ranks ask for empty pieces, as pvbatch's ranks do,
-  // so the cover's rows are gathered on rank 0 alone and the propagation's dealt from there
-  // (vtkLightPropagationFilter): no other rank holds the whole cover or the solution.
+  // and get rank 0's scene from the cover filter. Each rank keeps the rows it builds (GatherRows
+  // off) and propagates them (vtkLightPropagationFilter); rank 0 gathers the whole cover only
+  // for the solution, once the propagation's state is gone, and no other rank ever holds it.
   this->Subdivide(options);
   this->Cover->SetMemoryLimit(options.MemoryLimit);
+  this->Cover->SetGatherRows(options.Ranks <= 1);
   // Nothing here reads the strip table (a spreadsheet's): it would stay in memory, as large as
   // the cover's strips again, beside the solve.
   this->Cover->GenerateStripTableOff();

@@ -171,11 +171,12 @@ nlohmann::json SolutionReport(Solution& solution)
   {
     report["peak_resident_bytes"].push_back(static_cast<long long>(bytes));
   }
-  // What the solution holds: the cover (its strips, entries and rows, paper §3.3, stored as the
-  // cover output's field arrays) and the propagation's state of one incident radiance per
-  // region h_ij (§5.1). The stages' working memory (R-buffers, weight tables) comes and goes.
+  // What the solution holds: the cover (its strips, entries and rows, paper §3.3, stored as
+  // field arrays: whole in the solution, a rank's share in the cover's output under mpiexec)
+  // and the propagation's state of one incident radiance per region h_ij (§5.1). The stages'
+  // working memory (R-buffers, weight tables) comes and goes.
   report["memory_bytes"] = { { "cover",
-                               ArrayBytes(solution.Cover->GetOutput()->GetFieldData(),
+                               ArrayBytes(solution.Propagation->GetOutput()->GetFieldData(),
                                  { names::CoverGrid,
                                    names::CoverRowOffsets,
                                    names::CoverEntries,

@@ -394,8 +394,7 @@ void SphericalCover::AppendRow(Row& row)
 
 bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
-  std::size_t first,
-  std::size_t last,
+  const std::vector<std::size_t>& receivers,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress,
   std::shared_ptr<const RayCaster> rays)
@@ -404,11 +403,6 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   if (patches.size() >= std::numeric_limits<uint32_t>::max())
   {
     throw std::invalid_argument("SphericalCover: more than 2^32 - 2 patches");
-  }
-  if (first > last || last > patches.size())
-  {
-    throw std::invalid_argument("SphericalCover: the receivers [" + std::to_string(first) + ", " +
-      std::to_string(last) + ") are not among the " + std::to_string(patches.size()) + " patches");
   }
   this->BuildOptions = options;
   // Panes (see the file comment): the fill lets the rays through their back sides, the cover
@@ -471,13 +465,13 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
     }
   }
 
-  const size_t count = last - first;
+  const size_t count = receivers.size();
   this->RowOffsets.reserve(count + 1);
   this->RowOffsets.push_back(0);
   this->Areas.resize(count);
   for (size_t i = 0; i < count; ++i)
   {
-    this->Areas[i] = patches[first + i].Area;
+    this->Areas[i] = patches[receivers[i]].Area;
   }
   const size_t batchSize = options.BatchSize > 0 ? options.BatchSize : DefaultBatchSize;
   std::vector<Row> rows;
@@ -493,7 +487,7 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
           paneFiller ? std::make_unique<RBuffer>(grid) : nullptr;
         for (size_t k = begin; k < end; ++k)
         {
-          const size_t receiver = first + batchBegin + k;
+          const size_t receiver = receivers[batchBegin + k];
           filler->Fill(receiver, buffer, &rows[k].Culling);
           ExtractRow(buffer, rows[k]);
           if (paneFiller)
@@ -527,7 +521,9 @@ bool SphericalCover::Build(const std::vector<Patch>& patches,
   const ProgressCallback& progress,
   std::shared_ptr<const RayCaster> rays)
 {
-  if (!this->BuildRows(patches, options, 0, patches.size(), parallelFor, progress, std::move(rays)))
+  std::vector<std::size_t> receivers(patches.size());
+  std::iota(receivers.begin(), receivers.end(), std::size_t(0));
+  if (!this->BuildRows(patches, options, receivers, parallelFor, progress, std::move(rays)))
   {
     return false;
   }
@@ -562,7 +558,30 @@ void SphericalCover::BuildColumns()
   }
 }
 
-SphericalCover::Arrays SphericalCover::ExportArrays() const
+SphericalCover::Arrays SphericalCover::ExportArrays() &&
+{
+  Arrays arrays;
+  arrays.ThetaBins = this->BuildOptions.ThetaBins;
+  arrays.PhiBins = this->BuildOptions.PhiBins;
+  arrays.SamplesTheta = this->BuildOptions.SamplesTheta;
+  arrays.SamplesPhi = this->BuildOptions.SamplesPhi;
+  arrays.Fill = static_cast<int>(this->BuildOptions.Fill);
+  arrays.RowOffsets = std::move(this->RowOffsets);
+  arrays.Entries = std::move(this->Entries);
+  arrays.Unoccluded = std::move(this->Unoccluded);
+  arrays.UnoccludedKnown = this->UnoccludedKnown;
+  arrays.Strips = std::move(this->Strips);
+  arrays.StripDepths = std::move(this->StripDepths);
+  arrays.Areas = std::move(this->Areas);
+  arrays.Measures = std::move(this->Measures);
+  arrays.Layers = std::move(this->Layers);
+  arrays.Filters = std::move(this->Filters);
+  arrays.Transmittances = std::move(this->Transmittances);
+  *this = SphericalCover(); // the columns' memory too
+  return arrays;
+}
+
+SphericalCover::Arrays SphericalCover::ExportArrays() const&
 {
   Arrays arrays;
   arrays.ThetaBins = this->BuildOptions.ThetaBins;
@@ -692,18 +711,63 @@ void SphericalCover::Adopt(Arrays arrays, const SphericalCoverOptions& options)
   this->BuildColumns();
 }
 
-SphericalCover SphericalCover::RowsOf(const std::vector<std::size_t>& receivers) const
+namespace
 {
-  const std::size_t n = this->PatchCount();
+/// Throws std::invalid_argument (in `caller`'s name) unless `receivers` are ascending, each
+/// once, and below n.
+void CheckReceivers(const std::vector<std::size_t>& receivers, std::size_t n, const char* caller)
+{
   for (std::size_t k = 0; k < receivers.size(); ++k)
   {
     if (receivers[k] >= n || (k > 0 && receivers[k] <= receivers[k - 1]))
     {
-      throw std::invalid_argument("SphericalCover::RowsOf: receiver " +
+      throw std::invalid_argument(std::string(caller) + ": receiver " +
         std::to_string(receivers[k]) + " of " + std::to_string(n) +
         (receivers[k] >= n ? "" : ", not after the previous one"));
     }
   }
+}
+}
+
+void SphericalCover::AppendRowTo(std::size_t receiver, Arrays& to) const
+{
+  const std::size_t begin = this->RowOffsets[receiver];
+  const std::size_t end = this->RowOffsets[receiver + 1];
+  if (begin == end)
+  {
+    return;
+  }
+  // The row's strips are consecutive: its first entry's first to its last entry's end.
+  const std::size_t stripBegin = this->Entries[begin].FirstStrip;
+  const std::size_t stripEnd = this->StripEnd(end - 1);
+  const std::size_t keptStrips = to.Strips.size();
+  for (std::size_t e = begin; e < end; ++e)
+  {
+    Entry entry = this->Entries[e];
+    entry.FirstStrip = static_cast<uint32_t>(entry.FirstStrip - stripBegin + keptStrips);
+    to.Entries.push_back(entry);
+  }
+  auto append = [](auto& into, const auto& from, std::size_t b, std::size_t e, std::size_t width)
+  {
+    if (!from.empty())
+    {
+      into.insert(into.end(),
+        from.begin() + static_cast<std::ptrdiff_t>(b * width),
+        from.begin() + static_cast<std::ptrdiff_t>(e * width));
+    }
+  };
+  append(to.Unoccluded, this->Unoccluded, begin, end, 1);
+  append(to.Strips, this->Strips, stripBegin, stripEnd, 1);
+  append(to.StripDepths, this->StripDepths, stripBegin, stripEnd, 1);
+  append(to.Measures, this->Measures, begin, end, 1);
+  append(to.Layers, this->Layers, begin, end, 1);
+  append(to.Filters, this->Filters, begin, end, 3);
+}
+
+SphericalCover SphericalCover::RowsOf(const std::vector<std::size_t>& receivers) const
+{
+  const std::size_t n = this->PatchCount();
+  CheckReceivers(receivers, n, "SphericalCover::RowsOf");
   Arrays kept;
   kept.ThetaBins = this->Grid().ThetaBins();
   kept.PhiBins = this->Grid().PhiBins();
@@ -714,41 +778,12 @@ SphericalCover SphericalCover::RowsOf(const std::vector<std::size_t>& receivers)
   std::size_t next = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    const bool keep = next < receivers.size() && receivers[next] == i;
-    std::size_t rowEntries = 0;
-    if (keep)
+    if (next < receivers.size() && receivers[next] == i)
     {
       ++next;
-      const std::size_t begin = this->RowOffsets[i];
-      const std::size_t end = this->RowOffsets[i + 1];
-      rowEntries = end - begin;
-      // The row's strips are consecutive: its first entry's first to its last entry's end.
-      const std::size_t stripBegin = begin < end ? this->Entries[begin].FirstStrip : 0;
-      const std::size_t stripEnd = begin < end ? this->StripEnd(end - 1) : 0;
-      const std::size_t keptStrips = kept.Strips.size();
-      for (std::size_t e = begin; e < end; ++e)
-      {
-        Entry entry = this->Entries[e];
-        entry.FirstStrip = static_cast<uint32_t>(entry.FirstStrip - stripBegin + keptStrips);
-        kept.Entries.push_back(entry);
-      }
-      auto append = [](auto& to, const auto& from, std::size_t b, std::size_t e, std::size_t width)
-      {
-        if (!from.empty())
-        {
-          to.insert(to.end(),
-            from.begin() + static_cast<std::ptrdiff_t>(b * width),
-            from.begin() + static_cast<std::ptrdiff_t>(e * width));
-        }
-      };
-      append(kept.Unoccluded, this->Unoccluded, begin, end, 1);
-      append(kept.Strips, this->Strips, stripBegin, stripEnd, 1);
-      append(kept.StripDepths, this->StripDepths, stripBegin, stripEnd, 1);
-      append(kept.Measures, this->Measures, begin, end, 1);
-      append(kept.Layers, this->Layers, begin, end, 1);
-      append(kept.Filters, this->Filters, begin, end, 3);
+      this->AppendRowTo(i, kept);
     }
-    kept.RowOffsets[i + 1] = kept.RowOffsets[i] + rowEntries;
+    kept.RowOffsets[i + 1] = kept.Entries.size();
   }
   kept.UnoccludedKnown = this->UnoccludedKnown;
   kept.Areas = this->Areas;
@@ -762,6 +797,159 @@ SphericalCover SphericalCover::RowsOf(const std::vector<std::size_t>& receivers)
   cover.Adopt(std::move(kept), this->BuildOptions);
   cover.CullingCounts = this->CullingCounts;
   return cover;
+}
+
+bool SphericalCover::BuildRowsOf(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  const std::vector<std::size_t>& receivers,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress,
+  std::shared_ptr<const RayCaster> rays)
+{
+  CheckReceivers(receivers, patches.size(), "SphericalCover::BuildRowsOf");
+  if (!this->BuildRows(patches, options, receivers, parallelFor, progress, std::move(rays)))
+  {
+    return false;
+  }
+  // BuildRows put the rows one after the other: each moves to its receiver, the others empty,
+  // and every patch gets its area (a source's, read by the propagation).
+  const std::size_t n = patches.size();
+  std::vector<uint64_t> offsets(n + 1, 0);
+  for (std::size_t k = 0; k < receivers.size(); ++k)
+  {
+    offsets[receivers[k] + 1] = this->RowOffsets[k + 1] - this->RowOffsets[k];
+  }
+  std::partial_sum(offsets.begin(), offsets.end(), offsets.begin());
+  this->RowOffsets = std::move(offsets);
+  this->Areas.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    this->Areas[i] = patches[i].Area;
+  }
+  this->BuildColumns();
+  if (progress)
+  {
+    progress(1.0);
+  }
+  return true;
+}
+
+void SphericalCover::KeepCellMeasures()
+{
+  if (!this->Measures.empty())
+  {
+    return;
+  }
+  std::vector<float> measures(this->Entries.size());
+  for (std::size_t e = 0; e < measures.size(); ++e)
+  {
+    measures[e] = static_cast<float>(this->CellsMeasure(e));
+  }
+  this->Measures = std::move(measures);
+}
+
+std::string SphericalCover::JoinRows(std::vector<Arrays> shares,
+  const SphericalCoverOptions& options,
+  const CullingStatistics& culling)
+{
+  this->Clear();
+  if (shares.empty())
+  {
+    return "no share of rows";
+  }
+  // Each share checked on its own (as ImportArrays), then against the first and the options.
+  std::vector<SphericalCover> covers(shares.size());
+  bool measured = false;
+  for (std::size_t s = 0; s < shares.size(); ++s)
+  {
+    const std::string name = "share " + std::to_string(s) + ": ";
+    if (shares[s].ThetaBins != options.ThetaBins || shares[s].PhiBins != options.PhiBins ||
+      shares[s].SamplesTheta != options.SamplesTheta ||
+      shares[s].SamplesPhi != options.SamplesPhi ||
+      shares[s].Fill != static_cast<int>(options.Fill))
+    {
+      return name + "its grid or fill is not the cover's";
+    }
+    const std::string problem = covers[s].ImportArrays(std::move(shares[s]));
+    if (!problem.empty())
+    {
+      return name + problem;
+    }
+    const SphericalCover& first = covers.front();
+    if (covers[s].Areas != first.Areas || covers[s].Transmittances != first.Transmittances ||
+      covers[s].UnoccludedKnown != first.UnoccludedKnown)
+    {
+      return name + "its patches or their areas are not share 0's";
+    }
+    measured = measured || covers[s].HasMeasures();
+  }
+  shares.clear();
+  const std::size_t n = covers.front().PatchCount();
+  Arrays joined;
+  joined.ThetaBins = options.ThetaBins;
+  joined.PhiBins = options.PhiBins;
+  joined.SamplesTheta = options.SamplesTheta;
+  joined.SamplesPhi = options.SamplesPhi;
+  joined.Fill = static_cast<int>(options.Fill);
+  joined.UnoccludedKnown = covers.front().UnoccludedKnown;
+  joined.RowOffsets.assign(1, 0);
+  joined.RowOffsets.reserve(n + 1);
+  // Reserved whole: grown by doubling, the joined arrays would hold up to twice their size.
+  std::size_t entries = 0;
+  std::size_t strips = 0;
+  for (SphericalCover& cover : covers)
+  {
+    if (measured)
+    {
+      cover.KeepCellMeasures();
+    }
+    entries += cover.EntryCount();
+    strips += cover.StripCount();
+  }
+  joined.Entries.reserve(entries);
+  joined.Unoccluded.reserve(entries);
+  joined.Strips.reserve(strips);
+  joined.StripDepths.reserve(strips);
+  joined.Measures.reserve(measured ? entries : 0);
+  joined.Layers.reserve(covers.front().HasPanes() ? entries : 0);
+  joined.Filters.reserve(covers.front().HasPanes() ? 3 * entries : 0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    std::size_t holder = covers.size();
+    for (std::size_t s = 0; s < covers.size(); ++s)
+    {
+      if (covers[s].EntryEnd(i) == covers[s].EntryBegin(i))
+      {
+        continue;
+      }
+      if (holder < covers.size())
+      {
+        return "receiver " + std::to_string(i) + "'s row is in share " + std::to_string(holder) +
+          " and in share " + std::to_string(s);
+      }
+      holder = s;
+    }
+    if (holder < covers.size())
+    {
+      covers[holder].AppendRowTo(i, joined);
+      if (joined.Strips.size() > std::numeric_limits<uint32_t>::max())
+      {
+        return "the shares hold more than 2^32 - 1 strips";
+      }
+    }
+    joined.RowOffsets.push_back(joined.Entries.size());
+  }
+  joined.Areas = covers.front().Areas;
+  joined.Transmittances = covers.front().Transmittances;
+  covers.clear();
+  const std::string problem = CheckArrays(joined);
+  if (!problem.empty())
+  {
+    return problem;
+  }
+  this->Adopt(std::move(joined), options);
+  this->CullingCounts = culling;
+  return std::string();
 }
 
 std::vector<std::size_t> SphericalCover::KeptEntries(
@@ -856,8 +1044,15 @@ bool SphericalCover::BuildRowBlock(const std::vector<Patch>& patches,
 {
   block = Arrays();
   culling = CullingStatistics();
+  if (first > last || last > patches.size())
+  {
+    throw std::invalid_argument("SphericalCover: the receivers [" + std::to_string(first) + ", " +
+      std::to_string(last) + ") are not among the " + std::to_string(patches.size()) + " patches");
+  }
+  std::vector<std::size_t> receivers(last - first);
+  std::iota(receivers.begin(), receivers.end(), first);
   SphericalCover rows;
-  if (!rows.BuildRows(patches, options, first, last, parallelFor, progress, std::move(rays)))
+  if (!rows.BuildRows(patches, options, receivers, parallelFor, progress, std::move(rays)))
   {
     return false;
   }

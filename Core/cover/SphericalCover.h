@@ -268,7 +268,10 @@ public:
     std::vector<float> Filters;
     std::vector<float> Transmittances;
   };
-  Arrays ExportArrays() const;
+  Arrays ExportArrays() const&;
+  /// The arrays moved out, the cover left empty: for a caller done with the cover that stores
+  /// its arrays elsewhere (vtkSphericalCoverArrays::Store), without a second copy.
+  Arrays ExportArrays() &&;
   /// Replaces the cover with saved arrays after checking that they are consistent (offsets,
   /// indices and cell ranges); returns an explanation (and leaves the cover empty) if not.
   std::string ImportArrays(Arrays arrays);
@@ -336,6 +339,41 @@ public:
    */
   SphericalCover RowsOf(const std::vector<std::size_t>& receivers) const;
 
+  /**
+   * Replaces the cover with the rows of `receivers` (ascending, each once) of the cover
+   * Build(patches, options) gives, the others empty: Build's RowsOf(receivers) bit for bit, but
+   * for two things a share cannot know alone: its entries carry measures of their own only when
+   * one of its rows is measured (KeepCellMeasures, when another share's is), and Culling()
+   * counts its rows only. How a rank of a distributed build keeps its rows
+   * (vtkSphericalCoverFilter's GatherRows off) without the whole cover ever meeting on one.
+   * False, with the cover cleared, when `progress` returned false (it counts the kept rows).
+   * Throws as Build does, and std::invalid_argument as RowsOf.
+   */
+  bool BuildRowsOf(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options,
+    const std::vector<std::size_t>& receivers,
+    const ParallelFor& parallelFor = SequentialFor,
+    const ProgressCallback& progress = nullptr,
+    std::shared_ptr<const RayCaster> rays = nullptr);
+  /// Whether the entries carry measures of their own (some row measured: see the file comment).
+  bool HasMeasures() const { return !this->Measures.empty(); }
+  /// Gives every entry its cells' measure when it has no measures of its own, as Build gives
+  /// the rows before its first measured one: a share whose rows are not measured, of a cover
+  /// some of whose rows are.
+  void KeepCellMeasures();
+  /**
+   * Replaces the cover with the join of shares of one cover (RowsOf's or BuildRowsOf's copies,
+   * exported): receiver i's row is the one share's whose row i is not empty (or empty). With
+   * the shares of every receiver it is the whole cover, bit for bit (measures as
+   * ImportRowBlocks gives them). `options` and `culling` become Options() and Culling().
+   * Returns an explanation (and leaves the cover empty) when a share is inconsistent (as
+   * ImportArrays), when the shares differ in their grid, patches or areas, or when two hold
+   * the same row.
+   */
+  std::string JoinRows(std::vector<Arrays> shares,
+    const SphericalCoverOptions& options,
+    const CullingStatistics& culling);
+
   /// The indices of the entries of `receivers`' rows in receiver order: entry e of
   /// RowsOf(receivers) is entry KeptEntries(receivers)[e] of this cover.
   std::vector<std::size_t> KeptEntries(const std::vector<std::size_t>& receivers) const;
@@ -390,12 +428,12 @@ public:
 
 private:
   struct Row;
-  /// Build's rows of receivers [first, last) (first == 0, last == n: the whole cover, without
-  /// its columns); false, with the cover cleared, when aborted.
+  /// Build's rows of `receivers` (ascending), one after the other from row 0, with their areas
+  /// (all receivers: the whole cover, without its columns); false, with the cover cleared,
+  /// when aborted.
   bool BuildRows(const std::vector<Patch>& patches,
     const SphericalCoverOptions& options,
-    std::size_t first,
-    std::size_t last,
+    const std::vector<std::size_t>& receivers,
     const ParallelFor& parallelFor,
     const ProgressCallback& progress,
     std::shared_ptr<const RayCaster> rays);
@@ -403,6 +441,9 @@ private:
   static std::string CheckArrays(const Arrays& arrays);
   /// Takes consistent `arrays` with `options` as the build's and derives the columns.
   void Adopt(Arrays arrays, const SphericalCoverOptions& options);
+  /// Appends row `receiver` (its entries, their strips and per-entry values) to `to`'s arrays,
+  /// the entries' first strips counted in `to`.
+  void AppendRowTo(std::size_t receiver, Arrays& to) const;
   /// Appends the regions of `buffer` to `row` as entries of layer `layer`; `filterOfCell` (by
   /// cell index) gives their filters when layer > 0.
   static void ExtractRow(const RBuffer& buffer,

@@ -8,6 +8,7 @@
 #include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
 #include "geometry/RayCaster.h"
+#include "math/RankShare.h"
 
 #include <gtest/gtest.h>
 
@@ -251,6 +252,170 @@ TEST(RowBlocks, PanesJoinedEqualSerial)
     SCOPED_TRACE(testing::Message() << parts << " blocks");
     ExpectSameCover(BuildInBlocks(patches, options, parts), serial);
   }
+}
+
+namespace
+{
+/// The arrays of two covers are the same, bit for bit (culling counts aside).
+void ExpectSameRows(const SphericalCover& a, const SphericalCover& b)
+{
+  const SphericalCover::Arrays x = a.ExportArrays();
+  const SphericalCover::Arrays y = b.ExportArrays();
+  EXPECT_TRUE(SameBytes(x.RowOffsets, y.RowOffsets));
+  EXPECT_TRUE(SameBytes(x.Entries, y.Entries));
+  EXPECT_TRUE(SameBytes(x.Unoccluded, y.Unoccluded));
+  EXPECT_TRUE(SameBytes(x.Strips, y.Strips));
+  EXPECT_TRUE(SameBytes(x.StripDepths, y.StripDepths));
+  EXPECT_TRUE(SameBytes(x.Areas, y.Areas));
+  EXPECT_TRUE(SameBytes(x.Measures, y.Measures));
+  EXPECT_TRUE(SameBytes(x.Layers, y.Layers));
+  EXPECT_TRUE(SameBytes(x.Filters, y.Filters));
+  EXPECT_TRUE(SameBytes(x.Transmittances, y.Transmittances));
+}
+
+/// The shares of `receiverSets` built apart (BuildRowsOf, measures kept where a share's rows
+/// are not measured but another's are), each checked against the serial cover's RowsOf, then
+/// joined through their bytes: the serial cover.
+void ExpectSharesJoinToSerial(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  const std::vector<std::vector<std::size_t>>& receiverSets,
+  const SphericalCover& serial)
+{
+  std::vector<SphericalCover> shares(receiverSets.size());
+  bool measured = false;
+  for (std::size_t s = 0; s < shares.size(); ++s)
+  {
+    ASSERT_TRUE(shares[s].BuildRowsOf(patches, options, receiverSets[s], ThreadedFor(2)));
+    measured = measured || shares[s].HasMeasures();
+  }
+  std::vector<SphericalCover::Arrays> sent;
+  CullingStatistics culling;
+  for (std::size_t s = 0; s < shares.size(); ++s)
+  {
+    SCOPED_TRACE(testing::Message() << "share " << s);
+    if (measured)
+    {
+      shares[s].KeepCellMeasures();
+    }
+    ExpectSameRows(shares[s], serial.RowsOf(receiverSets[s]));
+    const std::vector<char> bytes = PackRowBlock(shares[s].ExportArrays(), shares[s].Culling());
+    SphericalCover::Arrays read;
+    CullingStatistics counts;
+    ASSERT_EQ(UnpackRowBlock(bytes.data(), bytes.size(), read, counts), "");
+    sent.push_back(std::move(read));
+    culling += counts;
+  }
+  SphericalCover joined;
+  ASSERT_EQ(joined.JoinRows(std::move(sent), options, culling), "");
+  ExpectSameCover(joined, serial);
+}
+}
+
+// Each rank builds the rows of its receivers (r, r + K, ...: BuildRowsOf) and keeps them; the
+// shares are the serial cover's RowsOf and join (JoinRows) to the serial cover, bit for bit:
+// both fills, the lamp measured on the lamp (a share of the lamp's own rows, which see no
+// measured region, keeps its cells' measures), panes.
+TEST(RowBlocks, SharesBuiltApartJoinToSerial)
+{
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  const std::vector<Patch> patches = CornellPatches(scene);
+  auto dealt = [&](std::size_t ranks)
+  {
+    std::vector<std::vector<std::size_t>> sets;
+    for (std::size_t r = 0; r < ranks; ++r)
+    {
+      sets.push_back(
+        RankShare::ItemsOf(static_cast<int>(r), static_cast<int>(ranks), patches.size()));
+    }
+    return sets;
+  };
+  for (const RBufferFill fill : { RBufferFill::Projection, RBufferFill::RayCasting })
+  {
+    SphericalCoverOptions options;
+    options.ThetaBins = 8;
+    options.PhiBins = 32;
+    options.Fill = fill;
+    SphericalCover serial;
+    ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
+    for (const std::size_t ranks : { 1, 2, 3 })
+    {
+      SCOPED_TRACE(
+        testing::Message() << "fill " << static_cast<int>(fill) << ", " << ranks << " ranks");
+      ExpectSharesJoinToSerial(patches, options, dealt(ranks), serial);
+    }
+  }
+
+  const SphericalCoverOptions measuredLamp = MeasuredLampOptions(scene);
+  SphericalCover serial;
+  ASSERT_TRUE(serial.Build(patches, measuredLamp, ThreadedFor(2)));
+  ASSERT_TRUE(serial.HasMeasures());
+  ExpectSharesJoinToSerial(patches, measuredLamp, dealt(2), serial);
+  const int lamp = SurfaceNamed(scene, "light");
+  std::vector<std::vector<std::size_t>> lampAndRest(2);
+  for (std::size_t i = 0; i < patches.size(); ++i)
+  {
+    lampAndRest[patches[i].SurfaceIndex == lamp ? 0 : 1].push_back(i);
+  }
+  SphericalCover lampRows;
+  ASSERT_TRUE(lampRows.BuildRowsOf(patches, measuredLamp, lampAndRest[0]));
+  EXPECT_FALSE(lampRows.HasMeasures()); // the path KeepCellMeasures is for
+  ExpectSharesJoinToSerial(patches, measuredLamp, lampAndRest, serial);
+
+  const Scene paned = LoadSceneFile(ScenePath("furnace_pane.scene"));
+  const std::vector<Patch> panePatches = SplitScene(paned, 3);
+  SphericalCoverOptions paneOptions;
+  paneOptions.ThetaBins = 8;
+  paneOptions.PhiBins = 32;
+  paneOptions.Fill = RBufferFill::RayCasting;
+  for (const Surface& surface : paned.Surfaces)
+  {
+    paneOptions.SurfaceTransmittance.push_back(
+      glm::vec3(paned.Materials[static_cast<size_t>(surface.MaterialIndex)].Transmittance));
+  }
+  SphericalCover paneSerial;
+  ASSERT_TRUE(paneSerial.Build(panePatches, paneOptions, ThreadedFor(2)));
+  ASSERT_TRUE(paneSerial.HasPanes());
+  std::vector<std::vector<std::size_t>> paneSets;
+  for (int r = 0; r < 2; ++r)
+  {
+    paneSets.push_back(RankShare::ItemsOf(r, 2, panePatches.size()));
+  }
+  ExpectSharesJoinToSerial(panePatches, paneOptions, paneSets, paneSerial);
+}
+
+// Shares that do not make one cover are refused with a reason, the cover left empty.
+TEST(RowBlocks, BadSharesRefused)
+{
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  const std::vector<Patch> patches = CornellPatches(scene);
+  SphericalCoverOptions options;
+  options.ThetaBins = 8;
+  options.PhiBins = 32;
+  SphericalCover first;
+  SphericalCover second;
+  ASSERT_TRUE(first.BuildRowsOf(patches, options, { 0, 1, 2 }));
+  ASSERT_TRUE(second.BuildRowsOf(patches, options, { 2, 3 }));
+  SphericalCover joined;
+  const std::string twice =
+    joined.JoinRows({ first.ExportArrays(), second.ExportArrays() }, options, {});
+  EXPECT_NE(twice.find("receiver 2's row is in share 0 and in share 1"), std::string::npos)
+    << twice;
+  EXPECT_TRUE(joined.Empty());
+  SphericalCoverOptions other = options;
+  other.PhiBins = 64;
+  EXPECT_NE(joined.JoinRows({ first.ExportArrays() }, other, {}), "");
+  std::vector<Patch> fewer(patches.begin(), patches.end() - 1);
+  SphericalCover short_;
+  ASSERT_TRUE(short_.BuildRowsOf(fewer, options, { 3 }));
+  EXPECT_NE(joined.JoinRows({ first.ExportArrays(), short_.ExportArrays() }, options, {}), "");
+  SphericalCover::Arrays damaged = first.ExportArrays();
+  damaged.RowOffsets.back() += 1; // past the entries
+  EXPECT_NE(joined.JoinRows({ damaged }, options, {}), "");
+  EXPECT_NE(joined.JoinRows({}, options, {}), "");
+  EXPECT_TRUE(joined.Empty());
+  SphericalCover unordered;
+  EXPECT_THROW(unordered.BuildRowsOf(patches, options, { 2, 1 }), std::invalid_argument);
+  EXPECT_THROW(unordered.BuildRowsOf(patches, options, { patches.size() }), std::invalid_argument);
 }
 
 // The split follows the cost, not the count; every receiver is in exactly one range.

@@ -143,6 +143,18 @@ int TestSphericalCoverFilter(int, char*[])
         vtkTable::SafeDownCast(withoutTable->GetOutputDataObject(1))->GetNumberOfColumns() == 0,
       "GenerateStripTable off: the same cover and an empty strip table");
   }
+  {
+    // GatherRows off on one process: nothing to keep apart, the whole cover, no share marker.
+    vtkNew<vtkSphericalCoverFilter> notGathered;
+    notGathered->SetInputConnection(boxPatches->GetOutputPort(0));
+    notGathered->GatherRowsOff();
+    notGathered->Update();
+    sphcover::SphericalCover same;
+    Check(vtkSphericalCoverArrays::Load(notGathered->GetOutput(), same).empty() &&
+        SameCover(built, same) &&
+        !notGathered->GetOutput()->GetFieldData()->GetArray("CoverRowShare"),
+      "GatherRows off on one process: the whole cover, not a share");
+  }
 
   const std::string file =
     std::string(SPHCOVER_BINARY_DIR) + "/Testing/Temporary/TestSphericalCoverFilter.vtp";

@@ -23,7 +23,7 @@ cxx = vtkIntervalSubdivisionFilter()
 
 BOOLEANS_AND_ENUMS = ("RangeMethod", "SelfShadowing", "HemisphericalContainment", "SphericalShape",
                       "Characterisability", "FillMethod", "BackFacesOcclude", "Refinement",
-                      "ShootingOrder", "BalanceExchanges")
+                      "ShootingOrder", "BalanceExchanges", "GatherRows")
 
 
 def check_properties(proxy, native, names):
@@ -86,7 +86,7 @@ if abs(total / expected - 1) > 1e-6:
 # The spherical cover of the (coarsely) subdivided box.
 cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0))
 check_properties(cover, vtkSphericalCoverFilter(), ["ThetaBins", "PhiBins", "SamplesPerCell", "FillMethod",
-                 "BackFacesOcclude", "GenerateStripTable", "MemoryLimit", "Refinement",
+                 "BackFacesOcclude", "GenerateStripTable", "GatherRows", "MemoryLimit", "Refinement",
                  "RefinementLevels"])
 subdivision.MaxLevel = 1
 # Without refinement one point per patch; with the default refinement the floor patches along

@@ -8,6 +8,11 @@ completes on 2 ranks, under the piece policy of Readers/vtkScenePieces.h:
   illumination equals the serial one value for value;
 - the light propagation ran on both ranks together (rank 0 dealing each rank its rows, each
   shooting into its own), not on rank 0 alone;
+- with the cover's GatherRows off, each rank's cover output holds every point and only the rows
+  of its own receivers (r, r + K, ...: CoverRowShare), the propagation runs on these shares, and
+  rank 0's solution (the whole cover, Radiosity, IncidentRadiance) equals the serial one while
+  rank 1's is empty; a FixedOrder propagation of the shares, or one refused (MemoryLimit), is
+  one error on each rank;
 - a propagation refused (a MemoryLimit below a rank's share) is one error on each rank, and
   neither waits for the other; so is one that rank 0 aborts while it balances the exchange (the
   other rank waiting to be dealt its rows).
@@ -152,6 +157,58 @@ errors = errors_of(aborted)
 if len(errors) != 1 or "aborted" not in errors[0] or "(rank 0 of" not in errors[0]:
     failures.append(f"the propagation aborted on rank 0 reported {errors}, not one error naming "
                     "rank 0")
+
+# GatherRows off: the rows stay on the ranks that built them, the propagation takes them there.
+kept = globals()["SphericalCover"](Input=OutputPort(subdivision, 0), ThetaBins=8, PhiBins=32,
+                                   GatherRows=0)
+kept_propagation = globals()["LightPropagation"](Input=OutputPort(kept, 0))
+kept_propagation.UpdatePipeline()
+share = kept.GetClientSideObject().GetOutputDataObject(0)
+serial_points = serial_cover.GetOutputDataObject(0)
+marker = share.GetFieldData().GetArray("CoverRowShare")
+if marker is None or (marker.GetComponent(0, 0), marker.GetComponent(0, 1)) != (rank, ranks):
+    failures.append(f"the kept cover of rank {rank} is not marked as its share")
+if share.GetNumberOfPoints() != serial_points.GetNumberOfPoints():
+    failures.append(f"the kept cover of rank {rank} has {share.GetNumberOfPoints()} points, "
+                    f"not all {serial_points.GetNumberOfPoints()}")
+offsets = share.GetFieldData().GetArray("CoverRowOffsets")
+serial_offsets = serial_points.GetFieldData().GetArray("CoverRowOffsets")
+if offsets is None or offsets.GetNumberOfTuples() != serial_offsets.GetNumberOfTuples():
+    failures.append(f"the kept cover of rank {rank} lacks one row offset per point")
+else:
+    mine = [offsets.GetValue(i + 1) - offsets.GetValue(i)
+            for i in range(offsets.GetNumberOfTuples() - 1)]
+    whole = [serial_offsets.GetValue(i + 1) - serial_offsets.GetValue(i)
+             for i in range(serial_offsets.GetNumberOfTuples() - 1)]
+    expected = [whole[i] if i % ranks == rank else 0 for i in range(len(whole))]
+    if mine != expected:
+        failures.append(f"rank {rank}'s kept rows are not the serial rows of its receivers")
+solution = kept_propagation.GetClientSideObject().GetOutputDataObject(0)
+if rank == 0:
+    reference = serial_propagation.GetOutputDataObject(0)
+    for name in ("Radiosity", "Irradiance"):
+        a, b = solution.GetPointData().GetArray(name), reference.GetPointData().GetArray(name)
+        if a is None or b is None or [a.GetValue(i) for i in range(a.GetNumberOfValues())] != \
+                [b.GetValue(i) for i in range(b.GetNumberOfValues())]:
+            failures.append(f"the solution of the kept rows: {name} differs from the serial one")
+    for name in ("IncidentRadiance", "CoverRowOffsets", "CoverEntries", "CoverStrips"):
+        a, b = solution.GetFieldData().GetArray(name), reference.GetFieldData().GetArray(name)
+        if a is None or b is None or [a.GetValue(i) for i in range(a.GetNumberOfValues())] != \
+                [b.GetValue(i) for i in range(b.GetNumberOfValues())]:
+            failures.append(f"the solution of the kept rows: {name} differs from the serial one")
+    if solution.GetFieldData().GetArray("CoverRowShare") is not None:
+        failures.append("the solution of the kept rows still says it is a share")
+elif solution.GetNumberOfPoints() != 0:
+    failures.append(f"rank {rank} wrote a solution of the kept rows")
+refused = globals()["LightPropagation"](Input=OutputPort(kept, 0), MemoryLimit=0.001)
+errors = errors_of(refused)
+if len(errors) != 1 or "MemoryLimit" not in errors[0] or f"of {ranks})" not in errors[0]:
+    failures.append(f"the refused propagation of the kept rows reported {errors}, not one "
+                    "MemoryLimit error naming the rank")
+fixed_order = globals()["LightPropagation"](Input=OutputPort(kept, 0), ShootingOrder="Fixed Order")
+errors = errors_of(fixed_order)
+if len(errors) != 1 or "GatherRows" not in errors[0]:
+    failures.append(f"FixedOrder on the kept rows reported {errors}, not one error about them")
 
 for failure in failures:
     print(f"FAILED (rank {rank}):", failure)
