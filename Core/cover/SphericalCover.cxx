@@ -713,6 +713,28 @@ void SphericalCover::Adopt(Arrays arrays, const SphericalCoverOptions& options)
 
 namespace
 {
+/// Whether `arrays` were built on the grid and with the fill of `options`.
+bool SameGridAndFill(const SphericalCover::Arrays& arrays, const SphericalCoverOptions& options)
+{
+  return arrays.ThetaBins == options.ThetaBins && arrays.PhiBins == options.PhiBins &&
+    arrays.SamplesTheta == options.SamplesTheta && arrays.SamplesPhi == options.SamplesPhi &&
+    arrays.Fill == static_cast<int>(options.Fill);
+}
+
+/// Empty arrays on the grid and with the fill of `options`, no rows yet (RowOffsets {0}).
+SphericalCover::Arrays EmptyArrays(const SphericalCoverOptions& options, bool unoccludedKnown)
+{
+  SphericalCover::Arrays arrays;
+  arrays.ThetaBins = options.ThetaBins;
+  arrays.PhiBins = options.PhiBins;
+  arrays.SamplesTheta = options.SamplesTheta;
+  arrays.SamplesPhi = options.SamplesPhi;
+  arrays.Fill = static_cast<int>(options.Fill);
+  arrays.UnoccludedKnown = unoccludedKnown;
+  arrays.RowOffsets.assign(1, 0);
+  return arrays;
+}
+
 /// Throws std::invalid_argument (in `caller`'s name) unless `receivers` are ascending, each
 /// once, and below n.
 void CheckReceivers(const std::vector<std::size_t>& receivers, std::size_t n, const char* caller)
@@ -863,10 +885,7 @@ std::string SphericalCover::JoinRows(std::vector<Arrays> shares,
   for (std::size_t s = 0; s < shares.size(); ++s)
   {
     const std::string name = "share " + std::to_string(s) + ": ";
-    if (shares[s].ThetaBins != options.ThetaBins || shares[s].PhiBins != options.PhiBins ||
-      shares[s].SamplesTheta != options.SamplesTheta ||
-      shares[s].SamplesPhi != options.SamplesPhi ||
-      shares[s].Fill != static_cast<int>(options.Fill))
+    if (!SameGridAndFill(shares[s], options))
     {
       return name + "its grid or fill is not the cover's";
     }
@@ -885,14 +904,7 @@ std::string SphericalCover::JoinRows(std::vector<Arrays> shares,
   }
   shares.clear();
   const std::size_t n = covers.front().PatchCount();
-  Arrays joined;
-  joined.ThetaBins = options.ThetaBins;
-  joined.PhiBins = options.PhiBins;
-  joined.SamplesTheta = options.SamplesTheta;
-  joined.SamplesPhi = options.SamplesPhi;
-  joined.Fill = static_cast<int>(options.Fill);
-  joined.UnoccludedKnown = covers.front().UnoccludedKnown;
-  joined.RowOffsets.assign(1, 0);
+  Arrays joined = EmptyArrays(options, covers.front().UnoccludedKnown);
   joined.RowOffsets.reserve(n + 1);
   // Reserved whole: grown by doubling, the joined arrays would hold up to twice their size.
   std::size_t entries = 0;
@@ -1091,10 +1103,7 @@ std::string SphericalCover::ImportRowBlocks(std::vector<Arrays> blocks,
   {
     const Arrays& block = blocks[b];
     const std::string name = "row block " + std::to_string(b) + ": ";
-    if (block.ThetaBins != options.ThetaBins || block.PhiBins != options.PhiBins ||
-      block.SamplesTheta != options.SamplesTheta || block.SamplesPhi != options.SamplesPhi ||
-      block.Fill != static_cast<int>(options.Fill) ||
-      block.UnoccludedKnown != blocks.front().UnoccludedKnown)
+    if (!SameGridAndFill(block, options) || block.UnoccludedKnown != blocks.front().UnoccludedKnown)
     {
       return name + "its grid or fill is not the cover's";
     }
@@ -1120,14 +1129,7 @@ std::string SphericalCover::ImportRowBlocks(std::vector<Arrays> blocks,
     measured = measured || !block.Measures.empty();
   }
   // Joined in receiver order: offsets and first strips shifted by what precedes the block.
-  Arrays joined;
-  joined.ThetaBins = options.ThetaBins;
-  joined.PhiBins = options.PhiBins;
-  joined.SamplesTheta = options.SamplesTheta;
-  joined.SamplesPhi = options.SamplesPhi;
-  joined.Fill = static_cast<int>(options.Fill);
-  joined.UnoccludedKnown = blocks.front().UnoccludedKnown;
-  joined.RowOffsets.push_back(0);
+  Arrays joined = EmptyArrays(options, blocks.front().UnoccludedKnown);
   const HemisphereGrid grid(
     options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
   for (Arrays& block : blocks)

@@ -79,6 +79,16 @@ SphericalCover BuildInBlocks(const std::vector<Patch>& patches,
   return cover;
 }
 
+/// `fill` on an 8 x 32 grid.
+SphericalCoverOptions EightByThirtyTwo(RBufferFill fill)
+{
+  SphericalCoverOptions options;
+  options.ThetaBins = 8;
+  options.PhiBins = 32;
+  options.Fill = fill;
+  return options;
+}
+
 /// The ray fill on an 8 x 32 grid, the Cornell box's lamp measured on the lamp.
 SphericalCoverOptions MeasuredLampOptions(const Scene& scene)
 {
@@ -91,6 +101,30 @@ SphericalCoverOptions MeasuredLampOptions(const Scene& scene)
   options.MeasuredSurfaces.assign(scene.Surfaces.size(), false);
   options.MeasuredSurfaces.at(static_cast<size_t>(lamp)) = true;
   return options;
+}
+
+/// The furnace with a pane (furnace_pane.scene) in 3 x 3 patches per surface, and the ray fill
+/// on an 8 x 32 grid that sees through its panes.
+struct PaneSetup
+{
+  std::vector<Patch> Patches;
+  SphericalCoverOptions Options;
+};
+
+PaneSetup PanedFurnace()
+{
+  const Scene scene = LoadSceneFile(ScenePath("furnace_pane.scene"));
+  PaneSetup setup;
+  setup.Patches = SplitScene(scene, 3);
+  setup.Options.ThetaBins = 8;
+  setup.Options.PhiBins = 32;
+  setup.Options.Fill = RBufferFill::RayCasting;
+  for (const Surface& surface : scene.Surfaces)
+  {
+    setup.Options.SurfaceTransmittance.push_back(
+      glm::vec3(scene.Materials[static_cast<size_t>(surface.MaterialIndex)].Transmittance));
+  }
+  return setup;
 }
 
 std::vector<Patch> CornellPatches(const Scene& scene)
@@ -112,10 +146,7 @@ TEST(RowBlocks, JoinedEqualsSerial)
   const std::vector<Patch> patches = CornellPatches(scene);
   for (const RBufferFill fill : { RBufferFill::Projection, RBufferFill::RayCasting })
   {
-    SphericalCoverOptions options;
-    options.ThetaBins = 8;
-    options.PhiBins = 32;
-    options.Fill = fill;
+    const SphericalCoverOptions options = EightByThirtyTwo(fill);
     SphericalCover serial;
     ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
     for (const std::size_t parts : { 1, 2, 3, 5 })
@@ -233,24 +264,14 @@ TEST(RowBlocks, MeasuredLampJoinedEqualsSerial)
 // Panes (SphericalCover.h "Panes"): the layers behind them and their filters join as the rest.
 TEST(RowBlocks, PanesJoinedEqualSerial)
 {
-  const Scene scene = LoadSceneFile(ScenePath("furnace_pane.scene"));
-  const std::vector<Patch> patches = SplitScene(scene, 3);
-  SphericalCoverOptions options;
-  options.ThetaBins = 8;
-  options.PhiBins = 32;
-  options.Fill = RBufferFill::RayCasting;
-  for (const Surface& surface : scene.Surfaces)
-  {
-    options.SurfaceTransmittance.push_back(
-      glm::vec3(scene.Materials[static_cast<size_t>(surface.MaterialIndex)].Transmittance));
-  }
+  const PaneSetup paned = PanedFurnace();
   SphericalCover serial;
-  ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
+  ASSERT_TRUE(serial.Build(paned.Patches, paned.Options, ThreadedFor(2)));
   ASSERT_TRUE(serial.HasPanes());
   for (const std::size_t parts : { 2, 3 })
   {
     SCOPED_TRACE(testing::Message() << parts << " blocks");
-    ExpectSameCover(BuildInBlocks(patches, options, parts), serial);
+    ExpectSameCover(BuildInBlocks(paned.Patches, paned.Options, parts), serial);
   }
 }
 
@@ -331,10 +352,7 @@ TEST(RowBlocks, SharesBuiltApartJoinToSerial)
   };
   for (const RBufferFill fill : { RBufferFill::Projection, RBufferFill::RayCasting })
   {
-    SphericalCoverOptions options;
-    options.ThetaBins = 8;
-    options.PhiBins = 32;
-    options.Fill = fill;
+    const SphericalCoverOptions options = EightByThirtyTwo(fill);
     SphericalCover serial;
     ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
     for (const std::size_t ranks : { 1, 2, 3 })
@@ -361,26 +379,16 @@ TEST(RowBlocks, SharesBuiltApartJoinToSerial)
   EXPECT_FALSE(lampRows.HasMeasures()); // the path KeepCellMeasures is for
   ExpectSharesJoinToSerial(patches, measuredLamp, lampAndRest, serial);
 
-  const Scene paned = LoadSceneFile(ScenePath("furnace_pane.scene"));
-  const std::vector<Patch> panePatches = SplitScene(paned, 3);
-  SphericalCoverOptions paneOptions;
-  paneOptions.ThetaBins = 8;
-  paneOptions.PhiBins = 32;
-  paneOptions.Fill = RBufferFill::RayCasting;
-  for (const Surface& surface : paned.Surfaces)
-  {
-    paneOptions.SurfaceTransmittance.push_back(
-      glm::vec3(paned.Materials[static_cast<size_t>(surface.MaterialIndex)].Transmittance));
-  }
+  const PaneSetup paned = PanedFurnace();
   SphericalCover paneSerial;
-  ASSERT_TRUE(paneSerial.Build(panePatches, paneOptions, ThreadedFor(2)));
+  ASSERT_TRUE(paneSerial.Build(paned.Patches, paned.Options, ThreadedFor(2)));
   ASSERT_TRUE(paneSerial.HasPanes());
   std::vector<std::vector<std::size_t>> paneSets;
   for (int r = 0; r < 2; ++r)
   {
-    paneSets.push_back(RankShare::ItemsOf(r, 2, panePatches.size()));
+    paneSets.push_back(RankShare::ItemsOf(r, 2, paned.Patches.size()));
   }
-  ExpectSharesJoinToSerial(panePatches, paneOptions, paneSets, paneSerial);
+  ExpectSharesJoinToSerial(paned.Patches, paned.Options, paneSets, paneSerial);
 }
 
 // Shares that do not make one cover are refused with a reason, the cover left empty.
