@@ -185,13 +185,6 @@ std::vector<std::vector<char>> GatherBytes(vtkMultiProcessController* controller
   const vtkIdType length = static_cast<vtkIdType>(mine.size());
   std::vector<vtkIdType> lengths(static_cast<std::size_t>(ranks), 0);
   controller->AllGather(&length, lengths.data(), 1);
-  std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks), 0);
-  vtkIdType total = 0;
-  for (std::size_t r = 0; r < lengths.size(); ++r)
-  {
-    offsets[r] = total;
-    total += lengths[r];
-  }
   std::vector<std::vector<char>> blocks;
   if (!everyRank)
   {
@@ -211,6 +204,13 @@ std::vector<std::vector<char>> GatherBytes(vtkMultiProcessController* controller
       controller->Receive(blocks[r].data(), lengths[r], static_cast<int>(r), BytesTag);
     }
     return blocks;
+  }
+  std::vector<vtkIdType> offsets(static_cast<std::size_t>(ranks), 0);
+  vtkIdType total = 0;
+  for (std::size_t r = 0; r < lengths.size(); ++r)
+  {
+    offsets[r] = total;
+    total += lengths[r];
   }
   std::vector<char> all(static_cast<std::size_t>(total));
   controller->AllGatherV(mine.data(), all.data(), length, lengths.data(), offsets.data());

@@ -307,34 +307,19 @@ std::string ShareName(const std::pair<int, int>& share)
 }
 
 /**
- * The whole cover into `whole` on rank 0, joined from the ranks' shares that their `input`s
- * hold (CoverHeld::Shares); nothing on the other ranks. Collective: every rank takes part even
- * when its share cannot be read, and returns what it found wrong ("" when nothing), for the
- * ranks to agree on.
+ * The whole cover into `whole` on rank 0, joined from the ranks' shares (CoverHeld::Shares:
+ * each rank's `rows`, let go as they are sent); nothing on the other ranks. Collective; what
+ * rank 0 finds wrong in the shares ("" when nothing), for the ranks to agree on.
  */
 std::string GatherShares(vtkMultiProcessController* controller,
-  vtkPolyData* input,
+  sphcover::SphericalCover rows,
   sphcover::SphericalCover& whole)
 {
-  std::vector<char> bytes;
-  sphcover::SphericalCoverOptions options;
+  const sphcover::SphericalCoverOptions options = rows.Options();
+  std::vector<std::vector<char>> all = vtkCoverDistribution::GatherBytes(
+    controller, sphcover::PackRowBlock(std::move(rows).ExportArrays(), {}), false);
   std::string problem;
-  {
-    sphcover::SphericalCover mine;
-    problem = vtkSphericalCoverArrays::Load(input, mine, true);
-    if (problem.empty())
-    {
-      options = mine.Options();
-      bytes = sphcover::PackRowBlock(std::move(mine).ExportArrays(), {});
-    }
-    else
-    {
-      problem = "this rank's share of the cover: " + problem;
-    }
-  }
-  std::vector<std::vector<char>> all =
-    vtkCoverDistribution::GatherBytes(controller, std::move(bytes), false);
-  if (all.empty() || !problem.empty())
+  if (all.empty())
   {
     return problem; // rank 0 joins
   }
@@ -1083,14 +1068,13 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     // The propagation's state goes before the ranks' results are joined: the join holds every
     // rank's regions, and beside the state it was each rank's peak memory.
     propagation.reset();
-    rows = sphcover::SphericalCover();
     factors = std::vector<double>();
     if (held == CoverHeld::Shares)
     {
-      // The solution holds the whole cover: rank 0 gathers the shares now, holding neither
-      // the propagation's state nor the joined results, then sums up its figures and keeps
-      // its arrays alone (the whole cover goes before the results come).
-      problem = GatherShares(controller, input, cover);
+      // The solution holds the whole cover: rank 0 gathers the shares (the ranks' rows) now,
+      // holding neither the propagation's state nor the joined results, then sums up its
+      // figures and keeps its arrays alone (the whole cover goes before the results come).
+      problem = GatherShares(controller, std::move(rows), cover);
       if (first && problem.empty() && named)
       {
         problem = CoverFiguresOf(cover, surfaces, figures);
@@ -1116,6 +1100,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
         vtkSphericalCoverArrays::Store(std::move(cover).ExportArrays(), gatheredCover);
       }
     }
+    rows = sphcover::SphericalCover(); // sent and let go already when shares
     results = JoinResults(ranks, std::move(own));
   }
   catch (const std::exception& e)

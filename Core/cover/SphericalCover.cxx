@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 namespace sphcover
 {
@@ -558,49 +559,59 @@ void SphericalCover::BuildColumns()
   }
 }
 
+namespace
+{
+/// Whether `arrays` were built on the grid and with the fill of `options`.
+bool SameGridAndFill(const SphericalCover::Arrays& arrays, const SphericalCoverOptions& options)
+{
+  return arrays.ThetaBins == options.ThetaBins && arrays.PhiBins == options.PhiBins &&
+    arrays.SamplesTheta == options.SamplesTheta && arrays.SamplesPhi == options.SamplesPhi &&
+    arrays.Fill == static_cast<int>(options.Fill);
+}
+
+/// Empty arrays on the grid and with the fill of `options`, no rows yet (RowOffsets {0}).
+SphericalCover::Arrays EmptyArrays(const SphericalCoverOptions& options, bool unoccludedKnown)
+{
+  SphericalCover::Arrays arrays;
+  arrays.ThetaBins = options.ThetaBins;
+  arrays.PhiBins = options.PhiBins;
+  arrays.SamplesTheta = options.SamplesTheta;
+  arrays.SamplesPhi = options.SamplesPhi;
+  arrays.Fill = static_cast<int>(options.Fill);
+  arrays.UnoccludedKnown = unoccludedKnown;
+  arrays.RowOffsets.assign(1, 0);
+  return arrays;
+}
+
+}
+
+template<typename Cover>
+SphericalCover::Arrays SphericalCover::ArraysOf(Cover&& cover)
+{
+  Arrays arrays = EmptyArrays(cover.BuildOptions, cover.UnoccludedKnown);
+  arrays.RowOffsets = std::forward<Cover>(cover).RowOffsets;
+  arrays.Entries = std::forward<Cover>(cover).Entries;
+  arrays.Unoccluded = std::forward<Cover>(cover).Unoccluded;
+  arrays.Strips = std::forward<Cover>(cover).Strips;
+  arrays.StripDepths = std::forward<Cover>(cover).StripDepths;
+  arrays.Areas = std::forward<Cover>(cover).Areas;
+  arrays.Measures = std::forward<Cover>(cover).Measures;
+  arrays.Layers = std::forward<Cover>(cover).Layers;
+  arrays.Filters = std::forward<Cover>(cover).Filters;
+  arrays.Transmittances = std::forward<Cover>(cover).Transmittances;
+  return arrays;
+}
+
 SphericalCover::Arrays SphericalCover::ExportArrays() &&
 {
-  Arrays arrays;
-  arrays.ThetaBins = this->BuildOptions.ThetaBins;
-  arrays.PhiBins = this->BuildOptions.PhiBins;
-  arrays.SamplesTheta = this->BuildOptions.SamplesTheta;
-  arrays.SamplesPhi = this->BuildOptions.SamplesPhi;
-  arrays.Fill = static_cast<int>(this->BuildOptions.Fill);
-  arrays.RowOffsets = std::move(this->RowOffsets);
-  arrays.Entries = std::move(this->Entries);
-  arrays.Unoccluded = std::move(this->Unoccluded);
-  arrays.UnoccludedKnown = this->UnoccludedKnown;
-  arrays.Strips = std::move(this->Strips);
-  arrays.StripDepths = std::move(this->StripDepths);
-  arrays.Areas = std::move(this->Areas);
-  arrays.Measures = std::move(this->Measures);
-  arrays.Layers = std::move(this->Layers);
-  arrays.Filters = std::move(this->Filters);
-  arrays.Transmittances = std::move(this->Transmittances);
+  Arrays arrays = ArraysOf(std::move(*this));
   *this = SphericalCover(); // the columns' memory too
   return arrays;
 }
 
 SphericalCover::Arrays SphericalCover::ExportArrays() const&
 {
-  Arrays arrays;
-  arrays.ThetaBins = this->BuildOptions.ThetaBins;
-  arrays.PhiBins = this->BuildOptions.PhiBins;
-  arrays.SamplesTheta = this->BuildOptions.SamplesTheta;
-  arrays.SamplesPhi = this->BuildOptions.SamplesPhi;
-  arrays.Fill = static_cast<int>(this->BuildOptions.Fill);
-  arrays.RowOffsets = this->RowOffsets;
-  arrays.Entries = this->Entries;
-  arrays.Unoccluded = this->Unoccluded;
-  arrays.UnoccludedKnown = this->UnoccludedKnown;
-  arrays.Strips = this->Strips;
-  arrays.StripDepths = this->StripDepths;
-  arrays.Areas = this->Areas;
-  arrays.Measures = this->Measures;
-  arrays.Layers = this->Layers;
-  arrays.Filters = this->Filters;
-  arrays.Transmittances = this->Transmittances;
-  return arrays;
+  return ArraysOf(*this);
 }
 
 std::string SphericalCover::CheckArrays(const Arrays& arrays)
@@ -713,28 +724,6 @@ void SphericalCover::Adopt(Arrays arrays, const SphericalCoverOptions& options)
 
 namespace
 {
-/// Whether `arrays` were built on the grid and with the fill of `options`.
-bool SameGridAndFill(const SphericalCover::Arrays& arrays, const SphericalCoverOptions& options)
-{
-  return arrays.ThetaBins == options.ThetaBins && arrays.PhiBins == options.PhiBins &&
-    arrays.SamplesTheta == options.SamplesTheta && arrays.SamplesPhi == options.SamplesPhi &&
-    arrays.Fill == static_cast<int>(options.Fill);
-}
-
-/// Empty arrays on the grid and with the fill of `options`, no rows yet (RowOffsets {0}).
-SphericalCover::Arrays EmptyArrays(const SphericalCoverOptions& options, bool unoccludedKnown)
-{
-  SphericalCover::Arrays arrays;
-  arrays.ThetaBins = options.ThetaBins;
-  arrays.PhiBins = options.PhiBins;
-  arrays.SamplesTheta = options.SamplesTheta;
-  arrays.SamplesPhi = options.SamplesPhi;
-  arrays.Fill = static_cast<int>(options.Fill);
-  arrays.UnoccludedKnown = unoccludedKnown;
-  arrays.RowOffsets.assign(1, 0);
-  return arrays;
-}
-
 /// Throws std::invalid_argument (in `caller`'s name) unless `receivers` are ascending, each
 /// once, and below n.
 void CheckReceivers(const std::vector<std::size_t>& receivers, std::size_t n, const char* caller)
@@ -790,12 +779,7 @@ SphericalCover SphericalCover::RowsOf(const std::vector<std::size_t>& receivers)
 {
   const std::size_t n = this->PatchCount();
   CheckReceivers(receivers, n, "SphericalCover::RowsOf");
-  Arrays kept;
-  kept.ThetaBins = this->Grid().ThetaBins();
-  kept.PhiBins = this->Grid().PhiBins();
-  kept.SamplesTheta = this->Grid().SamplesTheta();
-  kept.SamplesPhi = this->Grid().SamplesPhi();
-  kept.Fill = static_cast<int>(this->BuildOptions.Fill);
+  Arrays kept = EmptyArrays(this->BuildOptions, this->UnoccludedKnown);
   kept.RowOffsets.assign(n + 1, 0);
   std::size_t next = 0;
   for (std::size_t i = 0; i < n; ++i)
@@ -807,7 +791,6 @@ SphericalCover SphericalCover::RowsOf(const std::vector<std::size_t>& receivers)
     }
     kept.RowOffsets[i + 1] = kept.Entries.size();
   }
-  kept.UnoccludedKnown = this->UnoccludedKnown;
   kept.Areas = this->Areas;
   kept.Transmittances = this->Transmittances;
   const std::string problem = CheckArrays(kept);
@@ -1069,22 +1052,7 @@ bool SphericalCover::BuildRowBlock(const std::vector<Patch>& patches,
     return false;
   }
   culling = rows.CullingCounts;
-  block.ThetaBins = options.ThetaBins;
-  block.PhiBins = options.PhiBins;
-  block.SamplesTheta = options.SamplesTheta;
-  block.SamplesPhi = options.SamplesPhi;
-  block.Fill = static_cast<int>(options.Fill);
-  block.RowOffsets = std::move(rows.RowOffsets);
-  block.Entries = std::move(rows.Entries);
-  block.Unoccluded = std::move(rows.Unoccluded);
-  block.UnoccludedKnown = rows.UnoccludedKnown;
-  block.Strips = std::move(rows.Strips);
-  block.StripDepths = std::move(rows.StripDepths);
-  block.Areas = std::move(rows.Areas);
-  block.Measures = std::move(rows.Measures);
-  block.Layers = std::move(rows.Layers);
-  block.Filters = std::move(rows.Filters);
-  block.Transmittances = std::move(rows.Transmittances);
+  block = std::move(rows).ExportArrays();
   return true;
 }
 

@@ -441,6 +441,9 @@ private:
   static std::string CheckArrays(const Arrays& arrays);
   /// Takes consistent `arrays` with `options` as the build's and derives the columns.
   void Adopt(Arrays arrays, const SphericalCoverOptions& options);
+  /// ExportArrays' one body: the arrays of `cover` copied (a const cover) or moved (an rvalue).
+  template<typename Cover>
+  static Arrays ArraysOf(Cover&& cover);
   /// Appends row `receiver` (its entries, their strips and per-entry values) to `to`'s arrays,
   /// the entries' first strips counted in `to`.
   void AppendRowTo(std::size_t receiver, Arrays& to) const;
