@@ -24,6 +24,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -154,6 +155,29 @@ int TestSphericalCoverFilter(int, char*[])
         SameCover(built, same) &&
         !notGathered->GetOutput()->GetFieldData()->GetArray("CoverRowShare"),
       "GatherRows off on one process: the whole cover, not a share");
+
+    // A cover marked as one rank's share (CoverRowShare) is refused by every reader of a whole
+    // cover, with the reason, and read only by one that takes a share (the propagation's ranks).
+    vtkNew<vtkPolyData> marked;
+    marked->ShallowCopy(notGathered->GetOutput());
+    vtkNew<vtkFieldData> fd;
+    fd->ShallowCopy(notGathered->GetOutput()->GetFieldData());
+    vtkNew<vtkIntArray> rowShare;
+    rowShare->SetName("CoverRowShare");
+    rowShare->SetNumberOfComponents(2);
+    rowShare->InsertNextTuple2(0, 2);
+    fd->AddArray(rowShare);
+    marked->SetFieldData(fd);
+    sphcover::SphericalCover refusedShare;
+    const std::string problem = vtkSphericalCoverArrays::Load(marked, refusedShare);
+    std::cout << "a share read as a whole cover: " << problem << "\n";
+    Check(problem.find("share") != std::string::npos &&
+        problem.find("GatherRows") != std::string::npos && refusedShare.Empty(),
+      "a share is refused where a whole cover is read, naming GatherRows");
+    sphcover::SphericalCover takenShare;
+    Check(vtkSphericalCoverArrays::Load(marked, takenShare, true).empty() &&
+        SameCover(built, takenShare),
+      "a share is read where one is taken");
   }
 
   const std::string file =

@@ -11,8 +11,8 @@ completes on 2 ranks, under the piece policy of Readers/vtkScenePieces.h:
 - with the cover's GatherRows off, each rank's cover output holds every point and only the rows
   of its own receivers (r, r + K, ...: CoverRowShare), the propagation runs on these shares, and
   rank 0's solution (the whole cover, Radiosity, IncidentRadiance) equals the serial one while
-  rank 1's is empty; a FixedOrder propagation of the shares, or one refused (MemoryLimit), is
-  one error on each rank;
+  rank 1's is empty; a FixedOrder propagation of the shares, one refused (MemoryLimit), or
+  shares kept for another number of ranks, is one error on each rank;
 - a propagation refused (a MemoryLimit below a rank's share) is one error on each rank, and
   neither waits for the other; so is one that rank 0 aborts while it balances the exchange (the
   other rank waiting to be dealt its rows).
@@ -25,12 +25,13 @@ from paraview import servermanager  # noqa: F401  (initialises the session)
 from paraview.simple import LoadPlugin, OpenDataFile, OutputPort
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkCommonCore import vtkDoubleArray
+from vtkmodules.vtkCommonCore import vtkDoubleArray, vtkIntArray
+from vtkmodules.vtkCommonDataModel import vtkFieldData, vtkPolyData
 from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessController
 
 plugin, data = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
-from sphericalcover import vtkHemisphereExtractor  # noqa: E402
+from sphericalcover import vtkHemisphereExtractor, vtkLightPropagationFilter  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from coarse_cornell_pipeline import ErrorCollector, coarse_cornell_pipeline  # noqa: E402
@@ -205,6 +206,30 @@ errors = errors_of(refused)
 if len(errors) != 1 or "MemoryLimit" not in errors[0] or f"of {ranks})" not in errors[0]:
     failures.append(f"the refused propagation of the kept rows reported {errors}, not one "
                     "MemoryLimit error naming the rank")
+# Shares kept for another number of ranks (the marker altered to 3 ranks): one error on each
+# rank, naming the share it holds, and no solution.
+foreign = vtkPolyData()
+foreign.ShallowCopy(share)
+foreign_fields = vtkFieldData()
+foreign_fields.ShallowCopy(share.GetFieldData())
+foreign_marker = vtkIntArray()
+foreign_marker.SetName("CoverRowShare")
+foreign_marker.SetNumberOfComponents(2)
+foreign_marker.InsertNextTuple2(rank, 3)
+foreign_fields.AddArray(foreign_marker)
+foreign.SetFieldData(foreign_fields)
+mismatched = vtkLightPropagationFilter()
+mismatched.SetInputData(foreign)
+errors = []
+mismatched.AddObserver("ErrorEvent",
+                       calldata_type(VTK_STRING)(lambda caller, event, text: errors.append(text)))
+mismatched.GetExecutive().AddObserver(
+    "ErrorEvent", calldata_type(VTK_STRING)(lambda caller, event, text: None))
+mismatched.Update()
+if len(errors) != 1 or "rank 0 of 3's share" not in errors[0] or f"of {ranks})" not in errors[0]:
+    failures.append(f"shares kept for 3 ranks reported {errors}, not one error naming them")
+if mismatched.GetOutput().GetNumberOfPoints() != 0:
+    failures.append("shares kept for 3 ranks gave a solution")
 fixed_order = globals()["LightPropagation"](Input=OutputPort(kept, 0), ShootingOrder="Fixed Order")
 errors = errors_of(fixed_order)
 if len(errors) != 1 or "GatherRows" not in errors[0]:
