@@ -96,6 +96,18 @@ void CheckReaderFails(vtkOpenEXRReader* reader,
     what + ": the output is not empty");
 }
 
+/// The fuzz artifact Testing/Data/bad/fuzz/`name` fails in a new reader with one error naming
+/// the file and holding the fragments (CheckReaderFails).
+void CheckFuzzArtifactFails(const std::string& name,
+  std::vector<std::string> fragments,
+  const std::string& what)
+{
+  const std::string file = std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/" + name;
+  fragments.insert(fragments.begin(), { "Cannot read OpenEXR file", file });
+  vtkNew<vtkOpenEXRReader> reader;
+  CheckReaderFails(reader, file, fragments, what);
+}
+
 void RecordError(vtkObject*, unsigned long, void* clientData, void* callData)
 {
   static_cast<std::vector<std::string>*>(clientData)
@@ -223,52 +235,29 @@ int TestOpenEXRBadInput(int, char*[])
     vtkNew<vtkOpenEXRReader> reader;
     Check(
       reader->CanReadFile(file.c_str()) == 0, "CanReadFile accepts an attribute beyond the file");
-    CheckReaderFails(reader,
-      file,
-      { "Cannot read OpenEXR file", file, "corrupt header", "'type' (string)", "1702390128 bytes" },
+    CheckFuzzArtifactFails("exr_attribute_size_beyond_file.exr",
+      { "corrupt header", "'type' (string)", "1702390128 bytes" },
       "attribute size beyond the file");
   }
   // Testing/Data/bad/fuzz/exr_channel_list_shorter_than_declared.exr (FuzzOpenEXRReader): the
   // channel list declares 77 bytes but ends after 19; OpenEXR reads it by its content and the
   // next attribute from the wrong place, where `type` then claims 1.7 GB.
-  {
-    const std::string file =
-      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_channel_list_shorter_than_declared.exr";
-    vtkNew<vtkOpenEXRReader> reader;
-    CheckReaderFails(reader,
-      file,
-      { "Cannot read OpenEXR file",
-        file,
-        "corrupt header",
-        "'channels' (chlist)",
-        "declares 77 bytes but its value holds 19" },
-      "channel list shorter than declared");
-  }
+  CheckFuzzArtifactFails("exr_channel_list_shorter_than_declared.exr",
+    { "corrupt header", "'channels' (chlist)", "declares 77 bytes but its value holds 19" },
+    "channel list shorter than declared");
 
   // Testing/Data/bad/fuzz/exr_window_product_overflow.exr (FuzzOpenEXRReader, UBSan): a data
   // window of about 2.8e9 x 4.1e9 pixels, whose pixel count overflows a 64-bit product; refused
   // by the pixel limit without forming it.
-  {
-    const std::string file =
-      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_window_product_overflow.exr";
-    vtkNew<vtkOpenEXRReader> reader;
-    CheckReaderFails(reader,
-      file,
-      { "Cannot read OpenEXR file", file, "exceeds the limit", "MaximumPixels" },
-      "data window whose pixel count overflows");
-  }
+  CheckFuzzArtifactFails("exr_window_product_overflow.exr",
+    { "exceeds the limit", "MaximumPixels" },
+    "data window whose pixel count overflows");
 
   // Testing/Data/bad/fuzz/exr_tile_larger_than_memory.exr (FuzzOpenEXRReader, OOM): a tiled
   // file whose tile description makes OpenEXR's setFrameBuffer allocate 4 GiB of tile buffer.
-  {
-    const std::string file =
-      std::string(SPHCOVER_TEST_DATA_DIR) + "/bad/fuzz/exr_tile_larger_than_memory.exr";
-    vtkNew<vtkOpenEXRReader> reader;
-    CheckReaderFails(reader,
-      file,
-      { "Cannot read OpenEXR file", file, "tiles of", "larger than the image" },
-      "tiles far larger than the image");
-  }
+  CheckFuzzArtifactFails("exr_tile_larger_than_memory.exr",
+    { "tiles of", "larger than the image" },
+    "tiles far larger than the image");
 
   // Testing/Data/bad/fuzz/exr_window_exceeds_memory.exr: the writer's 8 x 6 file with its data
   // window changed to 2^22 x 32 pixels (within MaximumPixels; 1.5 GiB for Radiance alone),
