@@ -111,8 +111,9 @@ std::string vtkSphericalCoverArrays::Load(vtkDataSet* input,
   if (!share && fd->GetAbstractArray(names::CoverRowShare))
   {
     return "the input holds one rank's share of a spherical cover's rows (CoverRowShare: "
-           "vtkSphericalCoverFilter with GatherRows off), which only the light propagation "
-           "takes; gather the rows (GatherRows on)";
+           "vtkSphericalCoverFilter with GatherRows off, or a solution kept in pieces, "
+           "vtkLightPropagationFilter with GatherSolution off), which only the light propagation "
+           "takes; gather the rows (GatherRows and GatherSolution on) or join the pieces";
   }
   sphcover::SphericalCover::Arrays arrays;
   arrays.ThetaBins = static_cast<int>(grid->GetComponent(0, 0));
@@ -180,4 +181,12 @@ bool vtkSphericalCoverArrays::IsCoverArray(const char* name)
     }
   }
   return false;
+}
+
+void vtkSphericalCoverArrays::MarkShare(vtkDataObject* output, int rank, int ranks)
+{
+  auto marker = vtkNamedArrays::Int(names::CoverRowShare, 2, 1);
+  marker->SetComponent(0, 0, rank);
+  marker->SetComponent(0, 1, ranks);
+  output->GetFieldData()->AddArray(marker);
 }

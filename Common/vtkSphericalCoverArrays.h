@@ -17,6 +17,7 @@
 
 #include <string>
 
+class vtkDataObject;
 class vtkDataSet;
 #include "cover/SphericalCover.h" // for SphericalCover::Arrays
 
@@ -31,12 +32,17 @@ public:
   static void Store(sphcover::SphericalCover::Arrays arrays, vtkDataSet* output);
 
   /// Reads the cover of `input`; returns what is missing or inconsistent ("" on success). A
-  /// rank's share of a cover (field array `CoverRowShare`, vtkSphericalCoverFilter with
-  /// GatherRows off) holds only some rows: it is refused unless `share` accepts one.
+  /// rank's share of a cover (field array `CoverRowShare`: vtkSphericalCoverFilter with
+  /// GatherRows off, or a piece of vtkLightPropagationFilter's solution with GatherSolution off)
+  /// holds only some rows: it is refused unless `share` accepts one.
   static std::string Load(vtkDataSet* input, sphcover::SphericalCover& cover, bool share = false);
 
   /// Whether `name` is one of the field arrays Store adds (nullptr: no).
   static bool IsCoverArray(const char* name);
+
+  /// Marks `output`'s cover as rank `rank` of `ranks`' share of the rows (the field array
+  /// `CoverRowShare`, replaced if there).
+  static void MarkShare(vtkDataObject* output, int rank, int ranks);
 };
 
 #endif

@@ -239,6 +239,8 @@ struct PropagationRanks
 {
   vtkMultiProcessController* Controller = nullptr;
   bool EveryRankWrites = true;
+  /// The solution kept in pieces (GatherSolution off): each rank keeps its own rows' regions.
+  bool KeepsOwnRegions = false;
   sphcover::RankShare Share;
 };
 
@@ -345,14 +347,104 @@ std::string GatherShares(vtkMultiProcessController* controller,
   return problem;
 }
 
-/// Warns once when the scene has panes (a material's transmittance) but `cover`, a whole
-/// cover, does not see through them: a cover saved before panes were seen through
-/// (SphericalCover.h, "Panes").
+/**
+ * The cover's part of the figures on rank 0 when no rank holds the whole cover (a solution
+ * kept in pieces of shares): each rank's rows' form-factor sums (SphericalCover::
+ * FormFactorSums) and strip counts, joined in receiver order, give the whole cover's figures
+ * bit for bit. Collective; "" or the problem, on the rank that meets it.
+ */
+std::string JoinCoverFigures(const sphcover::RankShare& share,
+  const sphcover::SphericalCover& rows,
+  const sphcover::PointIllumination& surfaces,
+  sphcover::CoverFigures& figures)
+{
+  using GroupSum = sphcover::SphericalCover::GroupSum;
+  std::vector<uint64_t> counts;
+  std::vector<GroupSum> sums;
+  std::string problem;
+  try
+  {
+    std::vector<std::vector<GroupSum>> rowSums =
+      rows.FormFactorSums(surfaces.SurfaceOfPoint, surfaces.SurfaceCount);
+    for (const std::size_t i : share.MyItems(rows.PatchCount()))
+    {
+      counts.push_back(rowSums[i].size());
+      sums.insert(sums.end(), rowSums[i].begin(), rowSums[i].end());
+    }
+  }
+  catch (const std::exception& e)
+  {
+    problem = e.what();
+  }
+  const uint64_t strips = rows.StripCount();
+  std::vector<char> bytes;
+  sphcover::ByteWriter writer(bytes);
+  writer.Value(strips);
+  writer.Array(counts);
+  writer.Array(sums);
+  std::vector<std::vector<char>> all;
+  if (!share.Join(bytes, problem.empty(), all))
+  {
+    return problem.empty() ? "another rank could not sum up its rows' form factors" : problem;
+  }
+  if (share.Rank() != 0)
+  {
+    return problem;
+  }
+  // Every receiver's sums from its rank, in receiver order.
+  const std::size_t count = rows.PatchCount();
+  std::vector<std::vector<GroupSum>> rowSums(count);
+  figures.Strips = 0;
+  for (std::size_t r = 0; r < all.size(); ++r)
+  {
+    sphcover::ByteReader reader(all[r]);
+    uint64_t rankStrips = 0;
+    const std::size_t items = r < count ? (count - r + all.size() - 1) / all.size() : 0;
+    if (!reader.Value(rankStrips) || !reader.Array(counts) || !reader.Array(sums) ||
+      counts.size() != items)
+    {
+      return "rank " + std::to_string(r) + "'s form-factor sums are malformed";
+    }
+    figures.Strips += static_cast<std::size_t>(rankStrips);
+    std::size_t next = 0;
+    std::size_t k = 0;
+    for (std::size_t i = r; i < count; i += all.size(), ++k)
+    {
+      if (counts[k] > sums.size() - next)
+      {
+        return "rank " + std::to_string(r) + "'s form-factor sums are malformed";
+      }
+      rowSums[i].assign(sums.begin() + static_cast<std::ptrdiff_t>(next),
+        sums.begin() + static_cast<std::ptrdiff_t>(next + counts[k]));
+      next += counts[k];
+    }
+  }
+  std::vector<double> areas(count);
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    areas[i] = rows.PatchArea(i);
+  }
+  try
+  {
+    figures.FormFactors = sphcover::SphericalCover::FormFactorsOf(
+      rowSums, surfaces.SurfaceOfPoint, surfaces.SurfaceCount, areas);
+  }
+  catch (const std::exception& e)
+  {
+    return e.what();
+  }
+  figures.CharacteristicPoints = count;
+  return std::string();
+}
+
+/// Warns once when the scene has panes (a material's transmittance) but the cover does not see
+/// through them (`seesPanes`: the whole cover's HasPanes): a cover saved before panes were seen
+/// through (SphericalCover.h, "Panes").
 void WarnOfOpaquePanes(vtkLightPropagationFilter* self,
-  const sphcover::SphericalCover& cover,
+  bool seesPanes,
   const std::vector<sphcover::Material>& materials)
 {
-  if (!cover.HasPanes() &&
+  if (!seesPanes &&
     std::any_of(materials.begin(),
       materials.end(),
       [](const sphcover::Material& material) { return material.IsTransmitter(); }))
@@ -601,9 +693,16 @@ PropagationResults JoinResults(const PropagationRanks& ranks, OwnResults own)
   const std::vector<glm::dvec3> perPatch =
     join(own.PerPatch, std::vector<std::size_t>(own.Count, 4));
   own.PerPatch = std::vector<glm::dvec3>();
-  results.Incident =
-    join(own.Incident, std::vector<std::size_t>(rowLengths.begin(), rowLengths.end()));
-  own.Incident = std::vector<glm::dvec3>();
+  if (ranks.KeepsOwnRegions)
+  {
+    results.Incident = std::move(own.Incident);
+  }
+  else
+  {
+    results.Incident =
+      join(own.Incident, std::vector<std::size_t>(rowLengths.begin(), rowLengths.end()));
+    own.Incident = std::vector<glm::dvec3>();
+  }
   if (!writer)
   {
     return results; // rank 0 writes the solution
@@ -919,7 +1018,9 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   // whether this rank writes the solution.
   const bool readsCover = held != CoverHeld::FirstRank || first;
   const bool wholeCover = readsCover && held != CoverHeld::Shares;
-  const bool writer = held == CoverHeld::EveryRank || first;
+  // GatherSolution off: every rank keeps its piece of the solution (its rows and their regions).
+  const bool pieces = controller && !this->GatherSolution;
+  const bool writer = pieces || held == CoverHeld::EveryRank || first;
   std::string problem;
   if (!input)
   {
@@ -969,7 +1070,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
   }
   if (wholeCover)
   {
-    WarnOfOpaquePanes(this, cover, materials);
+    WarnOfOpaquePanes(this, cover.HasPanes(), materials);
   }
 
   PropagationRanks ranks;
@@ -1009,7 +1110,8 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       // that falls with the ranks. Its state must fit MemoryLimit, not the whole cover's.
       ranks.Share = vtkCoverDistribution::ShareOf(controller);
       ranks.Controller = controller;
-      ranks.EveryRankWrites = held == CoverHeld::EveryRank;
+      ranks.EveryRankWrites = held == CoverHeld::EveryRank || pieces;
+      ranks.KeepsOwnRegions = pieces;
       if (held == CoverHeld::Shares)
       {
         rows = std::move(cover);
@@ -1069,7 +1171,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     // rank's regions, and beside the state it was each rank's peak memory.
     propagation.reset();
     factors = std::vector<double>();
-    if (held == CoverHeld::Shares)
+    if (held == CoverHeld::Shares && !pieces)
     {
       // The solution holds the whole cover: rank 0 gathers the shares (the ranks' rows) now,
       // holding neither the propagation's state nor the joined results, then sums up its
@@ -1096,11 +1198,32 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       }
       if (first)
       {
-        WarnOfOpaquePanes(this, cover, materials);
+        WarnOfOpaquePanes(this, cover.HasPanes(), materials);
         vtkSphericalCoverArrays::Store(std::move(cover).ExportArrays(), gatheredCover);
       }
     }
-    rows = sphcover::SphericalCover(); // sent and let go already when shares
+    else if (held == CoverHeld::Shares)
+    {
+      // Kept in pieces: no rank holds the whole cover; rank 0 sums up the figures from the
+      // ranks' rows.
+      problem = named ? JoinCoverFigures(ranks.Share, rows, surfaces, figures) : "";
+      problem = agree(problem.empty() ? problem : "Cannot sum up the solution: " + problem);
+      if (!problem.empty())
+      {
+        history->Initialize();
+        vtkErrorMacro(<< problem);
+        return 0;
+      }
+      const bool seesPanes = vtkCoverDistribution::Count(controller, rows.HasPanes()) > 0;
+      if (first)
+      {
+        WarnOfOpaquePanes(this, seesPanes, materials);
+      }
+    }
+    if (!pieces)
+    {
+      rows = sphcover::SphericalCover(); // sent and let go already when shares
+    }
     results = JoinResults(ranks, std::move(own));
   }
   catch (const std::exception& e)
@@ -1113,7 +1236,23 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     return 1; // rank 0 writes the solution
   }
   output->ShallowCopy(input);
-  if (held == CoverHeld::Shares)
+  if (pieces && held != CoverHeld::Shares)
+  {
+    // This rank's rows in place of the cover it was given (a share's arrays are its rows
+    // already), marked as its share.
+    vtkFieldData* fd = output->GetFieldData();
+    for (int a = fd->GetNumberOfArrays() - 1; a >= 0; --a)
+    {
+      if (vtkSphericalCoverArrays::IsCoverArray(fd->GetAbstractArray(a)->GetName()))
+      {
+        fd->RemoveArray(a);
+      }
+    }
+    vtkSphericalCoverArrays::Store(std::move(rows).ExportArrays(), output);
+    rows = sphcover::SphericalCover();
+    vtkSphericalCoverArrays::MarkShare(output, ranks.Share.Rank(), ranks.Share.Ranks());
+  }
+  else if (held == CoverHeld::Shares && !pieces)
   {
     // The whole cover's arrays in place of this rank's share (referenced, not copied).
     vtkFieldData* fd = gatheredCover->GetFieldData();
@@ -1124,7 +1263,8 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
     output->GetFieldData()->RemoveArray(names::CoverRowShare);
   }
   WriteIllumination(results, this->Shots, watts, output);
-  if (named)
+  // The figures sum up the whole: of a cover in shares, rank 0 alone sums them up.
+  if (named && (wholeCover || first))
   {
     const std::string figuresProblem = StoreFigures(figures, std::move(surfaces), output);
     if (!figuresProblem.empty())
@@ -1147,6 +1287,7 @@ void vtkLightPropagationFilter::PrintSelf(ostream& os, vtkIndent indent)
      << (this->ShootingOrder == BRIGHTEST_FIRST ? "BrightestFirst" : "FixedOrder") << "\n";
   os << indent << "ShotBatch: " << this->ShotBatch << "\n";
   os << indent << "BalanceExchanges: " << (this->BalanceExchanges ? "On" : "Off") << "\n";
+  os << indent << "GatherSolution: " << (this->GatherSolution ? "On" : "Off") << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Shots: " << this->Shots << "\n";
   os << indent << "Controller: " << this->Controller << "\n";

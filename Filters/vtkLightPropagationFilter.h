@@ -58,7 +58,8 @@
  * exchange (ExchangeBalance under a share: each its own rows, the factors the whole cover's bit
  * for bit) and propagate together (LightPropagation::SetRankShare), and the results are
  * gathered: on every rank in the first case, on rank 0 alone in the others (it writes the
- * solution, the others keep empty outputs, as above). So the outputs are the serial ones (the
+ * solution, the others keep empty outputs, as above), or kept in pieces (GatherSolution off:
+ * each rank its own rows' regions, below). So the outputs are the serial ones (the
  * per-patch values and the regions' incident radiances bit for bit; the energy sums up to the
  * order of addition). FixedOrder runs on each process alone, as described above. Every process
  * must update the filter together, as for vtkSphericalCoverFilter.
@@ -148,6 +149,24 @@ public:
   vtkGetMacro(MemoryLimit, double);
   ///@}
 
+  ///@{
+  /**
+   * Whether the solution is gathered when K > 1 ranks propagate together. On: rank 0's output
+   * holds the whole solution (the whole cover and every region's IncidentRadiance; in a
+   * pipeline whose every rank holds the whole cover, every rank's), the other ranks' outputs
+   * are empty. Off: the solution is kept in pieces and no rank ever holds the whole cover:
+   * every rank's output holds every point with the per-point arrays (the serial values) and
+   * only its own rows (receivers r, r + K, ...) and their regions' IncidentRadiance, marked by
+   * the field array `CoverRowShare` = (r, K) as vtkSphericalCoverFilter marks a share; rank 0's
+   * holds the solution's figures too (summed from the ranks' rows, the serial ones bit for
+   * bit). Filters that read a whole cover refuse such a piece; vtkSolutionPieces joins the K
+   * pieces into the whole solution. Default is on; ignored on one process.
+   */
+  vtkSetMacro(GatherSolution, bool);
+  vtkGetMacro(GatherSolution, bool);
+  vtkBooleanMacro(GatherSolution, bool);
+  ///@}
+
   /// Shots of the last update.
   vtkGetMacro(Shots, int);
 
@@ -213,6 +232,7 @@ protected:
   int ShootingOrder = BRIGHTEST_FIRST;
   int ShotBatch = 16;
   bool BalanceExchanges = true;
+  bool GatherSolution = true;
   double MemoryLimit = 8192.0;
   int Shots = 0;
   vtkMultiProcessController* Controller = nullptr;

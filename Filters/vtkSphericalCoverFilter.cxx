@@ -935,10 +935,7 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
     }
     WriteOutputs(self, scene, prepared, ownRows, &share, direct, pointsOut, stripsOut);
     pointsOut->GetFieldData()->AddArray(rankFigures);
-    auto rowShare = vtkNamedArrays::Int(names::CoverRowShare, 2, 1);
-    rowShare->SetComponent(0, 0, rank);
-    rowShare->SetComponent(0, 1, ranks);
-    pointsOut->GetFieldData()->AddArray(rowShare);
+    vtkSphericalCoverArrays::MarkShare(pointsOut, rank, ranks);
     self->UpdateProgress(1.0);
     return 1;
   }

@@ -19,6 +19,8 @@ find_package(VTK REQUIRED
     IOImage
     IOPLY
     IOXML
+    IOParallelXML
+    IOXMLParser
     IOLegacy
     ImagingCore
     InteractionStyle

@@ -1,9 +1,11 @@
 #include "OutputFiles.h"
 
 #include "ErrorCollector.h"
+#include "vtkCoverDistribution.h"
 #include "vtkSphericalCoverArrayNames.h"
 
 #include <vtkImageData.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkOpenEXRWriter.h>
 #include <vtkPNGWriter.h>
@@ -336,27 +338,100 @@ void WriteAtomically(const std::string& path, const std::function<void(const fs:
   }
 }
 
+namespace
+{
+/// `data` through the XML `writer` at `staged`; throws the writer's first error.
+void WriteXml(vtkXMLWriter* writer, vtkDataObject* data, const fs::path& staged)
+{
+  // Inline base64 (zlib-compressed), not VTK's default appended data: from expat 2.6 on
+  // (and Debian 12's libexpat1 2.5.0-1+deb12u5, which carries its "reparse deferral") the
+  // XML reader of VTK 9.2 / ParaView 5.11 no longer stops at <AppendedData> and fails on
+  // the bytes after it ("not well-formed"). Inline data is well-formed XML every reader
+  // parses, and still bit-exact.
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
+  writer->SetInputData(data);
+  writer->SetFileName(staged.string().c_str());
+  ErrorCollector errors;
+  errors.Watch(writer);
+  if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+  {
+    throw std::runtime_error(errors.First());
+  }
+}
+
+/// Rank 0's `text` on every rank of `controller` (collective).
+std::string BroadcastText(vtkMultiProcessController* controller, std::string text)
+{
+  vtkIdType length = static_cast<vtkIdType>(text.size());
+  controller->Broadcast(&length, 1, 0);
+  text.resize(static_cast<std::size_t>(length));
+  if (length > 0)
+  {
+    controller->Broadcast(text.data(), length, 0);
+  }
+  return text;
+}
+}
+
 void WriteXmlAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path)
 {
-  WriteAtomically(path,
-    [&](const fs::path& staged)
+  WriteAtomically(path, [&](const fs::path& staged) { WriteXml(writer, data, staged); });
+}
+
+void WriteXmlAtomicallyOnRanks(vtkXMLWriter* writer,
+  vtkDataObject* data,
+  const std::string& path,
+  vtkMultiProcessController* controller)
+{
+  // Rank 0 stages the file and tells the others where; each rank writes its part there; once
+  // all agree that every part is written, rank 0 moves the whole into place.
+  const auto writeHere = [&](const fs::path& staged)
+  {
+    std::string problem;
+    try
     {
-      // Inline base64 (zlib-compressed), not VTK's default appended data: from expat 2.6 on
-      // (and Debian 12's libexpat1 2.5.0-1+deb12u5, which carries its "reparse deferral") the
-      // XML reader of VTK 9.2 / ParaView 5.11 no longer stops at <AppendedData> and fails on
-      // the bytes after it ("not well-formed"). Inline data is well-formed XML every reader
-      // parses, and still bit-exact.
-      writer->SetDataModeToBinary();
-      writer->SetCompressorTypeToZLib();
-      writer->SetInputData(data);
-      writer->SetFileName(staged.string().c_str());
-      ErrorCollector errors;
-      errors.Watch(writer);
-      if (writer->Write() != 1 || writer->GetErrorCode() != 0)
+      WriteXml(writer, data, staged);
+    }
+    catch (const std::exception& e)
+    {
+      problem = e.what();
+    }
+    problem = vtkCoverDistribution::Agree(controller, problem);
+    if (!problem.empty())
+    {
+      throw std::runtime_error(problem);
+    }
+  };
+  if (controller->GetLocalProcessId() != 0)
+  {
+    const std::string staged = BroadcastText(controller, std::string());
+    if (staged.empty())
+    {
+      throw std::runtime_error("cannot write '" + path + "'"); // rank 0 says why
+    }
+    writeHere(staged);
+    return;
+  }
+  bool told = false;
+  try
+  {
+    WriteAtomically(path,
+      [&](const fs::path& staged)
       {
-        throw std::runtime_error(errors.First());
-      }
-    });
+        BroadcastText(controller, staged.string());
+        told = true;
+        writeHere(staged);
+      });
+  }
+  catch (const std::exception&)
+  {
+    if (!told)
+    {
+      BroadcastText(controller, std::string());
+    }
+    throw;
+  }
 }
 
 void WriteTextAtomically(const std::string& text, const std::string& path)

@@ -23,6 +23,7 @@
 
 class vtkDataObject;
 class vtkImageData;
+class vtkMultiProcessController;
 class vtkXMLWriter;
 
 namespace sphcover_cli
@@ -53,6 +54,15 @@ void WriteAtomically(const std::string& path,
 
 /// A dataset through a VTK XML writer (data inline, see the .cxx for why).
 void WriteXmlAtomically(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path);
+
+/// The same written together by the ranks of `controller` through a parallel XML writer (each
+/// rank writes its own pieces, rank 0 the file that refers to them): rank 0 stages the output
+/// and moves it into place once every rank has written its part. Collective: every rank throws
+/// on failure, rank 0 with the reason.
+void WriteXmlAtomicallyOnRanks(vtkXMLWriter* writer,
+  vtkDataObject* data,
+  const std::string& path,
+  vtkMultiProcessController* controller);
 
 /// Text, such as the JSON report.
 void WriteTextAtomically(const std::string& text, const std::string& path);

@@ -6,10 +6,14 @@
 #include "ProgressBar.h"
 
 #include "vtkSceneSettingsArray.h"
+#include "vtkSphericalCoverArrayNames.h"
+#include "vtkSphericalCoverArrays.h"
 
 #include "scene/SettingsOverride.h"
 
 #include <vtkAlgorithm.h>
+#include <vtkCommunicator.h>
+#include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
@@ -24,6 +28,18 @@
 
 namespace sphcover_cli
 {
+namespace names = vtkSphericalCoverArrayNames;
+
+namespace
+{
+/// Bytes of the values of the field array `name` of `fd` (0 when it has none).
+double ArrayBytes(vtkFieldData* fd, const char* name)
+{
+  vtkDataArray* array = fd->GetArray(name);
+  return array ? static_cast<double>(array->GetNumberOfValues()) * array->GetDataTypeSize() : 0.0;
+}
+}
+
 void Run(vtkAlgorithm* algorithm, ErrorCollector& errors, int piece, int pieces)
 {
   errors.Watch(algorithm);
@@ -93,7 +109,7 @@ void Solution::Subdivide(const Options& options)
   }
 }
 
-void Solution::Solve(const Options& options)
+void Solution::Solve(const Options& options, bool gather)
 {
   const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
   CheckCoverGrid(settings, options);
@@ -109,6 +125,7 @@ void Solution::Solve(const Options& options)
   // the cover's strips again, beside the solve.
   this->Cover->GenerateStripTableOff();
   this->Propagation->SetMemoryLimit(options.MemoryLimit);
+  this->Propagation->SetGatherSolution(gather);
   const int piece = options.Ranks > 1 ? options.Rank : 0;
   if (piece > 0)
   {
@@ -149,11 +166,24 @@ void Solution::Solve(const Options& options)
   const double peak = static_cast<double>(usage.ru_maxrss) * 1024.0; // ru_maxrss is in KiB
   vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
   this->PeakResidentBytes.assign(1, peak);
+  // What the solution holds, over the ranks: rank 0's whole solution (the others' outputs are
+  // empty) or the ranks' pieces.
+  vtkFieldData* fd = this->Propagation->GetOutput()->GetFieldData();
+  double held[2] = { 0.0, ArrayBytes(fd, names::IncidentRadiance) };
+  for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+  {
+    const char* name = fd->GetAbstractArray(a)->GetName();
+    held[0] += vtkSphericalCoverArrays::IsCoverArray(name) ? ArrayBytes(fd, name) : 0.0;
+  }
+  double whole[2] = { held[0], held[1] };
   if (controller && controller->GetNumberOfProcesses() > 1)
   {
     this->PeakResidentBytes.resize(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
     controller->AllGather(&peak, this->PeakResidentBytes.data(), 1);
+    controller->AllReduce(held, whole, 2, vtkCommunicator::SUM_OP);
   }
+  this->CoverBytes = whole[0];
+  this->IncidentRadianceBytes = whole[1];
 }
 
 nlohmann::json Solution::Timings() const

@@ -62,6 +62,10 @@ struct Solution
   double PropagateCpuSeconds = 0.0;
   /// After Solve: each rank's peak resident bytes (getrusage), in rank order (one alone).
   std::vector<double> PeakResidentBytes;
+  /// After Solve: the bytes of the solution's cover arrays and of its regions' IncidentRadiance,
+  /// over all ranks (the whole solution's, gathered on rank 0 or kept in pieces).
+  double CoverBytes = 0.0;
+  double IncidentRadianceBytes = 0.0;
 
   /// Reads the scene (its surfaces, cameras, settings and fingerprint in field data).
   void Read(const Options& options, bool progress = true);
@@ -73,8 +77,10 @@ struct Solution
   /// After Read: checks the cover grid against --memory-limit, then subdivides, covers and
   /// propagates with the scene's settings and the options. Under mpiexec the ranks cover and
   /// propagate together, rank 0 holding the whole scene and the others empty pieces (as under
-  /// pvbatch): rank 0 alone ends with the cover and the solution.
-  void Solve(const Options& options);
+  /// pvbatch): rank 0 alone ends with the cover and the solution, or (`gather` false) every
+  /// rank with its piece of the solution (vtkLightPropagationFilter's GatherSolution off), so
+  /// that no rank ever holds the whole cover. Collective.
+  void Solve(const Options& options, bool gather = true);
 
   /// The stages' seconds, as the report's `timings_s`.
   nlohmann::json Timings() const;

@@ -11,30 +11,11 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
-#include <initializer_list>
 #include <stdexcept>
 
 namespace sphcover_cli
 {
 namespace names = vtkSphericalCoverArrayNames;
-
-namespace
-{
-/// Bytes of the values of the named arrays of `fd` that exist (0 for the others).
-unsigned long long ArrayBytes(vtkFieldData* fd, std::initializer_list<const char*> arrayNames)
-{
-  unsigned long long bytes = 0;
-  for (const char* name : arrayNames)
-  {
-    if (vtkDataArray* array = fd->GetArray(name))
-    {
-      bytes += static_cast<unsigned long long>(array->GetNumberOfValues()) *
-        static_cast<unsigned long long>(array->GetDataTypeSize());
-    }
-  }
-  return bytes;
-}
-}
 
 nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
 {
@@ -172,20 +153,11 @@ nlohmann::json SolutionReport(Solution& solution)
     report["peak_resident_bytes"].push_back(static_cast<long long>(bytes));
   }
   // What the solution holds: the cover (its strips, entries and rows, paper §3.3, stored as
-  // field arrays: whole in the solution, a rank's share in the cover's output under mpiexec)
-  // and the propagation's state of one incident radiance per region h_ij (§5.1). The stages'
-  // working memory (R-buffers, weight tables) comes and goes.
-  report["memory_bytes"] = { { "cover",
-                               ArrayBytes(solution.Propagation->GetOutput()->GetFieldData(),
-                                 { names::CoverGrid,
-                                   names::CoverRowOffsets,
-                                   names::CoverEntries,
-                                   names::CoverUnoccluded,
-                                   names::CoverStrips,
-                                   names::CoverStripDepths }) },
-    { "incident_radiance",
-      ArrayBytes(
-        solution.Propagation->GetOutput()->GetFieldData(), { names::IncidentRadiance }) } };
+  // field arrays) and the propagation's state of one incident radiance per region h_ij (§5.1),
+  // over the ranks when there are several. The stages' working memory (R-buffers, weight
+  // tables) comes and goes.
+  report["memory_bytes"] = { { "cover", static_cast<unsigned long long>(solution.CoverBytes) },
+    { "incident_radiance", static_cast<unsigned long long>(solution.IncidentRadianceBytes) } };
   return report;
 }
 }

@@ -5,20 +5,60 @@
 #include "Pipeline.h"
 #include "ProgressBar.h"
 
+#include "vtkSolutionPieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 
+#include <vtkCompositeDataSet.h>
 #include <vtkFieldData.h>
+#include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
+#include <vtkMultiPieceDataSet.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLDataParser.h>
 
 #include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
 
 namespace sphcover_cli
 {
 namespace
 {
+/// The first file a multiblock file refers to that is not there (its path as written in the
+/// file, relative to the file's folder), or "" when all are. The XML reader would read a
+/// missing piece as empty (or as the piece read before it) with no error.
+std::string MissingPieceFile(const std::string& file)
+{
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(file.c_str());
+  if (!parser->Parse() || !parser->GetRootElement())
+  {
+    return std::string(); // the reader says what is wrong with it
+  }
+  const std::filesystem::path folder = std::filesystem::path(file).parent_path();
+  std::vector<vtkXMLDataElement*> elements{ parser->GetRootElement() };
+  while (!elements.empty())
+  {
+    vtkXMLDataElement* element = elements.back();
+    elements.pop_back();
+    const char* piece = element->GetAttribute("file");
+    std::error_code error;
+    if (piece && !std::filesystem::is_regular_file(folder / piece, error))
+    {
+      return piece;
+    }
+    for (int k = 0; k < element->GetNumberOfNestedElements(); ++k)
+    {
+      elements.push_back(element->GetNestedElement(k));
+    }
+  }
+  return std::string();
+}
+
 /// The one value of a data object's SceneFingerprint field array, or nullptr.
 vtkStringArray* FingerprintOf(vtkDataObject* data)
 {
@@ -36,6 +76,11 @@ void SavedSolution::Read(const Options& options, ErrorCollector& errors)
   {
     throw std::runtime_error(named + ": no such file");
   }
+  const std::string missing = MissingPieceFile(options.SolutionFile);
+  if (!missing.empty())
+  {
+    throw std::runtime_error(named + ": its piece '" + missing + "' is missing");
+  }
   this->Reader->SetFileName(options.SolutionFile.c_str());
   {
     ProgressBar bar(this->Reader, "read", options.Quiet);
@@ -43,13 +88,38 @@ void SavedSolution::Read(const Options& options, ErrorCollector& errors)
     this->ReadSeconds = bar.Seconds();
   }
   auto* blocks = vtkMultiBlockDataSet::SafeDownCast(this->Reader->GetOutputDataObject(0));
-  const bool two = blocks && blocks->GetNumberOfBlocks() == 2;
-  this->Patches = two ? blocks->GetBlock(0) : nullptr;
-  this->Illumination = two ? vtkPolyData::SafeDownCast(blocks->GetBlock(1)) : nullptr;
-  if (!this->Patches || !this->Illumination)
+  const unsigned count = blocks ? blocks->GetNumberOfBlocks() : 0;
+  this->Patches = count == 2 || count == 3 ? blocks->GetBlock(0) : nullptr;
+  this->Illumination =
+    count == 2 || count == 3 ? vtkPolyData::SafeDownCast(blocks->GetBlock(1)) : nullptr;
+  auto* pieces = count == 3 ? vtkMultiPieceDataSet::SafeDownCast(blocks->GetBlock(2)) : nullptr;
+  if (!this->Patches || !this->Illumination || (count == 3 && !pieces))
   {
     throw std::runtime_error(named +
-      ": not a solution of sphcover solve -o (two blocks, the patches and the illumination)");
+      ": not a solution of sphcover solve -o (two blocks, the patches and the illumination, "
+      "and, written in pieces, the cover's shares)");
+  }
+  if (pieces)
+  {
+    // Written in pieces (solve -o under mpiexec): the ranks' shares of the cover and its
+    // regions' radiance join into the whole solution.
+    std::vector<vtkPolyData*> shares;
+    for (unsigned k = 0; k < pieces->GetNumberOfPieces(); ++k)
+    {
+      auto* share = vtkPolyData::SafeDownCast(pieces->GetPiece(k));
+      if (!share)
+      {
+        throw std::runtime_error(named + ": share " + std::to_string(k + 1) + " of " +
+          std::to_string(pieces->GetNumberOfPieces()) + " of the cover is missing");
+      }
+      shares.push_back(share);
+    }
+    const std::string problem = vtkSolutionPieces::Join(this->Illumination, shares, this->Joined);
+    if (!problem.empty())
+    {
+      throw std::runtime_error(named + ": " + problem);
+    }
+    this->Illumination = this->Joined;
   }
 }
 

@@ -10,13 +10,13 @@
 #define SPHCOVER_SAVEDSOLUTION_H
 
 #include <vtkNew.h>
+#include <vtkPolyData.h>
 #include <vtkXMLMultiBlockDataReader.h>
 
 #include <string>
 
 class ErrorCollector;
 class vtkDataObject;
-class vtkPolyData;
 
 namespace sphcover_cli
 {
@@ -25,6 +25,8 @@ struct Options;
 struct SavedSolution
 {
   vtkNew<vtkXMLMultiBlockDataReader> Reader;
+  /// A solution written in pieces joined (vtkSolutionPieces), else unused.
+  vtkNew<vtkPolyData> Joined;
   vtkDataObject* Patches = nullptr;
   vtkPolyData* Illumination = nullptr;
   double ReadSeconds = 0.0;
@@ -33,7 +35,8 @@ struct SavedSolution
   std::string Option = "--solution";
 
   /// Reads --solution (with the "read" progress bar); throws one line when it is missing or
-  /// not a solution of `solve -o`.
+  /// not a solution of `solve -o`. A solution written in pieces (a third block, CoverShares:
+  /// `solve -o` under mpiexec) is joined into the whole one.
   void Read(const Options& options, ErrorCollector& errors);
 
   /// Throws one line unless the illumination carries the fingerprint of `scene` (the reader's

@@ -1299,15 +1299,80 @@ double SphericalCover::CoveredProjectedSolidAngle(std::size_t receiver) const
 std::vector<double> SphericalCover::FormFactors(const std::vector<int>& groupOfPatch,
   int groupCount) const
 {
+  return FormFactorsOf(
+    this->FormFactorSums(groupOfPatch, groupCount), groupOfPatch, groupCount, this->Areas);
+}
+
+std::vector<std::vector<SphericalCover::GroupSum>> SphericalCover::FormFactorSums(
+  const std::vector<int>& groupOfPatch,
+  int groupCount) const
+{
   if (groupOfPatch.size() != this->PatchCount() || groupCount < 0)
   {
     throw std::invalid_argument("SphericalCover::FormFactors: need one group per patch (" +
       std::to_string(this->PatchCount()) + "), got " + std::to_string(groupOfPatch.size()));
   }
+  const auto checked = [groupCount](int group)
+  {
+    if (group >= groupCount)
+    {
+      throw std::invalid_argument("SphericalCover::FormFactors: group out of range");
+    }
+    return group;
+  };
+  std::vector<std::vector<GroupSum>> sums(this->PatchCount());
+  // Each row's sums per group in a dense scratch row, the groups seen listed to read it back.
+  std::vector<double> scratch(static_cast<size_t>(groupCount), 0.0);
+  std::vector<bool> seen(static_cast<size_t>(groupCount), false);
+  std::vector<int32_t> groups;
+  for (size_t i = 0; i < this->PatchCount(); ++i)
+  {
+    if (checked(groupOfPatch[i]) < 0)
+    {
+      continue;
+    }
+    groups.clear();
+    for (size_t e = this->EntryBegin(i); e < this->EntryEnd(i); ++e)
+    {
+      const int b = checked(groupOfPatch[this->Entries[e].Source]);
+      if (b >= 0 && this->Layer(e) == 0)
+      {
+        if (!seen[static_cast<size_t>(b)])
+        {
+          seen[static_cast<size_t>(b)] = true;
+          groups.push_back(b);
+        }
+        scratch[static_cast<size_t>(b)] += this->ProjectedSolidAngle(e) / Pi;
+      }
+    }
+    std::sort(groups.begin(), groups.end());
+    for (const int32_t b : groups)
+    {
+      sums[i].push_back(GroupSum{ b, scratch[static_cast<size_t>(b)] });
+      scratch[static_cast<size_t>(b)] = 0.0;
+      seen[static_cast<size_t>(b)] = false;
+    }
+  }
+  return sums;
+}
+
+std::vector<double> SphericalCover::FormFactorsOf(const std::vector<std::vector<GroupSum>>& rowSums,
+  const std::vector<int>& groupOfPatch,
+  int groupCount,
+  const std::vector<double>& areas)
+{
+  if (rowSums.size() != groupOfPatch.size() || areas.size() != groupOfPatch.size() ||
+    groupCount < 0)
+  {
+    throw std::invalid_argument("SphericalCover::FormFactorsOf: need one group, area and row of "
+                                "sums per patch (" +
+      std::to_string(groupOfPatch.size()) + "), got " + std::to_string(areas.size()) +
+      " areas and " + std::to_string(rowSums.size()) + " rows");
+  }
   const size_t g = static_cast<size_t>(groupCount);
   std::vector<double> matrix(g * g, 0.0);
   std::vector<double> groupArea(g, 0.0);
-  for (size_t i = 0; i < this->PatchCount(); ++i)
+  for (size_t i = 0; i < groupOfPatch.size(); ++i)
   {
     const int a = groupOfPatch[i];
     if (a < 0)
@@ -1316,17 +1381,16 @@ std::vector<double> SphericalCover::FormFactors(const std::vector<int>& groupOfP
     }
     if (a >= groupCount)
     {
-      throw std::invalid_argument("SphericalCover::FormFactors: group out of range");
+      throw std::invalid_argument("SphericalCover::FormFactorsOf: group out of range");
     }
-    groupArea[static_cast<size_t>(a)] += this->Areas[i];
-    for (size_t e = this->EntryBegin(i); e < this->EntryEnd(i); ++e)
+    groupArea[static_cast<size_t>(a)] += areas[i];
+    for (const GroupSum& sum : rowSums[i])
     {
-      const int b = groupOfPatch[this->Entries[e].Source];
-      if (b >= 0 && this->Layer(e) == 0)
+      if (sum.Group < 0 || sum.Group >= groupCount)
       {
-        matrix[static_cast<size_t>(a) * g + static_cast<size_t>(b)] +=
-          this->Areas[i] * this->ProjectedSolidAngle(e) / Pi;
+        throw std::invalid_argument("SphericalCover::FormFactorsOf: group out of range");
       }
+      matrix[static_cast<size_t>(a) * g + static_cast<size_t>(sum.Group)] += areas[i] * sum.Sum;
     }
   }
   for (size_t a = 0; a < g; ++a)

@@ -243,6 +243,32 @@ public:
    * source). Returns the groupCount x groupCount matrix, row-major (row a: from group a).
    */
   std::vector<double> FormFactors(const std::vector<int>& groupOfPatch, int groupCount) const;
+  /// One group's part of a row's form factors (FormFactorSums).
+  struct GroupSum
+  {
+    int32_t Group = 0;
+    double Sum = 0.0;
+  };
+  /**
+   * What each row adds to FormFactors: per receiver i whose group is >= 0, the sum over its
+   * layer-0 entries of the sources of each group b of Omega(h_ij) / pi (in entry order), one
+   * GroupSum per group seen, ordered by group; empty for the other receivers and empty rows
+   * (a share's other rows). A share's sums are the whole cover's for its rows, so the sums of
+   * the ranks' shares, put in receiver order, give FormFactorsOf the whole cover's
+   * FormFactors bit for bit. Throws std::invalid_argument as FormFactors.
+   */
+  std::vector<std::vector<GroupSum>> FormFactorSums(const std::vector<int>& groupOfPatch,
+    int groupCount) const;
+  /**
+   * The form factors of FormFactors from every receiver's sums (`rowSums`, one per patch, as
+   * FormFactorSums gives them) and area (`areas`): summed in receiver order, as FormFactors
+   * does. Throws std::invalid_argument for sizes that differ from groupOfPatch's or a group
+   * out of range.
+   */
+  static std::vector<double> FormFactorsOf(const std::vector<std::vector<GroupSum>>& rowSums,
+    const std::vector<int>& groupOfPatch,
+    int groupCount,
+    const std::vector<double>& areas);
 
   // --- storage ---------------------------------------------------------------------------------
   /// The cover's own arrays, for saving and loading it (the columns are derived from the rows).

@@ -329,6 +329,36 @@ void ExpectSharesJoinToSerial(const std::vector<Patch>& patches,
   SphericalCover joined;
   ASSERT_EQ(joined.JoinRows(std::move(sent), options, culling), "");
   ExpectSameCover(joined, serial);
+
+  // The form factors summed from the shares' rows (each receiver's sums from the share that
+  // holds its row, as the ranks of a solution kept in pieces join them) are the serial ones bit
+  // for bit; and they are not all zero, nor the same from every surface.
+  std::vector<int> groups;
+  int groupCount = 0;
+  for (const Patch& patch : patches)
+  {
+    groups.push_back(patch.SurfaceIndex);
+    groupCount = std::max(groupCount, patch.SurfaceIndex + 1);
+  }
+  std::vector<std::vector<SphericalCover::GroupSum>> sums(patches.size());
+  for (std::size_t s = 0; s < shares.size(); ++s)
+  {
+    std::vector<std::vector<SphericalCover::GroupSum>> own =
+      shares[s].FormFactorSums(groups, groupCount);
+    for (const std::size_t i : receiverSets[s])
+    {
+      sums[i] = std::move(own[i]);
+    }
+  }
+  std::vector<double> areas;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+  {
+    areas.push_back(serial.PatchArea(i));
+  }
+  const std::vector<double> factors = serial.FormFactors(groups, groupCount);
+  EXPECT_EQ(SphericalCover::FormFactorsOf(sums, groups, groupCount, areas), factors);
+  EXPECT_GT(*std::max_element(factors.begin(), factors.end()), 0.05);
+  EXPECT_THROW(SphericalCover::FormFactorsOf(sums, groups, groupCount, {}), std::invalid_argument);
 }
 }
 

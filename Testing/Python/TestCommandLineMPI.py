@@ -6,8 +6,11 @@ non-zero exit, without a hang.
   `mpiexec -n 2` and `-n 3` (3 ranks oversubscribe a 2-core machine): the reports' form factors
   and mean radiances equal the serial ones to 1e-12 relative (they are in fact the same bits),
   the images are equal byte for byte, and the report says "ranks" and each rank's rows;
-- a walk through a solved scene under `mpiexec -n 2`: the serial walk's three frames, byte for
-  byte;
+- `solve -o` under `mpiexec -n 2` writes the solution in pieces (each rank its share of the
+  cover, no rank holding the whole): the serial report's form factors, surfaces and counts bit
+  for bit, a block of 2 shares, `render --solution` of it the serial image and a walk through
+  it under `mpiexec -n 2` the serial walk's three frames, byte for byte; a missing piece is one
+  error naming it;
 - a solve whose propagation state exceeds --memory-limit in one process (refused, one error)
   fits on 2 ranks, each of which holds its share (memory per rank falls with K);
 - a scene that does not load, under `mpiexec -n 2`: a non-zero exit within the timeout and one
@@ -21,6 +24,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+from xml.etree import ElementTree
 
 sphcover, data = sys.argv[1:3]
 mpiexec = shutil.which("mpiexec")
@@ -128,17 +132,53 @@ with tempfile.TemporaryDirectory() as folder:
             failures.append(f"--memory-limit {limit} MiB on 2 ranks: exit {shared.returncode}: "
                             f"{shared.stderr.strip()}")
 
-    # A walk through a solution under mpiexec -n 2: the serial walk's frames, byte for byte.
+    # A solve on 2 ranks writes its solution in pieces, no rank holding the whole cover: the
+    # serial report, a third block of the ranks' 2 shares, and the serial solution once joined
+    # (render --solution gives the serial image; a walk under mpiexec -n 2 the serial walk's
+    # frames, byte for byte). A missing piece is one error naming it.
     solution = os.path.join(folder, "solution.vtm")
-    solved = run([sphcover, "solve", SCENE, "-o", solution, *SMALL[:6], "-q"])
-    if solved.returncode != 0:
-        failures.append(f"solve for the walk: exit {solved.returncode}: {solved.stderr.strip()}")
-    else:
+    pieces = os.path.join(folder, "pieces.vtm")
+    solved = run([sphcover, "solve", SCENE, "-o", solution, "--report",
+                  os.path.join(folder, "solve0.json"), *SMALL[:8], "-q"])
+    split = run([mpiexec, "-n", "2", sphcover, "solve", SCENE, "-o", pieces, "--report",
+                 os.path.join(folder, "solve2.json"), *SMALL[:8], "-q"])
+    for result, what in [(solved, "serial solve"), (split, "solve on 2 ranks")]:
+        if result.returncode != 0:
+            failures.append(f"{what}: exit {result.returncode}: {result.stderr.strip()}")
+    if solved.returncode == 0 and split.returncode == 0:
+        with open(os.path.join(folder, "solve0.json"), encoding="utf-8") as file:
+            serial_solve = json.load(file)
+        with open(os.path.join(folder, "solve2.json"), encoding="utf-8") as file:
+            pieces_solve = json.load(file)
+        compare(serial_solve, pieces_solve, 2)
+        if (pieces_solve["form_factors"] != serial_solve["form_factors"] or
+                pieces_solve["surfaces"] != serial_solve["surfaces"] or
+                pieces_solve["counts"] != serial_solve["counts"]):
+            failures.append("the solve kept in pieces reports other form factors, surfaces or "
+                            "counts than the serial solve (not bit for bit)")
+        if (pieces_solve["memory_bytes"]["incident_radiance"] !=
+                serial_solve["memory_bytes"]["incident_radiance"]):
+            failures.append(f"the pieces hold {pieces_solve['memory_bytes']} bytes of incident "
+                            f"radiance, the whole solution {serial_solve['memory_bytes']}")
+        root = ElementTree.parse(pieces).getroot()
+        shares = [block for block in root.iter("Piece") if block.get("name") == "CoverShares"]
+        files = [entry.get("file") for entry in shares[0]] if len(shares) == 1 else []
+        if len(files) != 2 or not all(files):
+            failures.append(f"the solution of 2 ranks has no block CoverShares of 2 files: "
+                            f"{ElementTree.tostring(root, encoding='unicode')}")
+        joined_image = os.path.join(folder, "joined.png")
+        rendered = run([sphcover, "render", SCENE, "--solution", pieces, "-o", joined_image,
+                        *SMALL[6:]])
+        if rendered.returncode != 0:
+            failures.append(f"render --solution of the pieces: exit {rendered.returncode}: "
+                            f"{rendered.stderr.strip()}")
+        elif serial_image is not None and open(joined_image, "rb").read() != serial_image:
+            failures.append("render --solution of the pieces differs from the serial image")
         frames = {}
-        for ranks in (0, 2):
+        for ranks, walked_solution in [(0, solution), (2, pieces)]:
             out = os.path.join(folder, f"walk{ranks}")
             launcher = [mpiexec, "-n", str(ranks)] if ranks else []
-            walked = run(launcher + [sphcover, "walk", solution, "--orbit", "3", "-o", out,
+            walked = run(launcher + [sphcover, "walk", walked_solution, "--orbit", "3", "-o", out,
                                      "--size", "48x48", "-q"])
             if walked.returncode != 0:
                 failures.append(f"walk on {ranks} ranks: exit {walked.returncode}: "
@@ -147,8 +187,17 @@ with tempfile.TemporaryDirectory() as folder:
             names = sorted(os.listdir(out))
             frames[ranks] = [open(os.path.join(out, name), "rb").read() for name in names]
         if len(frames) == 2 and (len(frames[0]) != 3 or frames[0] != frames[2]):
-            failures.append(f"the walk on 2 ranks gave {len(frames[2])} frames, not the serial "
-                            f"walk's {len(frames[0])} frames byte for byte")
+            failures.append(f"the walk of the pieces on 2 ranks gave {len(frames[2])} frames, "
+                            f"not the serial walk's {len(frames[0])} frames byte for byte")
+        if len(files) == 2:
+            os.remove(os.path.join(folder, files[1]))
+            lost = os.path.join(folder, "lost.png")
+            result = run([sphcover, "render", SCENE, "--solution", pieces, "-o", lost, "-q"])
+            errors = [line for line in result.stderr.splitlines() if "sphcover: error:" in line]
+            if (result.returncode == 0 or len(errors) != 1 or files[1] not in errors[0] or
+                    os.path.exists(lost)):
+                failures.append(f"a solution missing a piece: exit {result.returncode}, "
+                                f"{result.stderr.strip()}")
 
     bad = os.path.join(folder, "bad.scene")
     with open(bad, "w", encoding="utf-8") as file:

@@ -23,7 +23,7 @@ cxx = vtkIntervalSubdivisionFilter()
 
 BOOLEANS_AND_ENUMS = ("RangeMethod", "SelfShadowing", "HemisphericalContainment", "SphericalShape",
                       "Characterisability", "FillMethod", "BackFacesOcclude", "Refinement",
-                      "ShootingOrder", "BalanceExchanges", "GatherRows")
+                      "ShootingOrder", "BalanceExchanges", "GatherRows", "GatherSolution")
 
 
 def check_properties(proxy, native, names):
@@ -130,7 +130,7 @@ if cover.GetDataInformation(1).GetNumberOfRows() == 0:
 # Light propagation over the cover: the Cornell box is all diffuse.
 propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
 check_properties(propagation, vtkLightPropagationFilter(), ["ConvergenceTolerance", "MaximumShots",
-                 "ShootingOrder", "ShotBatch", "BalanceExchanges"])
+                 "ShootingOrder", "ShotBatch", "BalanceExchanges", "GatherSolution"])
 propagation.UpdatePipeline()
 lit = servermanager.Fetch(propagation)
 for name in ["Irradiance", "Radiosity", "Brightness"]:

@@ -13,6 +13,10 @@ completes on 2 ranks, under the piece policy of Readers/vtkScenePieces.h:
   rank 0's solution (the whole cover, Radiosity, IncidentRadiance) equals the serial one while
   rank 1's is empty; a FixedOrder propagation of the shares, one refused (MemoryLimit), or
   shares kept for another number of ranks, is one error on each rank;
+- with the propagation's GatherSolution off (of the kept rows and of the gathered cover), each
+  rank's solution is its piece: every point with the serial Radiosity, Irradiance and
+  Brightness, only its own rows and their regions' serial IncidentRadiance, marked as its share,
+  and on rank 0 the serial figures (form factors, means, statistics) bit for bit;
 - a propagation refused (a MemoryLimit below a rank's share) is one error on each rank, and
   neither waits for the other; so is one that rank 0 aborts while it balances the exchange (the
   other rank waiting to be dealt its rows).
@@ -234,6 +238,55 @@ fixed_order = globals()["LightPropagation"](Input=OutputPort(kept, 0), ShootingO
 errors = errors_of(fixed_order)
 if len(errors) != 1 or "GatherRows" not in errors[0]:
     failures.append(f"FixedOrder on the kept rows reported {errors}, not one error about them")
+
+# GatherSolution off: every rank keeps its piece of the solution, of the kept rows (each rank's
+# share as it is) and of the gathered cover (rank 0 deals the rows, each rank stores its own):
+# every point with the serial per-point values, only its own rows and their regions' serial
+# incident radiance, marked as its share; rank 0's piece alone carries the serial figures.
+reference = serial_propagation.GetOutputDataObject(0)
+
+
+def values(array):
+    return None if array is None else [array.GetValue(i) for i in range(array.GetNumberOfValues())]
+
+
+whole_offsets = values(reference.GetFieldData().GetArray("CoverRowOffsets"))
+whole_incident = values(reference.GetFieldData().GetArray("IncidentRadiance"))
+own_incident = []
+for i in range(rank, len(whole_offsets) - 1, ranks):
+    own_incident += whole_incident[3 * whole_offsets[i]:3 * whole_offsets[i + 1]]
+for label, source in [("kept rows", kept), ("gathered cover", cover)]:
+    kept_apart = globals()["LightPropagation"](Input=OutputPort(source, 0), GatherSolution=0)
+    kept_apart.UpdatePipeline()
+    piece = kept_apart.GetClientSideObject().GetOutputDataObject(0)
+    fields = piece.GetFieldData()
+    marker = fields.GetArray("CoverRowShare")
+    if marker is None or (marker.GetComponent(0, 0), marker.GetComponent(0, 1)) != (rank, ranks):
+        failures.append(f"the solution of the {label} in pieces: rank {rank}'s is not marked as "
+                        "its share")
+    for name in ("Radiosity", "Irradiance", "Brightness"):
+        if values(piece.GetPointData().GetArray(name)) != \
+                values(reference.GetPointData().GetArray(name)):
+            failures.append(f"the solution of the {label} in pieces: rank {rank}'s {name} is "
+                            "not the serial one")
+    offsets = values(fields.GetArray("CoverRowOffsets"))
+    lengths = None if offsets is None else [b - a for a, b in zip(offsets, offsets[1:])]
+    expected = [b - a if i % ranks == rank else 0
+                for i, (a, b) in enumerate(zip(whole_offsets, whole_offsets[1:]))]
+    if lengths != expected:
+        failures.append(f"the solution of the {label} in pieces: rank {rank}'s rows are not the "
+                        "serial rows of its receivers")
+    if values(fields.GetArray("IncidentRadiance")) != own_incident:
+        failures.append(f"the solution of the {label} in pieces: rank {rank}'s IncidentRadiance "
+                        "is not the serial radiance of its rows' regions")
+    figures = ("SurfaceFormFactors", "SurfaceMeanExitantRadiance", "SurfaceArea",
+               "SolutionStatistics")
+    if rank == 0 and any(values(fields.GetArray(name)) != values(
+            reference.GetFieldData().GetArray(name)) for name in figures):
+        failures.append(f"the solution of the {label} in pieces: rank 0's figures are not the "
+                        "serial ones bit for bit")
+    if rank != 0 and fields.GetArray("SurfaceFormFactors") is not None:
+        failures.append(f"the solution of the {label} in pieces: rank {rank} sums up figures")
 
 for failure in failures:
     print(f"FAILED (rank {rank}):", failure)
