@@ -34,7 +34,8 @@ bool IsFiniteAndNotNegative(double value)
 bool vtkIlluminationAdapter::Read(vtkPolyData* points,
   Illumination& illumination,
   std::string& error,
-  bool directional)
+  bool directional,
+  bool piece)
 {
   illumination.Directional.reset();
   vtkPointData* pd = points->GetPointData();
@@ -90,7 +91,8 @@ bool vtkIlluminationAdapter::Read(vtkPolyData* points,
   {
     return false;
   }
-  return !directional || vtkIlluminationAdapter::ReadDirectional(points, illumination, error);
+  return !directional ||
+    vtkIlluminationAdapter::ReadDirectional(points, illumination, error, piece);
 }
 
 bool vtkIlluminationAdapter::ReadDirectIrradiance(vtkPolyData* points,
@@ -246,7 +248,8 @@ bool vtkIlluminationAdapter::ApplyTextureMeans(vtkPolyData* points,
 
 bool vtkIlluminationAdapter::ReadDirectional(vtkPolyData* points,
   Illumination& illumination,
-  std::string& error)
+  std::string& error,
+  bool piece)
 {
   illumination.Directional.reset();
   vtkDataArray* type = points->GetPointData()->GetArray(names::MaterialType);
@@ -270,7 +273,7 @@ bool vtkIlluminationAdapter::ReadDirectional(vtkPolyData* points,
             "(3 components) of their hemisphere frames";
     return false;
   }
-  const std::string problem = vtkSphericalCoverArrays::Load(points, directional->Cover);
+  const std::string problem = vtkSphericalCoverArrays::Load(points, directional->Cover, piece);
   if (!problem.empty())
   {
     error = "the input has non-diffuse points but no usable cover: " + problem;

@@ -56,11 +56,14 @@ public:
   /// lack Radiosity (3), SurfaceId or UVRange (4), or a rectangle is invalid, or, when
   /// `directional` is set and some point is non-diffuse, the cover, IncidentRadiance (3 per
   /// entry), Normals and Tangents. Without `directional` (a view-independent use such as
-  /// vtkIlluminationField) Illumination::Directional stays null.
+  /// vtkIlluminationField) Illumination::Directional stays null. A piece of a solution kept in
+  /// pieces (vtkSolutionPieces) is refused unless `piece` accepts one: its cover holds some
+  /// rows only (RadianceRenderer::DirectionalValues of its own points).
   static bool Read(vtkPolyData* points,
     Illumination& illumination,
     std::string& error,
-    bool directional = true);
+    bool directional = true,
+    bool piece = false);
 
   /// The material of every point from `Diffuse`, `Emission` (3 each), `MaterialType`,
   /// `Specular`, `PhongExponent`, `MaterialId` and the field arrays `MaterialNames`,
@@ -92,7 +95,10 @@ private:
   /// the field data names a texture (MaterialTextures); needs `Irradiance` (3) then.
   static bool ReadTextures(vtkPolyData* points, Illumination& illumination, std::string& error);
   /// Fills Illumination::Directional when some point is non-diffuse.
-  static bool ReadDirectional(vtkPolyData* points, Illumination& illumination, std::string& error);
+  static bool ReadDirectional(vtkPolyData* points,
+    Illumination& illumination,
+    std::string& error,
+    bool piece);
 };
 
 #endif

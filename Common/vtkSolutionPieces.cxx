@@ -73,6 +73,19 @@ void vtkSolutionPieces::Split(vtkPolyData* piece, vtkPolyData* points, vtkPolyDa
   }
 }
 
+void vtkSolutionPieces::Merge(vtkPolyData* points, vtkPolyData* share, vtkPolyData* piece)
+{
+  piece->ShallowCopy(points);
+  vtkFieldData* fd = share->GetFieldData();
+  for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
+  {
+    if (IsShareArray(fd->GetAbstractArray(a)->GetName()))
+    {
+      piece->GetFieldData()->AddArray(fd->GetAbstractArray(a));
+    }
+  }
+}
+
 std::string vtkSolutionPieces::Join(vtkPolyData* points,
   const std::vector<vtkPolyData*>& shares,
   vtkPolyData* whole)
@@ -113,15 +126,8 @@ std::string vtkSolutionPieces::Join(vtkPolyData* points,
   {
     const std::string name = "rank " + std::to_string(r) + "'s share";
     vtkNew<vtkPolyData> rows;
-    rows->ShallowCopy(points);
+    Merge(points, byRank[r], rows);
     vtkFieldData* fd = byRank[r]->GetFieldData();
-    for (int a = 0; a < fd->GetNumberOfArrays(); ++a)
-    {
-      if (IsShareArray(fd->GetAbstractArray(a)->GetName()))
-      {
-        rows->GetFieldData()->AddArray(fd->GetAbstractArray(a));
-      }
-    }
     const std::string problem = vtkSphericalCoverArrays::Load(rows, covers[r], true);
     if (!problem.empty())
     {

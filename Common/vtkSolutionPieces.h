@@ -35,6 +35,10 @@ public:
   /// the marker) and `share` (those arrays in field data, with the points and their areas).
   static void Split(vtkPolyData* piece, vtkPolyData* points, vtkPolyData* share);
 
+  /// Split's inverse for one rank: `points` with the share's arrays (`share`'s field data:
+  /// the cover's, IncidentRadiance and the marker) into `piece`, shallow copies.
+  static void Merge(vtkPolyData* points, vtkPolyData* share, vtkPolyData* piece);
+
   /**
    * The whole solution into `whole` from `points` (Split's points, or a piece) and the shares
    * of every rank, in any order: Split's shares or pieces. Returns "" or the problem, naming

@@ -24,10 +24,11 @@ namespace names = vtkSphericalCoverArrayNames;
 
 std::unique_ptr<sphcover::RadianceRenderer> vtkSolutionRenderer::New(vtkPolyData* illumination,
   vtkDataSet* patchesInput,
-  std::string& error)
+  std::string& error,
+  bool piece)
 {
   vtkIlluminationAdapter::Illumination lit;
-  if (!vtkIlluminationAdapter::Read(illumination, lit, error))
+  if (!vtkIlluminationAdapter::Read(illumination, lit, error, true, piece))
   {
     return nullptr;
   }

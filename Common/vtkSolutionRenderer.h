@@ -34,11 +34,14 @@ public:
    * non-diffuse surfaces (§5.3.1). Null with one sentence in `error` when the illumination
    * cannot be read, the patches cannot be used or the two do not come from one solution (a
    * surface of the patches without characteristic points); what the renderer's constructor
-   * throws (Embree failing, a bad BRDF table) propagates.
+   * throws (Embree failing, a bad BRDF table) propagates. A piece of a solution kept in pieces
+   * (vtkSolutionPieces) is refused unless `piece` accepts one: its renderer renders only with
+   * the directional values of every rank's points (RadianceRenderer::Render with a table).
    */
   static std::unique_ptr<sphcover::RadianceRenderer> New(vtkPolyData* illumination,
     vtkDataSet* patches,
-    std::string& error);
+    std::string& error,
+    bool piece = false);
 
   /**
    * The image as the pipeline's vtkImageData (Width x Height x 1, spacing 1, row 0 at the

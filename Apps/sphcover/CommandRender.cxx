@@ -11,8 +11,14 @@
 #include "SavedSolution.h"
 #include "SceneCamera.h"
 
+#include "RankRenderer.h"
+#include "vtkCoverDistribution.h"
 #include "vtkRadianceImageFilter.h"
+#include "vtkSMPParallelFor.h"
+#include "vtkSolutionRenderer.h"
 
+#include <vtkImageData.h>
+#include <vtkMultiProcessController.h>
 #include <vtkPolyData.h>
 #include <vtkTrivialProducer.h>
 #include <vtkUnstructuredGrid.h>
@@ -146,6 +152,15 @@ void SetUpRender(vtkRadianceImageFilter* render,
   render->SetMaximumSamples(options.MaxSamples);
 }
 
+/// The report's view of the image.
+nlohmann::json ImageReport(const Options& options, const sphcover::Camera& camera)
+{
+  return { { "camera", camera.Name },
+    { "width", camera.Width },
+    { "height", camera.Height },
+    { "samples_per_pixel", options.SamplesPerPixel } };
+}
+
 /// The --report document: the solution's figures (a saved solution's computed again from its
 /// arrays: they are what the image shows), the timings and the image's camera and size.
 nlohmann::json RenderReport(const Options& options,
@@ -176,11 +191,116 @@ nlohmann::json RenderReport(const Options& options,
   }
   report["timings_s"] = source.Timings;
   report["timings_cpu_s"] = source.CpuTimings;
-  report["image"] = { { "camera", camera.Name },
-    { "width", width },
-    { "height", height },
-    { "samples_per_pixel", options.SamplesPerPixel } };
+  sphcover::Camera sized = camera;
+  sized.Width = width;
+  sized.Height = height;
+  report["image"] = ImageReport(options, sized);
   return report;
+}
+
+/// Writes the image files and the report, and prints what was written.
+void WriteRender(const Options& options,
+  const RenderOutputs& outputs,
+  vtkImageData* image,
+  const nlohmann::json& report,
+  const sphcover::Camera& camera,
+  double renderSeconds)
+{
+  if (!outputs.Exr.empty())
+  {
+    WriteExrAtomically(image, outputs.Exr);
+  }
+  for (const std::string& png : outputs.Pngs)
+  {
+    WritePngAtomically(image, png);
+  }
+  if (!options.Report.empty())
+  {
+    WriteTextAtomically(report.dump(2) + "\n", options.Report);
+  }
+  std::cout << "image: " << image->GetDimensions()[0] << "x" << image->GetDimensions()[1]
+            << " from camera '" << camera.Name << "', " << options.SamplesPerPixel
+            << " samples per pixel\n"
+            << "seconds: render " << renderSeconds << "\n";
+  for (const std::string& path : outputs.Written)
+  {
+    std::cout << "written: " << path << "\n";
+  }
+}
+
+/// What the ranks' render gives rank 0.
+struct RankImage
+{
+  vtkNew<vtkImageData> Image;
+  double Seconds = 0.0;
+  double CpuSeconds = 0.0;
+};
+
+/**
+ * A solution kept in pieces rendered by the ranks that hold them (RankRenderer): each builds
+ * its renderer from its piece (`illumination`) and the patches, rank 0 renders the view with
+ * every rank's directional values. `problem` is what a rank found before ("" if nothing),
+ * agreed with the renderers' problems. Collective; true on rank 0 with the image in `result`,
+ * false on the others once rank 0 is finished.
+ */
+bool RenderOnRanks(const Options& options,
+  vtkPolyData* illumination,
+  vtkDataSet* patches,
+  const std::string& named,
+  std::string problem,
+  const sphcover::Camera& camera,
+  const sphcover::RenderSettings& settings,
+  RankImage& result)
+{
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  std::unique_ptr<sphcover::RadianceRenderer> renderer;
+  if (problem.empty())
+  {
+    try
+    {
+      renderer = vtkSolutionRenderer::New(illumination, patches, problem, true);
+      if (!renderer)
+      {
+        throw std::runtime_error(named + "cannot render: " + problem);
+      }
+      problem.clear();
+    }
+    catch (const std::exception& e)
+    {
+      problem = e.what();
+    }
+  }
+  problem = vtkCoverDistribution::Agree(controller, problem);
+  if (!problem.empty())
+  {
+    throw std::runtime_error(problem);
+  }
+  RankRenderer ranks(controller, *renderer);
+  if (options.Rank > 0)
+  {
+    ranks.Serve(vtkSMPParallelFor::Make());
+    return false;
+  }
+  sphcover::RenderedImage rendered;
+  const double cpuStart = ProcessorSeconds();
+  {
+    ProgressBar bar("render", options.Quiet);
+    bar.Update(0.0);
+    ranks.Render(camera,
+      settings,
+      rendered,
+      vtkSMPParallelFor::Make(),
+      [&bar](double fraction)
+      {
+        bar.Update(fraction);
+        return true;
+      });
+    result.Seconds = bar.Seconds();
+  }
+  result.CpuSeconds = ProcessorSeconds() - cpuStart;
+  ranks.Finish();
+  vtkSolutionRenderer::ToImageData(rendered, options.Exposure, result.Image);
+  return true;
 }
 }
 
@@ -204,7 +324,81 @@ int RunRender(const Options& options)
   const sphcover::RenderSettings renderSettings = RenderBudget(options);
   CheckRenderBudget(camera, width, height, renderSettings);
 
-  // Under mpiexec the ranks build the cover together (a solve); rank 0 alone renders and writes.
+  // Under mpiexec the ranks solve together and keep the solution in pieces, or read a
+  // solution kept in as many pieces as ranks, and render it together, no rank holding the
+  // whole cover (RenderOnRanks); rank 0 alone renders any other saved solution and writes.
+  sphcover::Camera sized = camera;
+  sized.Width = width;
+  sized.Height = height;
+  RankImage ranked;
+  if (solving && options.Ranks > 1)
+  {
+    solution.Solve(options, false);
+    if (!RenderOnRanks(options,
+          solution.Propagation->GetOutput(),
+          solution.Subdivision->GetOutput(),
+          "",
+          "",
+          sized,
+          renderSettings,
+          ranked))
+    {
+      return 0;
+    }
+    nlohmann::json report;
+    if (!options.Report.empty())
+    {
+      report = SolutionReport(solution);
+      report["timings_s"] = solution.Timings();
+      report["timings_s"]["render"] = ranked.Seconds;
+      report["timings_cpu_s"] = solution.CpuTimings();
+      report["timings_cpu_s"]["render"] = ranked.CpuSeconds;
+      report["image"] = ImageReport(options, sized);
+    }
+    WriteRender(options, outputs, ranked.Image, report, camera, ranked.Seconds);
+    return 0;
+  }
+  if (!solving && options.Ranks > 1)
+  {
+    SavedSolution pieces;
+    if (pieces.ReadPiece(options, vtkMultiProcessController::GetGlobalController(), ""))
+    {
+      std::string problem;
+      try
+      {
+        pieces.CheckFingerprint(options, solution.Reader->GetOutput());
+      }
+      catch (const std::exception& e)
+      {
+        problem = e.what();
+      }
+      if (!RenderOnRanks(options,
+            pieces.Illumination,
+            vtkDataSet::SafeDownCast(pieces.Patches),
+            "--solution '" + options.SolutionFile + "': ",
+            problem,
+            sized,
+            renderSettings,
+            ranked))
+      {
+        return 0;
+      }
+      // The figures the solve stored with the pieces (the whole cover is nowhere).
+      nlohmann::json report;
+      if (!options.Report.empty())
+      {
+        ReportCounts counts;
+        counts.Patches = vtkDataSet::SafeDownCast(pieces.Patches)->GetNumberOfCells();
+        report = Report(pieces.Illumination, counts);
+        report["timings_s"] = { { "read", pieces.ReadSeconds }, { "render", ranked.Seconds } };
+        report["timings_cpu_s"] = { { "render", ranked.CpuSeconds } };
+        report["ranks"] = options.Ranks;
+        report["image"] = ImageReport(options, sized);
+      }
+      WriteRender(options, outputs, ranked.Image, report, camera, ranked.Seconds);
+      return 0;
+    }
+  }
   if (options.Rank > 0 && !solving)
   {
     return 0;
@@ -237,25 +431,7 @@ int RunRender(const Options& options)
   {
     report = RenderReport(options, solving, solution, saved, source, camera, width, height);
   }
-  if (!outputs.Exr.empty())
-  {
-    WriteExrAtomically(render->GetOutput(), outputs.Exr);
-  }
-  for (const std::string& png : outputs.Pngs)
-  {
-    WritePngAtomically(render->GetOutput(), png);
-  }
-  if (!options.Report.empty())
-  {
-    WriteTextAtomically(report.dump(2) + "\n", options.Report);
-  }
-  std::cout << "image: " << width << "x" << height << " from camera '" << camera.Name << "', "
-            << options.SamplesPerPixel << " samples per pixel\n"
-            << "seconds: render " << renderSeconds << "\n";
-  for (const std::string& path : outputs.Written)
-  {
-    std::cout << "written: " << path << "\n";
-  }
+  WriteRender(options, outputs, render->GetOutput(), report, camera, renderSeconds);
   return 0;
 }
 }

@@ -9,9 +9,11 @@
 #include "OutputFiles.h"
 #include "Pipeline.h"
 #include "ProgressBar.h"
+#include "RankRenderer.h"
 #include "SavedSolution.h"
 #include "SceneCamera.h"
 
+#include "vtkCoverDistribution.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSolutionRenderer.h"
 
@@ -19,6 +21,7 @@
 
 #include <vtkDataSet.h>
 #include <vtkImageData.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 
@@ -31,6 +34,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -146,65 +150,113 @@ std::string Milliseconds(double seconds)
 
 int RunWalk(const Options& options)
 {
+  // Under mpiexec a solution in as many pieces as ranks is rendered by the ranks together
+  // (RankRenderer), each holding its own share of the cover; any other solution by rank 0.
+  vtkMultiProcessController* controller =
+    options.Ranks > 1 ? vtkMultiProcessController::GetGlobalController() : nullptr;
   // Everything that can be checked is checked before the solution is read and before any
-  // frame is written: the options, the frames' folder, the path file.
-  if (options.PathFile.empty() == (options.Orbit == 0))
-  {
-    throw std::runtime_error("give the cameras: either --path PATH.json or --orbit N");
-  }
-  if (!(options.Exposure > 0.0 && std::isfinite(options.Exposure)))
-  {
-    std::ostringstream text;
-    text << "--exposure " << options.Exposure << ": must be a finite number > 0";
-    throw std::runtime_error(text.str());
-  }
-  CheckFrameFolder(options.Output);
-  CheckOutputPath("--report", options.Report, { ".json" }, "report");
+  // frame is written: the options, the frames' folder, the path file (rank 0's checks, which
+  // the ranks that read pieces agree on).
   std::vector<sphcover::Camera> cameras;
   int width = 0;
   int height = 0;
-  if (!options.Size.empty())
-  {
-    ParseSize(options.Size, width, height);
-  }
-  if (!options.PathFile.empty())
-  {
-    cameras = WalkCameras(options, nullptr);
-  }
   const sphcover::RenderSettings settings = RenderBudget(options);
-  ResizeCameras(width, height, cameras);
-  CheckWalkBudgets(options, cameras, settings);
-
+  std::string problem;
+  if (options.Rank == 0)
+  {
+    try
+    {
+      if (options.PathFile.empty() == (options.Orbit == 0))
+      {
+        throw std::runtime_error("give the cameras: either --path PATH.json or --orbit N");
+      }
+      if (!(options.Exposure > 0.0 && std::isfinite(options.Exposure)))
+      {
+        std::ostringstream text;
+        text << "--exposure " << options.Exposure << ": must be a finite number > 0";
+        throw std::runtime_error(text.str());
+      }
+      CheckFrameFolder(options.Output);
+      CheckOutputPath("--report", options.Report, { ".json" }, "report");
+      if (!options.Size.empty())
+      {
+        ParseSize(options.Size, width, height);
+      }
+      if (!options.PathFile.empty())
+      {
+        cameras = WalkCameras(options, nullptr);
+      }
+      ResizeCameras(width, height, cameras);
+      CheckWalkBudgets(options, cameras, settings);
+    }
+    catch (const std::exception& e)
+    {
+      problem = e.what();
+    }
+  }
   // The solution, read once.
   SavedSolution saved;
   saved.Option.clear();
-  ErrorCollector errors;
-  saved.Read(options, errors);
-  if (!vtkDataSet::SafeDownCast(saved.Patches))
+  const bool pieces = controller && saved.ReadPiece(options, controller, problem);
+  if (!pieces)
   {
-    throw std::runtime_error("'" + options.SolutionFile +
-      "': its first block is not a dataset of patches (not a solution of sphcover solve -o)");
+    if (options.Rank > 0)
+    {
+      return 0; // rank 0 walks alone
+    }
+    if (!problem.empty())
+    {
+      throw std::runtime_error(problem);
+    }
+    ErrorCollector errors;
+    saved.Read(options, errors);
   }
-  if (options.PathFile.empty())
-  {
-    cameras = WalkCameras(options, &saved);
-    ResizeCameras(width, height, cameras);
-    CheckWalkBudgets(options, cameras, settings);
-  }
-
   // Its renderer, built once: the ray caster over the patches' tessellation and the
-  // interpolation of the characteristic points (paper §5.3).
+  // interpolation of the characteristic points (paper §5.3); of pieces, each rank's own.
   const auto buildStart = std::chrono::steady_clock::now();
-  std::string problem;
-  const std::unique_ptr<sphcover::RadianceRenderer> renderer =
-    vtkSolutionRenderer::New(saved.Illumination, vtkDataSet::SafeDownCast(saved.Patches), problem);
-  if (!renderer)
+  std::unique_ptr<sphcover::RadianceRenderer> renderer;
+  try
   {
-    throw std::runtime_error("'" + options.SolutionFile + "': cannot render: " + problem);
+    if (!vtkDataSet::SafeDownCast(saved.Patches))
+    {
+      throw std::runtime_error("'" + options.SolutionFile +
+        "': its first block is not a dataset of patches (not a solution of sphcover solve -o)");
+    }
+    if (options.Rank == 0 && options.PathFile.empty())
+    {
+      cameras = WalkCameras(options, &saved);
+      ResizeCameras(width, height, cameras);
+      CheckWalkBudgets(options, cameras, settings);
+    }
+    renderer = vtkSolutionRenderer::New(
+      saved.Illumination, vtkDataSet::SafeDownCast(saved.Patches), problem, pieces);
+    if (!renderer)
+    {
+      throw std::runtime_error("'" + options.SolutionFile + "': cannot render: " + problem);
+    }
+    problem.clear();
+  }
+  catch (const std::exception& e)
+  {
+    problem = e.what();
+  }
+  if (pieces)
+  {
+    problem = vtkCoverDistribution::Agree(controller, problem);
+  }
+  if (!problem.empty())
+  {
+    throw std::runtime_error(problem);
   }
   const double buildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
-
+  std::unique_ptr<RankRenderer> ranks =
+    pieces ? std::make_unique<RankRenderer>(controller, *renderer) : nullptr;
+  if (options.Rank > 0)
+  {
+    ranks->Serve(vtkSMPParallelFor::Make());
+    return 0; // rank 0 writes the frames
+  }
   std::error_code error;
   fs::create_directories(options.Output, error);
   if (error)
@@ -224,7 +276,14 @@ int RunWalk(const Options& options)
     {
       sphcover::RenderedImage image;
       const auto start = std::chrono::steady_clock::now();
-      renderer->Render(cameras[k], settings, image, vtkSMPParallelFor::Make());
+      if (ranks)
+      {
+        ranks->Render(cameras[k], settings, image, vtkSMPParallelFor::Make(), nullptr);
+      }
+      else
+      {
+        renderer->Render(cameras[k], settings, image, vtkSMPParallelFor::Make());
+      }
       const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       renderSeconds.push_back(seconds);

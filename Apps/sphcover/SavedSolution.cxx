@@ -5,19 +5,26 @@
 #include "Pipeline.h"
 #include "ProgressBar.h"
 
+#include "ErrorCollector.h"
+#include "vtkCoverDistribution.h"
 #include "vtkSolutionPieces.h"
 #include "vtkSphericalCoverArrayNames.h"
 
 #include <vtkCompositeDataSet.h>
+#include <vtkDataArray.h>
+#include <vtkDataSet.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkMultiBlockDataSet.h>
 #include <vtkMultiPieceDataSet.h>
+#include <vtkMultiProcessController.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLDataParser.h>
+#include <vtkXMLGenericDataObjectReader.h>
 
+#include <chrono>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -65,6 +72,65 @@ vtkStringArray* FingerprintOf(vtkDataObject* data)
   auto* fingerprint = vtkStringArray::SafeDownCast(
     data->GetFieldData()->GetAbstractArray(vtkSphericalCoverArrayNames::SceneFingerprint));
   return fingerprint && fingerprint->GetNumberOfValues() == 1 ? fingerprint : nullptr;
+}
+
+/// The files of a solution's blocks as its .vtm names them (relative to its folder): the
+/// patches, the illumination and, written in pieces, the shares in rank order.
+struct SolutionFiles
+{
+  std::string Patches;
+  std::string Illumination;
+  std::vector<std::string> Shares;
+};
+
+SolutionFiles FilesOf(const std::string& file)
+{
+  SolutionFiles files;
+  vtkNew<vtkXMLDataParser> parser;
+  parser->SetFileName(file.c_str());
+  vtkXMLDataElement* root = parser->Parse() ? parser->GetRootElement() : nullptr;
+  vtkXMLDataElement* blocks =
+    root ? root->FindNestedElementWithName("vtkMultiBlockDataSet") : nullptr;
+  for (int k = 0; blocks && k < blocks->GetNumberOfNestedElements(); ++k)
+  {
+    vtkXMLDataElement* block = blocks->GetNestedElement(k);
+    const char* index = block->GetAttribute("index");
+    const char* name = block->GetAttribute("file");
+    const char* label = block->GetAttribute("name");
+    if (index && name && std::string(index) == "0")
+    {
+      files.Patches = name;
+    }
+    else if (index && name && std::string(index) == "1")
+    {
+      files.Illumination = name;
+    }
+    else if (label && std::string(label) == "CoverShares")
+    {
+      for (int s = 0; s < block->GetNumberOfNestedElements(); ++s)
+      {
+        const char* share = block->GetNestedElement(s)->GetAttribute("file");
+        files.Shares.push_back(share ? share : "");
+      }
+    }
+  }
+  return files;
+}
+
+/// The dataset of one XML file (any VTK XML dataset type); throws the reader's first error.
+vtkSmartPointer<vtkDataObject> ReadDataset(const std::filesystem::path& file)
+{
+  vtkNew<vtkXMLGenericDataObjectReader> reader;
+  ErrorCollector errors;
+  errors.Watch(reader);
+  reader->SetFileName(file.string().c_str());
+  reader->Update();
+  vtkDataObject* output = reader->GetOutputDataObject(0);
+  if (!output || reader->GetErrorCode() != 0)
+  {
+    throw std::runtime_error(file.string() + ": " + errors.First());
+  }
+  return output;
 }
 }
 
@@ -121,6 +187,67 @@ void SavedSolution::Read(const Options& options, ErrorCollector& errors)
     }
     this->Illumination = this->Joined;
   }
+}
+
+bool SavedSolution::ReadPiece(const Options& options,
+  vtkMultiProcessController* controller,
+  const std::string& problem)
+{
+  const SolutionFiles files = FilesOf(options.SolutionFile);
+  const int ranks = controller->GetNumberOfProcesses();
+  const int rank = controller->GetLocalProcessId();
+  if (ranks < 2 || files.Shares.size() != static_cast<std::size_t>(ranks))
+  {
+    return false;
+  }
+  std::string found = problem;
+  const auto start = std::chrono::steady_clock::now();
+  if (found.empty())
+  {
+    try
+    {
+      const std::string missing = MissingPieceFile(options.SolutionFile);
+      if (!missing.empty())
+      {
+        throw std::runtime_error("its piece '" + missing + "' is missing");
+      }
+      const std::filesystem::path folder =
+        std::filesystem::path(options.SolutionFile).parent_path();
+      this->PiecePatches = ReadDataset(folder / files.Patches);
+      vtkSmartPointer<vtkDataObject> points = ReadDataset(folder / files.Illumination);
+      vtkSmartPointer<vtkDataObject> share =
+        ReadDataset(folder / files.Shares[static_cast<std::size_t>(rank)]);
+      auto* pointsData = vtkPolyData::SafeDownCast(points);
+      auto* shareData = vtkPolyData::SafeDownCast(share);
+      vtkDataArray* marker = shareData
+        ? shareData->GetFieldData()->GetArray(vtkSphericalCoverArrayNames::CoverRowShare)
+        : nullptr;
+      if (!vtkDataSet::SafeDownCast(this->PiecePatches) || !pointsData || !marker ||
+        marker->GetNumberOfTuples() != 1 || marker->GetNumberOfComponents() != 2 ||
+        marker->GetComponent(0, 0) != rank || marker->GetComponent(0, 1) != ranks)
+      {
+        throw std::runtime_error("share " + std::to_string(rank + 1) + " of " +
+          std::to_string(ranks) + " is not rank " + std::to_string(rank) +
+          "'s share of the cover (not a solution of sphcover solve -o)");
+      }
+      vtkSolutionPieces::Merge(pointsData, shareData, this->Joined);
+      this->Patches = this->PiecePatches;
+      this->Illumination = this->Joined;
+      this->ReadSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    catch (const std::exception& e)
+    {
+      found = (this->Option.empty() ? std::string() : this->Option + " ") + "'" +
+        options.SolutionFile + "': " + e.what();
+    }
+  }
+  found = vtkCoverDistribution::Agree(controller, found);
+  if (!found.empty())
+  {
+    throw std::runtime_error(found);
+  }
+  return true;
 }
 
 void SavedSolution::CheckFingerprint(const Options& options, vtkDataObject* scene) const

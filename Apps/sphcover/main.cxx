@@ -260,9 +260,10 @@ int main(int argc, char** argv)
   int status = 0;
   try
   {
-    // Only solve and render build a cover, the stage the ranks share; the other commands run on
+    // Only solve and render build a cover, the stage the ranks share, and render and walk
+    // render a solution kept in pieces on the ranks that hold them; the other commands run on
     // rank 0 alone.
-    if (options.Rank > 0 && !solve->parsed() && !render->parsed())
+    if (options.Rank > 0 && !solve->parsed() && !render->parsed() && !walk->parsed())
     {
     }
     else if (info->parsed())

@@ -21,9 +21,22 @@ glm::dvec3 DirectionalExitantRadiance(const SphericalCover& cover,
   const std::vector<glm::dvec3>& incident,
   const glm::dvec3& localDirection)
 {
-  const HemisphereGrid& grid = cover.Grid();
-  const int cell = grid.CellOfLocalDirection(localDirection);
+  const int cell = cover.Grid().CellOfLocalDirection(localDirection);
   if (cell < 0 || !(localDirection.z > 0.0))
+  {
+    return glm::dvec3(0.0);
+  }
+  return DirectionalExitantRadianceOfCell(cover, table, point, incident, cell);
+}
+
+glm::dvec3 DirectionalExitantRadianceOfCell(const SphericalCover& cover,
+  const ReflectanceWeights& table,
+  std::size_t point,
+  const std::vector<glm::dvec3>& incident,
+  int cell)
+{
+  const HemisphereGrid& grid = cover.Grid();
+  if (cell < 0 || cell >= grid.CellCount())
   {
     return glm::dvec3(0.0);
   }

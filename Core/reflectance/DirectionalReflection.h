@@ -55,6 +55,16 @@ glm::dvec3 DirectionalExitantRadiance(const SphericalCover& cover,
   const std::vector<glm::dvec3>& incident,
   const glm::dvec3& localDirection);
 
+/// The same toward the cover grid's cell `cell` (what the value depends on: a direction above
+/// the tangent plane in that cell gives this value bit for bit). Only the point's own row and
+/// its entries' `incident` are read, so a share of the cover holding the row (a rank's rows)
+/// gives the whole cover's value.
+glm::dvec3 DirectionalExitantRadianceOfCell(const SphericalCover& cover,
+  const ReflectanceWeights& table,
+  std::size_t point,
+  const std::vector<glm::dvec3>& incident,
+  int cell);
+
 /// The BRDF and weight table of every non-diffuse point, one per distinct reflectance.
 class PointReflectances
 {

@@ -15,6 +15,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -495,8 +496,30 @@ glm::dvec3 RadianceRenderer::DirectionalPart(std::size_t point,
   if (cache->Keys[slot] != key)
   {
     cache->Keys[slot] = key;
-    cache->Values[slot] =
-      DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+    if (cache->Needed)
+    {
+      cache->Needed->push_back(key);
+      cache->Values[slot] = glm::dvec3(0.0);
+    }
+    else if (cache->Given)
+    {
+      const std::vector<uint64_t>& keys = cache->Given->Keys;
+      const auto found = std::lower_bound(keys.begin(), keys.end(), key);
+      if (found == keys.end() || *found != key)
+      {
+        ++cache->Missing;
+        cache->Values[slot] = glm::dvec3(0.0);
+      }
+      else
+      {
+        cache->Values[slot] = cache->Given->Values[static_cast<size_t>(found - keys.begin())];
+      }
+    }
+    else
+    {
+      cache->Values[slot] =
+        DirectionalExitantRadiance(lit.Cover, table, point, lit.IncidentRadiance, local);
+    }
   }
   return cache->Values[slot];
 }
@@ -668,6 +691,100 @@ bool RadianceRenderer::Render(const Camera& camera,
   const ParallelFor& parallelFor,
   const ProgressCallback& progress) const
 {
+  return this->RenderRows(camera, settings, image, parallelFor, progress, nullptr, nullptr);
+}
+
+bool RadianceRenderer::Render(const Camera& camera,
+  const RenderSettings& settings,
+  const DirectionalValueTable& given,
+  RenderedImage& image,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress) const
+{
+  if (given.Keys.size() != given.Values.size())
+  {
+    throw std::invalid_argument("RadianceRenderer: " + std::to_string(given.Keys.size()) +
+      " directional pairs with " + std::to_string(given.Values.size()) + " values");
+  }
+  return this->RenderRows(camera, settings, image, parallelFor, progress, &given, nullptr);
+}
+
+uint64_t RadianceRenderer::DirectionalCellCount() const
+{
+  return this->Directional ? static_cast<uint64_t>(this->Directional->Cover.Grid().CellCount()) : 0;
+}
+
+std::vector<uint64_t> RadianceRenderer::DirectionalPairs(const Camera& camera,
+  const RenderSettings& settings,
+  const ParallelFor& parallelFor) const
+{
+  if (!this->Directional)
+  {
+    const std::string problem = CheckCamera(camera, settings);
+    if (!problem.empty())
+    {
+      throw std::invalid_argument(problem);
+    }
+    return {};
+  }
+  RenderedImage scratch;
+  std::vector<std::vector<uint64_t>> needed(static_cast<size_t>(std::max(0, camera.Height)));
+  this->RenderRows(camera, settings, scratch, parallelFor, nullptr, nullptr, &needed);
+  std::vector<uint64_t> pairs;
+  for (std::vector<uint64_t>& row : needed)
+  {
+    pairs.insert(pairs.end(), row.begin(), row.end());
+    row = std::vector<uint64_t>();
+  }
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  return pairs;
+}
+
+std::vector<glm::dvec3> RadianceRenderer::DirectionalValues(const std::vector<uint64_t>& pairs,
+  const ParallelFor& parallelFor) const
+{
+  if (!this->Directional)
+  {
+    throw std::logic_error("RadianceRenderer::DirectionalValues: no directional illumination");
+  }
+  const DirectionalIllumination& lit = *this->Directional;
+  const uint64_t cells = static_cast<uint64_t>(lit.Cover.Grid().CellCount());
+  std::vector<const ReflectanceWeights*> tables(pairs.size(), nullptr);
+  for (size_t k = 0; k < pairs.size(); ++k)
+  {
+    const uint64_t point = pairs[k] / cells;
+    tables[k] = point < lit.Cover.PatchCount() ? this->Reflectances.Table(point) : nullptr;
+    if (!tables[k])
+    {
+      throw std::invalid_argument("RadianceRenderer::DirectionalValues: pair " +
+        std::to_string(pairs[k]) + " is not of a non-diffuse characteristic point");
+    }
+  }
+  std::vector<glm::dvec3> values(pairs.size());
+  parallelFor(pairs.size(),
+    [&](size_t begin, size_t end)
+    {
+      for (size_t k = begin; k < end; ++k)
+      {
+        values[k] = DirectionalExitantRadianceOfCell(lit.Cover,
+          *tables[k],
+          static_cast<size_t>(pairs[k] / cells),
+          lit.IncidentRadiance,
+          static_cast<int>(pairs[k] % cells));
+      }
+    });
+  return values;
+}
+
+bool RadianceRenderer::RenderRows(const Camera& camera,
+  const RenderSettings& settings,
+  RenderedImage& image,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress,
+  const DirectionalValueTable* given,
+  std::vector<std::vector<uint64_t>>* needed) const
+{
   const std::string problem = CheckCamera(camera, settings);
   if (!problem.empty())
   {
@@ -688,11 +805,17 @@ bool RadianceRenderer::Render(const Camera& camera,
   std::vector<double> offsetY;
   SampleOffsets(samples, offsetX, offsetY);
 
+  std::atomic<std::size_t> missing{ 0 };
   auto renderRow = [&](int j)
   {
     std::vector<SampleHit> hits;
     std::unique_ptr<DirectionalCache> cache =
       this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
+    if (cache)
+    {
+      cache->Given = given;
+      cache->Needed = needed ? &(*needed)[static_cast<size_t>(j)] : nullptr;
+    }
     for (int i = 0; i < width; ++i)
     {
       hits.clear();
@@ -723,6 +846,10 @@ bool RadianceRenderer::Render(const Camera& camera,
       }
       StorePixel(pixel, sum, samples, hits, image);
     }
+    if (cache && cache->Missing > 0)
+    {
+      missing += cache->Missing;
+    }
   };
 
   // Ten batches of rows, each run in parallel; progress and abort between batches.
@@ -742,6 +869,11 @@ bool RadianceRenderer::Render(const Camera& camera,
     {
       return false;
     }
+  }
+  if (missing > 0)
+  {
+    throw std::runtime_error("RadianceRenderer: the directional values given lack " +
+      std::to_string(missing.load()) + " of the pairs the view reads");
   }
   return true;
 }

@@ -210,6 +210,49 @@ public:
     const ParallelFor& parallelFor = SequentialFor,
     const ProgressCallback& progress = nullptr) const;
 
+  /// The directional part of §5.3.1 per (point, out cell) pair, evaluated elsewhere: by the
+  /// ranks whose share of the cover holds the points' rows (DirectionalValues).
+  struct DirectionalValueTable
+  {
+    /// Pair keys, point x (the grid's cell count) + cell, ascending.
+    std::vector<uint64_t> Keys;
+    std::vector<glm::dvec3> Values;
+  };
+
+  /**
+   * The view rendered with the directional part taken from `given` instead of evaluated: with
+   * the values of DirectionalPairs(camera, settings) from DirectionalValues, the image Render
+   * gives, bit for bit. So the directional illumination set here may be a share of the cover
+   * (a rank's rows) or any cover of the same grid: only the points' materials and the grid are
+   * read. Throws std::invalid_argument as Render, and std::runtime_error when `given` lacks a
+   * pair the view reads.
+   */
+  bool Render(const Camera& camera,
+    const RenderSettings& settings,
+    const DirectionalValueTable& given,
+    RenderedImage& image,
+    const ParallelFor& parallelFor = SequentialFor,
+    const ProgressCallback& progress = nullptr) const;
+
+  /**
+   * The (point, out cell) pairs whose directional part the view reads (keys as in
+   * DirectionalValueTable, ascending, each once): the view traced as Render traces it, without
+   * evaluating them. Empty without the directional illumination. Throws as Render.
+   */
+  std::vector<uint64_t> DirectionalPairs(const Camera& camera,
+    const RenderSettings& settings,
+    const ParallelFor& parallelFor = SequentialFor) const;
+
+  /**
+   * The directional part of each pair (DirectionalPairs' keys) from this renderer's
+   * directional illumination: a share of the cover gives the whole cover's values for the
+   * pairs of the points whose rows it holds (the caller asks for those). Throws
+   * std::invalid_argument for a pair of a point out of range or of a diffuse point, and
+   * std::logic_error without the directional illumination.
+   */
+  std::vector<glm::dvec3> DirectionalValues(const std::vector<uint64_t>& pairs,
+    const ParallelFor& parallelFor = SequentialFor) const;
+
   /**
    * Adds the directional part of non-diffuse surfaces (see the file comment). Throws
    * std::invalid_argument when the cover's point count, the frames or the materials differ
@@ -218,6 +261,9 @@ public:
    */
   void SetDirectionalIllumination(DirectionalIllumination illumination);
   bool HasDirectionalIllumination() const { return this->Directional != nullptr; }
+  /// The cells of the directional illumination's grid (0 without it): a pair's key is
+  /// point x this + cell (DirectionalValueTable).
+  uint64_t DirectionalCellCount() const;
 
   /**
    * The lamps' direct light (DirectLight, the points' order): the Lambertian radiance becomes
@@ -279,6 +325,11 @@ public:
     int Shift;
     std::vector<uint64_t> Keys;
     std::vector<glm::dvec3> Values;
+    /// Set: the pairs are listed here (once per slot fill) and read as zero (DirectionalPairs).
+    std::vector<uint64_t>* Needed = nullptr;
+    /// Set: the pairs are read from this table instead of evaluated; those it lacks counted.
+    const DirectionalValueTable* Given = nullptr;
+    std::size_t Missing = 0;
   };
 
   /// What the radiance at (u, v) of a surface toward an eye needs that does not depend on the
@@ -333,6 +384,15 @@ private:
     const glm::dvec3& direction,
     DirectionalCache* cache,
     glm::dvec3& radiance) const;
+  /// Render's work: the directional part through caches that evaluate it, or list the pairs
+  /// (`needed`: one list per row of pixels), or read them from `given`.
+  bool RenderRows(const Camera& camera,
+    const RenderSettings& settings,
+    RenderedImage& image,
+    const ParallelFor& parallelFor,
+    const ProgressCallback& progress,
+    const DirectionalValueTable* given,
+    std::vector<std::vector<uint64_t>>* needed) const;
   /// Casts one sample ray from the eye; false where it meets nothing.
   bool TraceSample(const glm::dvec3& eye,
     const glm::dvec3& direction,

@@ -6,6 +6,7 @@
 
 #include "CoverTestUtilities.h"
 #include "cover/SphericalCover.h"
+#include "math/RankShare.h"
 #include "propagation/LightPropagation.h"
 
 #include <gtest/gtest.h>
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -258,4 +260,126 @@ TEST(NonDiffuseRendering, FlatMirrorShowsTheViewOfTheMirroredCamera)
     blockRms);
   EXPECT_LT(worstMean, 0.03);
   EXPECT_LT(blockRms, 0.15);
+}
+
+TEST(NonDiffuseRendering, DirectionalPartFromSharesOfTheCoverGivesTheWholeCoversImage)
+{
+  // A solution kept in pieces: each rank holds the rows of its points r, r + K, ... and their
+  // regions' incident radiance. The view's (point, cell) pairs (DirectionalPairs), each
+  // evaluated by the rank that holds its point's row (DirectionalValues of its share) and
+  // rendered from the table, give the image of the whole cover bit for bit: the Cornell box
+  // with a glossy back wall and mirror blocks.
+  const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
+  const std::vector<Patch> patches = SplitScene(scene, 2);
+  std::vector<Material> materials = LightPropagation::MaterialsOfPatches(scene, patches);
+  for (size_t i = 0; i < patches.size(); ++i)
+  {
+    const std::string& name = scene.SurfaceNames[static_cast<size_t>(
+      scene.Surfaces[static_cast<size_t>(patches[i].SurfaceIndex)].NameIndex)];
+    if (name == "back_wall")
+    {
+      materials[i].Type = MaterialType::Phong;
+      materials[i].Diffuse *= 0.5;
+      materials[i].Specular = glm::dvec3(0.3);
+      materials[i].PhongExponent = 30.0;
+    }
+    else if (name.find("block") != std::string::npos)
+    {
+      materials[i] = Material();
+      materials[i].Type = MaterialType::Mirror;
+      materials[i].Specular = glm::dvec3(0.8);
+    }
+  }
+  Solution solution = Propagate(patches, materials);
+  // Each rank's share: its rows of the cover and their regions' incident radiance.
+  const SphericalCover& cover = solution.Directional.Cover;
+  const uint64_t cells = static_cast<uint64_t>(cover.Grid().CellCount());
+  const auto shareOf = [&solution, &cover](int rank, int ranks)
+  {
+    const std::vector<size_t> receivers = RankShare::ItemsOf(rank, ranks, cover.PatchCount());
+    DirectionalIllumination share;
+    share.Cover = cover.RowsOf(receivers);
+    for (const size_t e : cover.KeptEntries(receivers))
+    {
+      share.IncidentRadiance.push_back(solution.Directional.IncidentRadiance[e]);
+    }
+    share.Frames = solution.Directional.Frames;
+    share.Materials = solution.Directional.Materials;
+    return share;
+  };
+  std::vector<std::vector<DirectionalIllumination>> shares(4);
+  for (const int ranks : { 2, 3 })
+  {
+    for (int r = 0; r < ranks; ++r)
+    {
+      shares[static_cast<size_t>(ranks)].push_back(shareOf(r, ranks));
+    }
+  }
+  const CharacteristicPointInterpolator layout =
+    CharacteristicPointInterpolator::OfPatches(patches);
+  RadianceRenderer whole(patches, layout, solution.Exitant);
+  whole.SetDirectionalIllumination(std::move(solution.Directional));
+  ASSERT_FALSE(scene.Cameras.empty());
+  Camera camera = scene.Cameras.front();
+  camera.Width = 40;
+  camera.Height = 30;
+  RenderSettings settings;
+  settings.SamplesPerPixel = 2;
+  RenderedImage reference;
+  ASSERT_TRUE(whole.Render(camera, settings, reference));
+  const std::vector<uint64_t> pairs = whole.DirectionalPairs(camera, settings, ThreadedFor(2));
+  ASSERT_GT(pairs.size(), 100u);
+  ASSERT_TRUE(std::is_sorted(pairs.begin(), pairs.end()));
+
+  ASSERT_EQ(whole.DirectionalCellCount(), cells);
+  for (const int ranks : { 2, 3 })
+  {
+    SCOPED_TRACE(testing::Message() << ranks << " ranks");
+    RadianceRenderer::DirectionalValueTable table;
+    table.Keys = pairs;
+    table.Values.resize(pairs.size());
+    std::vector<std::unique_ptr<RadianceRenderer>> renderers;
+    for (int r = 0; r < ranks; ++r)
+    {
+      renderers.push_back(std::make_unique<RadianceRenderer>(patches, layout, solution.Exitant));
+      renderers.back()->SetDirectionalIllumination(
+        std::move(shares[static_cast<size_t>(ranks)][static_cast<size_t>(r)]));
+      std::vector<uint64_t> own;
+      std::vector<size_t> at;
+      for (size_t k = 0; k < pairs.size(); ++k)
+      {
+        if ((pairs[k] / cells) % static_cast<uint64_t>(ranks) == static_cast<uint64_t>(r))
+        {
+          own.push_back(pairs[k]);
+          at.push_back(k);
+        }
+      }
+      const std::vector<glm::dvec3> values = renderers.back()->DirectionalValues(own);
+      for (size_t k = 0; k < own.size(); ++k)
+      {
+        table.Values[at[k]] = values[k];
+      }
+    }
+    RenderedImage image;
+    ASSERT_TRUE(renderers.front()->Render(camera, settings, table, image, ThreadedFor(2)));
+    EXPECT_EQ(image.Radiance, reference.Radiance);
+    EXPECT_EQ(image.Depth, reference.Depth);
+    EXPECT_EQ(image.SurfaceId, reference.SurfaceId);
+    // Its own share alone (the other ranks' points read as zero) is not the image: the test
+    // sees the directional part.
+    RenderedImage alone;
+    ASSERT_TRUE(renderers.front()->Render(camera, settings, alone));
+    EXPECT_NE(alone.Radiance, reference.Radiance);
+  }
+  RadianceRenderer::DirectionalValueTable lacking;
+  lacking.Keys.assign(pairs.begin() + 1, pairs.end());
+  lacking.Values.assign(lacking.Keys.size(), glm::dvec3(0.0));
+  RenderedImage image;
+  EXPECT_THROW(whole.Render(camera, settings, lacking, image), std::runtime_error);
+  size_t diffuse = 0;
+  while (materials[diffuse].Type != MaterialType::Diffuse)
+  {
+    ++diffuse;
+  }
+  EXPECT_THROW(whole.DirectionalValues({ diffuse * cells }), std::invalid_argument);
 }

@@ -11,6 +11,12 @@ non-zero exit, without a hang.
   for bit, a block of 2 shares, `render --solution` of it the serial image and a walk through
   it under `mpiexec -n 2` the serial walk's three frames, byte for byte; a missing piece is one
   error naming it;
+- a solution in pieces of a scene with a glossy wall and a mirror (the mixed box) rendered by
+  the ranks that hold the pieces (`render --solution` and `walk` under `mpiexec -n 2`: each rank
+  evaluates the directional part of its own points) gives the serial image and frames byte for
+  byte, and on 3 ranks (rank 0 joining the 2 pieces) the same image, as does `render` solving
+  and rendering in one run on 2 ranks (the pieces never gathered); a missing piece is one
+  error on 2 ranks, without a hang;
 - a solve whose propagation state exceeds --memory-limit in one process (refused, one error)
   fits on 2 ranks, each of which holds its share (memory per rank falls with K);
 - a scene that does not load, under `mpiexec -n 2`: a non-zero exit within the timeout and one
@@ -198,6 +204,76 @@ with tempfile.TemporaryDirectory() as folder:
                     os.path.exists(lost)):
                 failures.append(f"a solution missing a piece: exit {result.returncode}, "
                                 f"{result.stderr.strip()}")
+
+    # Rendered by the ranks that hold the pieces (a glossy wall and a mirror: the directional
+    # part of paper §5.3.1 of each rank's points from its own share of the cover): render
+    # --solution and walk under mpiexec -n 2 give the serial image and frames byte for byte;
+    # on 3 ranks (not the pieces' 2) rank 0 joins them and renders alone, the same image. A
+    # missing piece is one error, without a hang.
+    MIXED = f"{data}/scenes/mixed_box.scene"
+    mixed_serial = os.path.join(folder, "mixed.vtm")
+    mixed_pieces = os.path.join(folder, "mixed_pieces.vtm")
+    view = ["--size", "64x48", "--spp", "2", "-q"]
+    solved = [run([sphcover, "solve", MIXED, "-o", mixed_serial, *SMALL[:8], "-q"]),
+              run([mpiexec, "-n", "2", sphcover, "solve", MIXED, "-o", mixed_pieces, *SMALL[:8],
+                   "-q"])]
+    if any(result.returncode != 0 for result in solved):
+        failures.append(f"solving the mixed box: {[r.stderr.strip() for r in solved]}")
+    else:
+        images = {}
+        for label, launcher, source in [("serial", [], mixed_serial),
+                                        ("2 ranks", [mpiexec, "-n", "2"], mixed_pieces),
+                                        ("3 ranks", [mpiexec, "-n", "3"], mixed_pieces)]:
+            image = os.path.join(folder, f"mixed {label}.png")
+            result = run(launcher + [sphcover, "render", MIXED, "--solution", source, "-o",
+                                     image, *view])
+            if result.returncode != 0:
+                failures.append(f"render --solution of the mixed box on {label}: exit "
+                                f"{result.returncode}: {result.stderr.strip()}")
+            else:
+                images[label] = open(image, "rb").read()
+        if len(images) == 3 and not images["serial"] == images["2 ranks"] == images["3 ranks"]:
+            failures.append("the mixed box rendered from its pieces on 2 or 3 ranks differs "
+                            "from the serial image")
+        # Solved and rendered in one run on 2 ranks, the solution kept in pieces throughout.
+        solved_image = os.path.join(folder, "mixed solved.png")
+        result = run([mpiexec, "-n", "2", sphcover, "render", MIXED, "-o", solved_image,
+                      *SMALL[:8], *view])
+        if result.returncode != 0:
+            failures.append(f"render of the mixed box on 2 ranks: {result.stderr.strip()}")
+        elif "serial" in images and open(solved_image, "rb").read() != images["serial"]:
+            failures.append("the mixed box solved and rendered on 2 ranks differs from the "
+                            "serial image")
+        walks = {}
+        for label, launcher, source in [("serial", [], mixed_serial),
+                                        ("2 ranks", [mpiexec, "-n", "2"], mixed_pieces)]:
+            out = os.path.join(folder, f"mixed walk {label}")
+            result = run(launcher + [sphcover, "walk", source, "--orbit", "2", "-o", out,
+                                     "--size", "48x48", "-q"])
+            if result.returncode != 0:
+                failures.append(f"walk of the mixed box on {label}: {result.stderr.strip()}")
+            else:
+                walks[label] = [open(os.path.join(out, name), "rb").read()
+                                for name in sorted(os.listdir(out))]
+        if len(walks) == 2 and (len(walks["serial"]) != 2 or walks["serial"] != walks["2 ranks"]):
+            failures.append("the walk through the mixed box's pieces on 2 ranks differs from "
+                            "the serial walk")
+        root = ElementTree.parse(mixed_pieces).getroot()
+        files = [entry.get("file") for block in root.iter("Piece")
+                 if block.get("name") == "CoverShares" for entry in block]
+        if len(files) == 2:
+            os.remove(os.path.join(folder, files[0]))
+            try:
+                result = run([mpiexec, "-n", "2", sphcover, "render", MIXED, "--solution",
+                              mixed_pieces, "-o", os.path.join(folder, "lost.png"), "-q"],
+                             timeout=120)
+                errors = [line for line in result.stderr.splitlines()
+                          if "sphcover: error:" in line]
+                if result.returncode == 0 or len(errors) != 1 or files[0] not in errors[0]:
+                    failures.append(f"pieces missing one, rendered on 2 ranks: exit "
+                                    f"{result.returncode}, {result.stderr.strip()}")
+            except subprocess.TimeoutExpired:
+                failures.append("pieces missing one, rendered on 2 ranks: hung")
 
     bad = os.path.join(folder, "bad.scene")
     with open(bad, "w", encoding="utf-8") as file:
