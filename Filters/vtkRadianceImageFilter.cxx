@@ -4,6 +4,7 @@
 #include "vtkCoverPatches.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSceneCameras.h"
+#include "vtkScenePieces.h"
 #include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkStageProgress.h"
@@ -223,6 +224,19 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
   vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  // Pieces > 0 idle: the whole solution is piece 0 (vtkScenePieces.h), as under
+  // `mpiexec -n K pvbatch --symmetric`, where rank 0 renders the image.
+  const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, illumination);
+  if (role != vtkScenePieces::Role::WholeScene)
+  {
+    output->Initialize();
+    if (role == vtkScenePieces::Role::PartialScene)
+    {
+      vtkErrorMacro(<< "Cannot render: " << vtkScenePieces::PartialSceneError(outputVector) << ".");
+      return 0;
+    }
+    return 1;
+  }
   if (!illumination || !patchesInput)
   {
     vtkErrorMacro(<< "Cannot render: connect the illumination (vtkLightPropagationFilter's "

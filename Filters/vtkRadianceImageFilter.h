@@ -45,6 +45,12 @@
  * nothing is seen) and `RGB` (unsigned char, for display: Exposure * Radiance clamped to [0,1]
  * and encoded with the sRGB transfer function).
  *
+ * Pieces (vtkScenePieces.h): the whole solution is piece 0. Asked for a piece > 0 with an empty
+ * input (the other ranks under `mpiexec -n K pvbatch --symmetric`, where rank 0 holds the
+ * solution), the filter produces an empty image without a message; with a non-empty input
+ * there, it refuses with an error. A piece of a solution kept in pieces (vtkLightPropagation-
+ * Filter's GatherSolution off) is refused: its cover holds some rows only.
+ *
  * @warning Pixels are rendered in parallel (vtkSMPTools); the image does not depend on the
  * number of threads.
  */

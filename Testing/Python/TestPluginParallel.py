@@ -17,6 +17,8 @@ completes on 2 ranks, under the piece policy of Readers/vtkScenePieces.h:
   rank's solution is its piece: every point with the serial Radiosity, Irradiance and
   Brightness, only its own rows and their regions' serial IncidentRadiance, marked as its share,
   and on rank 0 the serial figures (form factors, means, statistics) bit for bit;
+- the Radiance Image of the gathered solution is the serial image on rank 0 and an empty image,
+  without an error, on rank 1;
 - a propagation refused (a MemoryLimit below a rank's share) is one error on each rank, and
   neither waits for the other; so is one that rank 0 aborts while it balances the exchange (the
   other rank waiting to be dealt its rows).
@@ -35,7 +37,8 @@ from vtkmodules.vtkParallelCore import vtkCommunicator, vtkMultiProcessControlle
 
 plugin, data = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
-from sphericalcover import vtkHemisphereExtractor, vtkLightPropagationFilter  # noqa: E402
+from sphericalcover import (vtkHemisphereExtractor, vtkLightPropagationFilter,  # noqa: E402
+                            vtkRadianceImageFilter)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from coarse_cornell_pipeline import ErrorCollector, coarse_cornell_pipeline  # noqa: E402
@@ -238,6 +241,28 @@ fixed_order = globals()["LightPropagation"](Input=OutputPort(kept, 0), ShootingO
 errors = errors_of(fixed_order)
 if len(errors) != 1 or "GatherRows" not in errors[0]:
     failures.append(f"FixedOrder on the kept rows reported {errors}, not one error about them")
+
+# The Radiance Image of the gathered solution: rank 0 renders the serial image, value for
+# value; the other rank's piece is an empty image without an error (the launcher fails on one).
+image = globals()["RadianceImage"](Input=OutputPort(propagation, 0), Width=32, Height=24,
+                                   SamplesPerPixel=1)
+image.UpdatePipeline()
+rendered = image.GetClientSideObject().GetOutputDataObject(0)
+serial_image = vtkRadianceImageFilter()
+serial_image.SetInputConnection(0, serial_propagation.GetOutputPort(0))
+serial_image.SetPatchesConnection(serial_subdivision.GetOutputPort(0))
+serial_image.SetWidth(32)
+serial_image.SetHeight(24)
+serial_image.SetSamplesPerPixel(1)
+serial_image.Update()
+if rank == 0:
+    radiance = rendered.GetPointData().GetArray("Radiance")
+    serial_radiance = serial_image.GetOutput().GetPointData().GetArray("Radiance")
+    if radiance is None or [radiance.GetValue(i) for i in range(radiance.GetNumberOfValues())] \
+            != [serial_radiance.GetValue(i) for i in range(serial_radiance.GetNumberOfValues())]:
+        failures.append("the Radiance Image on rank 0 is not the serial image")
+elif rendered.GetNumberOfPoints() != 0:
+    failures.append(f"rank {rank} rendered an image of its empty piece")
 
 # GatherSolution off: every rank keeps its piece of the solution, of the kept rows (each rank's
 # share as it is) and of the gathered cover (rank 0 deals the rows, each rank stores its own):
