@@ -5,6 +5,7 @@
 #include "vtkSMPParallelFor.h"
 #include "vtkSceneCameras.h"
 #include "vtkScenePieces.h"
+#include "vtkSolutionPieces.h"
 #include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkStageProgress.h"
@@ -224,6 +225,15 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   vtkPolyData* illumination = vtkPolyData::GetData(inputVector[0], 0);
   vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
+  // A piece of a solution kept in pieces holds some rows of the cover only, on every rank.
+  if (vtkSolutionPieces::IsPiece(illumination))
+  {
+    output->Initialize();
+    vtkErrorMacro(<< "Cannot render: the input is one rank's piece of a solution kept in pieces "
+                     "(vtkLightPropagationFilter's GatherSolution off), which holds only that "
+                     "rank's rows of the cover; gather the solution (GatherSolution on).");
+    return 0;
+  }
   // Pieces > 0 idle: the whole solution is piece 0 (vtkScenePieces.h), as under
   // `mpiexec -n K pvbatch --symmetric`, where rank 0 renders the image.
   const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, illumination);

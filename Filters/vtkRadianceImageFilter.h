@@ -49,7 +49,8 @@
  * input (the other ranks under `mpiexec -n K pvbatch --symmetric`, where rank 0 holds the
  * solution), the filter produces an empty image without a message; with a non-empty input
  * there, it refuses with an error. A piece of a solution kept in pieces (vtkLightPropagation-
- * Filter's GatherSolution off) is refused: its cover holds some rows only.
+ * Filter's GatherSolution off) is refused on every rank, naming GatherSolution: its cover holds
+ * some rows only (`sphcover render` renders such pieces on the ranks together).
  *
  * @warning Pixels are rendered in parallel (vtkSMPTools); the image does not depend on the
  * number of threads.

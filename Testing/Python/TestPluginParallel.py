@@ -18,7 +18,8 @@ completes on 2 ranks, under the piece policy of Readers/vtkScenePieces.h:
   Brightness, only its own rows and their regions' serial IncidentRadiance, marked as its share,
   and on rank 0 the serial figures (form factors, means, statistics) bit for bit;
 - the Radiance Image of the gathered solution is the serial image on rank 0 and an empty image,
-  without an error, on rank 1;
+  without an error, on rank 1; of a piece (GatherSolution off), one error on each rank naming
+  GatherSolution;
 - a propagation refused (a MemoryLimit below a rank's share) is one error on each rank, and
   neither waits for the other; so is one that rank 0 aborts while it balances the exchange (the
   other rank waiting to be dealt its rows).
@@ -312,6 +313,15 @@ for label, source in [("kept rows", kept), ("gathered cover", cover)]:
                         "serial ones bit for bit")
     if rank != 0 and fields.GetArray("SurfaceFormFactors") is not None:
         failures.append(f"the solution of the {label} in pieces: rank {rank} sums up figures")
+
+# The Radiance Image refuses a piece on every rank, naming GatherSolution (a diffuse piece
+# would render on rank 0, its per-point values being whole, but the other ranks' pieces not).
+refused_image = globals()["RadianceImage"](Input=OutputPort(kept_apart, 0), Width=32, Height=24,
+                                           SamplesPerPixel=1)
+errors = errors_of(refused_image)
+if len(errors) != 1 or "GatherSolution" not in errors[0]:
+    failures.append(f"the Radiance Image of a piece reported {errors}, not one error naming "
+                    "GatherSolution")
 
 for failure in failures:
     print(f"FAILED (rank {rank}):", failure)
