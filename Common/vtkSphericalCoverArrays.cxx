@@ -190,3 +190,8 @@ void vtkSphericalCoverArrays::MarkShare(vtkDataObject* output, int rank, int ran
   marker->SetComponent(0, 1, ranks);
   output->GetFieldData()->AddArray(marker);
 }
+
+bool vtkSphericalCoverArrays::IsShare(vtkDataObject* data)
+{
+  return data && data->GetFieldData()->GetAbstractArray(names::CoverRowShare);
+}

@@ -43,6 +43,9 @@ public:
   /// Marks `output`'s cover as rank `rank` of `ranks`' share of the rows (the field array
   /// `CoverRowShare`, replaced if there).
   static void MarkShare(vtkDataObject* output, int rank, int ranks);
+  /// Whether `data` is marked as one rank's share (MarkShare): of the cover's rows, or a piece
+  /// of a solution kept in pieces.
+  static bool IsShare(vtkDataObject* data);
 };
 
 #endif

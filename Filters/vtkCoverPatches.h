@@ -16,6 +16,8 @@
 #ifndef vtkCoverPatches_h
 #define vtkCoverPatches_h
 
+#include "SphericalCoverFiltersModule.h" // for export macro
+
 class vtkAlgorithm;
 class vtkDataSet;
 class vtkInformationVector;
@@ -27,14 +29,15 @@ namespace vtkCoverPatches
  * input of the nearest vtkSphericalCoverFilter upstream of port 0, or nullptr when there is
  * none. Call from RequestData: the upstream stages have executed by then.
  */
-vtkDataSet* Find(vtkAlgorithm* self, vtkInformationVector** inputVector);
+SPHERICALCOVERFILTERS_EXPORT vtkDataSet* Find(vtkAlgorithm* self,
+  vtkInformationVector** inputVector);
 
 /**
  * The same outside RequestData, for a filter that has executed (a render-time consumer such as
  * vtkViewDependentRadiance::SetSolutionFrom): port 1's current input data when connected, else
  * the input of the nearest vtkSphericalCoverFilter upstream of port 0.
  */
-vtkDataSet* Find(vtkAlgorithm* self);
+SPHERICALCOVERFILTERS_EXPORT vtkDataSet* Find(vtkAlgorithm* self);
 }
 
 #endif

@@ -3,8 +3,8 @@
 
 #include "vtkCoverPatches.h"
 #include "vtkIlluminationAdapter.h"
-#include "vtkScenePieces.h"
 #include "vtkSMPParallelFor.h"
+#include "vtkScenePieces.h"
 #include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkStageProgress.h"

@@ -45,24 +45,7 @@
  * error (a piece of the scene would give a wrong illumination). An empty input on piece 0 is an
  * error, as in serial.
  *
- * Processes (Controller, by default the global controller): when every one of K > 1 processes
- * holds the whole cover (a VTK pipeline whose every rank holds piece 0), each rank keeps the
- * rows of its receivers r, r + K, ... (dealt round the ranks one by one, so that each rank has
- * a K-th of every surface and of each batch's shooters); when rank 0 holds the cover and the
- * others empty pieces (pvbatch, pvserver, `mpiexec sphcover`), rank 0 deals each rank those
- * rows (the other ranks never hold the whole cover); when every rank holds its share of the
- * cover (the field array `CoverRowShare` of vtkSphericalCoverFilter with GatherRows off, as
- * `mpiexec sphcover` builds it), each propagates its rows as they are, no rank holding the
- * whole cover until rank 0 gathers it for the solution once the propagation's state is gone.
- * Either way the K ranks then balance the
- * exchange (ExchangeBalance under a share: each its own rows, the factors the whole cover's bit
- * for bit) and propagate together (LightPropagation::SetRankShare), and the results are
- * gathered: on every rank in the first case, on rank 0 alone in the others (it writes the
- * solution, the others keep empty outputs, as above), or kept in pieces (GatherSolution off:
- * each rank its own rows' regions, below). So the outputs are the serial ones (the
- * per-patch values and the regions' incident radiances bit for bit; the energy sums up to the
- * order of addition). FixedOrder runs on each process alone, as described above. Every process
- * must update the filter together, as for vtkSphericalCoverFilter.
+ * One process: vtkPLightPropagationFilter (Parallel/) propagates on several together.
  */
 #ifndef vtkLightPropagationFilter_h
 #define vtkLightPropagationFilter_h
@@ -71,9 +54,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <string> // for std::string
-#include <vector> // for std::vector
 
-class vtkMultiProcessController;
 class vtkTable;
 
 class SPHERICALCOVERFILTERS_EXPORT vtkLightPropagationFilter : public vtkPolyDataAlgorithm
@@ -117,8 +98,7 @@ public:
   /**
    * Most points shot at a time by BRIGHTEST_FIRST: the brightest and the next ones with at least
    * half its unshot power, all taken before any is delivered (Core's LightPropagation,
-   * "Batches"). Under MPI the ranks reflect a batch's mirror and glossy shooters at the same
-   * time and exchange once per batch; the result depends on the batch, never on the ranks.
+   * "Batches").
    * 1: the paper's order, one at a time. Default is 16.
    */
   vtkSetClampMacro(ShotBatch, int, 1, 4096);
@@ -149,46 +129,8 @@ public:
   vtkGetMacro(MemoryLimit, double);
   ///@}
 
-  ///@{
-  /**
-   * Whether the solution is gathered when K > 1 ranks propagate together. On: rank 0's output
-   * holds the whole solution (the whole cover and every region's IncidentRadiance; in a
-   * pipeline whose every rank holds the whole cover, every rank's), the other ranks' outputs
-   * are empty. Off: the solution is kept in pieces and no rank ever holds the whole cover:
-   * every rank's output holds every point with the per-point arrays (the serial values) and
-   * only its own rows (receivers r, r + K, ...) and their regions' IncidentRadiance, marked by
-   * the field array `CoverRowShare` = (r, K) as vtkSphericalCoverFilter marks a share; rank 0's
-   * holds the solution's figures too (summed from the ranks' rows, the serial ones bit for
-   * bit). Filters that read a whole cover refuse such a piece; vtkSolutionPieces joins the K
-   * pieces into the whole solution. Default is on; ignored on one process.
-   */
-  vtkSetMacro(GatherSolution, bool);
-  vtkGetMacro(GatherSolution, bool);
-  vtkBooleanMacro(GatherSolution, bool);
-  ///@}
-
   /// Shots of the last update.
   vtkGetMacro(Shots, int);
-
-  /**
-   * When the last update propagated on K > 1 ranks: per rank, in rank order, 4 values: its
-   * receivers, the entries of its rows, the estimated bytes of its propagation state
-   * (LightPropagation::EstimateBytes of its rows) and the seconds of its shooting. Empty
-   * otherwise. Measurements, not part of the output.
-   */
-  const std::vector<double>& GetRankFigures() const { return this->RankFigures; }
-
-  /// The number of processes the last update propagated on together (1: this one alone).
-  vtkGetMacro(RankCount, int);
-
-  ///@{
-  /**
-   * The processes that propagate together (see above); nullptr or one process: this process
-   * alone. Default is vtkMultiProcessController::GetGlobalController() at construction.
-   */
-  virtual void SetController(vtkMultiProcessController*);
-  vtkGetObjectMacro(Controller, vtkMultiProcessController);
-  ///@}
 
   /**
    * Computes the solution's figures (see above) from the arrays of `illumination`, this
@@ -204,40 +146,14 @@ protected:
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int FillOutputPortInformation(int port, vtkInformation* info) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  /// Where the cover is when the ranks propagate together.
-  enum class CoverHeld
-  {
-    EveryRank, ///< every rank's input holds the whole cover (or one process)
-    FirstRank, ///< rank 0's; the others' `input` is its points without the cover
-    Shares     ///< every rank's input holds its share (CoverRowShare)
-  };
-  /// RequestData's work: alone (`controller` null), or together with the controller's ranks,
-  /// the cover `held` as said.
-  int PropagateOnRanks(vtkMultiProcessController* controller,
-    vtkPolyData* input,
-    vtkPolyData* output,
-    vtkTable* history,
-    CoverHeld held = CoverHeld::EveryRank);
-  /// RequestData's work when not every rank holds the cover: rank 0's (piece 0) propagated by
-  /// every rank together, `role` (vtkScenePieces::Role) this rank's piece.
-  int PropagateFromFirst(vtkMultiProcessController* controller,
-    int role,
-    vtkInformationVector* outputVector,
-    vtkPolyData* input,
-    vtkPolyData* output,
-    vtkTable* history);
 
   double ConvergenceTolerance = 1e-5;
   int MaximumShots = 0;
   int ShootingOrder = BRIGHTEST_FIRST;
   int ShotBatch = 16;
   bool BalanceExchanges = true;
-  bool GatherSolution = true;
   double MemoryLimit = 8192.0;
   int Shots = 0;
-  vtkMultiProcessController* Controller = nullptr;
-  std::vector<double> RankFigures;
-  int RankCount = 1;
 
 private:
   vtkLightPropagationFilter(const vtkLightPropagationFilter&) = delete;

@@ -5,9 +5,9 @@
 #include "vtkSMPParallelFor.h"
 #include "vtkSceneCameras.h"
 #include "vtkScenePieces.h"
-#include "vtkSolutionPieces.h"
 #include "vtkSolutionRenderer.h"
 #include "vtkSphericalCoverArrayNames.h"
+#include "vtkSphericalCoverArrays.h"
 #include "vtkStageProgress.h"
 
 #include "render/RadianceRenderer.h"
@@ -218,6 +218,43 @@ int vtkRadianceImageFilter::RequestInformation(vtkInformation*,
   return 1;
 }
 
+std::string vtkRadianceImageFilter::ViewOf(vtkInformationVector** inputVector,
+  vtkPolyData* illumination,
+  vtkDataSet* patches,
+  sphcover::Camera& camera,
+  sphcover::RenderSettings& settings)
+{
+  if (!this->CameraName.empty())
+  {
+    if (!vtkSceneCameras::Find(illumination->GetFieldData(), this->CameraName, camera) &&
+      !vtkSceneCameras::Find(patches->GetFieldData(), this->CameraName, camera))
+    {
+      return "no camera named '" + this->CameraName + "'; " +
+        CameraList(illumination->GetFieldData());
+    }
+  }
+  else
+  {
+    camera = PoseOf(this->Position,
+      this->FocalPoint,
+      this->ViewUp,
+      this->ViewAngle,
+      illumination->GetFieldData(),
+      patches->GetFieldData());
+  }
+  // The size announced by RequestInformation, from the same pipeline information.
+  this->ImageSize(inputVector, camera.Width, camera.Height);
+  settings = RenderSettingsOf(this);
+  if (!(this->Exposure > 0.0 && std::isfinite(this->Exposure)))
+  {
+    std::ostringstream text;
+    text << "Exposure " << this->Exposure
+         << " is not a finite number > 0 (the image would be black or undefined)";
+    return text.str();
+  }
+  return sphcover::CheckCamera(camera, settings);
+}
+
 int vtkRadianceImageFilter::RequestData(vtkInformation*,
   vtkInformationVector** inputVector,
   vtkInformationVector* outputVector)
@@ -226,12 +263,13 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   vtkDataSet* patchesInput = vtkCoverPatches::Find(this, inputVector);
   vtkImageData* output = vtkImageData::GetData(outputVector, 0);
   // A piece of a solution kept in pieces holds some rows of the cover only, on every rank.
-  if (vtkSolutionPieces::IsPiece(illumination))
+  if (vtkSphericalCoverArrays::IsShare(illumination))
   {
     output->Initialize();
     vtkErrorMacro(<< "Cannot render: the input is one rank's piece of a solution kept in pieces "
-                     "(vtkLightPropagationFilter's GatherSolution off), which holds only that "
-                     "rank's rows of the cover; gather the solution (GatherSolution on).");
+                     "(vtkPLightPropagationFilter's GatherSolution off), which holds only that "
+                     "rank's rows of the cover; render it on the ranks that hold the pieces "
+                     "(vtkPRadianceImageFilter) or gather the solution (GatherSolution on).");
     return 0;
   }
   // Pieces > 0 idle: the whole solution is piece 0 (vtkScenePieces.h), as under
@@ -273,35 +311,8 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   }
 
   sphcover::Camera camera;
-  if (!this->CameraName.empty())
-  {
-    if (!vtkSceneCameras::Find(illumination->GetFieldData(), this->CameraName, camera) &&
-      !vtkSceneCameras::Find(patchesInput->GetFieldData(), this->CameraName, camera))
-    {
-      vtkErrorMacro(<< "Cannot render: no camera named '" << this->CameraName << "'; "
-                    << CameraList(illumination->GetFieldData()) << ".");
-      return 0;
-    }
-  }
-  else
-  {
-    camera = PoseOf(this->Position,
-      this->FocalPoint,
-      this->ViewUp,
-      this->ViewAngle,
-      illumination->GetFieldData(),
-      patchesInput->GetFieldData());
-  }
-  // The size announced by RequestInformation, from the same pipeline information.
-  this->ImageSize(inputVector, camera.Width, camera.Height);
-  const sphcover::RenderSettings settings = RenderSettingsOf(this);
-  if (!(this->Exposure > 0.0 && std::isfinite(this->Exposure)))
-  {
-    vtkErrorMacro(<< "Cannot render: Exposure " << this->Exposure
-                  << " is not a finite number > 0 (the image would be black or undefined).");
-    return 0;
-  }
-  problem = sphcover::CheckCamera(camera, settings);
+  sphcover::RenderSettings settings;
+  problem = this->ViewOf(inputVector, illumination, patchesInput, camera, settings);
   if (!problem.empty())
   {
     vtkErrorMacro(<< "Cannot render: " << problem << ".");

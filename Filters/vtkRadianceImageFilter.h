@@ -48,9 +48,9 @@
  * Pieces (vtkScenePieces.h): the whole solution is piece 0. Asked for a piece > 0 with an empty
  * input (the other ranks under `mpiexec -n K pvbatch --symmetric`, where rank 0 holds the
  * solution), the filter produces an empty image without a message; with a non-empty input
- * there, it refuses with an error. A piece of a solution kept in pieces (vtkLightPropagation-
- * Filter's GatherSolution off) is refused on every rank, naming GatherSolution: its cover holds
- * some rows only (`sphcover render` renders such pieces on the ranks together).
+ * there, it refuses with an error. A piece of a solution kept in pieces (vtkPLightPropagation-
+ * Filter's GatherSolution off) is refused, naming GatherSolution: its cover holds some rows only
+ * (vtkPRadianceImageFilter renders such pieces on the ranks that hold them).
  *
  * @warning Pixels are rendered in parallel (vtkSMPTools); the image does not depend on the
  * number of threads.
@@ -63,7 +63,14 @@
 
 #include <string> // for the camera name
 
+class vtkDataSet;
+class vtkPolyData;
 class vtkStringArray;
+namespace sphcover
+{
+struct Camera;
+struct RenderSettings;
+}
 
 class SPHERICALCOVERFILTERS_EXPORT vtkRadianceImageFilter : public vtkImageAlgorithm
 {
@@ -169,6 +176,13 @@ protected:
 
   /// Width x Height, the scene camera's size where they are 0 (the inputs' information).
   void ImageSize(vtkInformationVector** inputVector, int& width, int& height) const;
+  /// The one view the properties ask for: the camera (CameraName, else the pose properties)
+  /// of the inputs, at ImageSize, and the renderer's settings; "" or the problem.
+  std::string ViewOf(vtkInformationVector** inputVector,
+    vtkPolyData* illumination,
+    vtkDataSet* patches,
+    sphcover::Camera& camera,
+    sphcover::RenderSettings& settings);
 
   std::string CameraName;
   double Position[3] = { 0.0, 0.0, 0.0 };

@@ -1,8 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "vtkSphericalCoverFilter.h"
+#include "vtkSphericalCoverSteps.h"
 
-#include "vtkCoverDistribution.h"
-#include "vtkHeldMessages.h"
 #include "vtkNamedArrays.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkScenePieces.h"
@@ -18,7 +17,6 @@
 #include "cover/DirectIrradiance.h"
 #include "cover/HemisphereGrid.h"
 #include "cover/RayCastFill.h"
-#include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
 #include "geometry/RayCaster.h"
 #include "scene/Scene.h"
@@ -32,7 +30,6 @@
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkMultiProcessController.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -51,6 +48,7 @@
 #include <vector>
 
 namespace names = vtkSphericalCoverArrayNames;
+using namespace vtkSphericalCoverSteps;
 
 namespace
 {
@@ -72,14 +70,6 @@ void GridOf(vtkDataObject* input, int& thetaBins, int& phiBins)
     phiBins = static_cast<int>(subdivision->GetComponent(0, 2));
   }
 }
-
-/// What the cover may use: the threads that build R-buffers at once and the MemoryLimit in
-/// bytes.
-struct MemoryBudget
-{
-  std::size_t Threads;
-  std::size_t LimitBytes;
-};
 
 /// The cover's options from the filter's properties, the grid left at SCENE_SETTING being the
 /// input's (the subdivision's or the scene's); false, with the error reported, for an empty grid.
@@ -107,27 +97,6 @@ bool CoverOptionsOf(vtkSphericalCoverFilter* self,
     ? sphcover::RBufferFill::RayCasting
     : sphcover::RBufferFill::Projection;
   options.FillOptions.BackFacesOcclude = self->GetBackFacesOcclude();
-  return true;
-}
-
-/// Whether the cover's memory fits the budget; false, with the error reported, when it does
-/// not. Without patches this is the working memory of the grid on every thread (the
-/// refinement builds R-buffers too), from the options alone; with them, an estimate of the
-/// cover from a few rows actually built.
-bool MemoryFits(vtkSphericalCoverFilter* self,
-  const std::vector<sphcover::Patch>& patches,
-  const sphcover::SphericalCoverOptions& options,
-  const MemoryBudget& budget,
-  const std::shared_ptr<const sphcover::RayCaster>& rays)
-{
-  const std::string memory = sphcover::SphericalCover::MemoryProblem(
-    patches, options, budget.Threads, budget.LimitBytes, rays);
-  if (!memory.empty())
-  {
-    vtkErrorWithObjectMacro(
-      self, << "Cannot build the spherical cover: " << memory << " (MemoryLimit).");
-    return false;
-  }
   return true;
 }
 
@@ -418,44 +387,18 @@ void CopyCellDataOfPatches(vtkDataSet* input,
   }
 }
 
-/// Per characteristic point the projected solid angle its hemisphere covers and the sources
-/// it sees. Of a share of the cover (GatherRows off: `share`) a rank knows its own rows' only,
-/// so each point's come from its owner (collective).
-struct PointCoverage
-{
-  std::vector<double> Covered;
-  std::vector<int> Visible;
-};
-
-PointCoverage CoverageOf(const sphcover::SphericalCover& cover, const sphcover::RankShare* share)
-{
-  PointCoverage coverage;
-  for (size_t i = 0; i < cover.PatchCount(); ++i)
-  {
-    coverage.Covered.push_back(cover.CoveredProjectedSolidAngle(i));
-    coverage.Visible.push_back(static_cast<int>(cover.VisibleSourceCount(i)));
-  }
-  if (share)
-  {
-    coverage.Covered = sphcover::JoinOwnedItems(*share, coverage.Covered);
-    coverage.Visible = sphcover::JoinOwnedItems(*share, coverage.Visible);
-  }
-  return coverage;
-}
-
 /// Output 0: the characteristic points with PatchId and Area; the patches' cell arrays
 /// (SurfaceId, materials, UV, Level, ...) become their point data, then the cover's own
-/// arrays, which take precedence. `share`: the cover is this rank's share (see CoverageOf).
+/// arrays, which take precedence; `coverage` is the cover's (CoverageOf).
 void WriteCharacteristicPoints(vtkDataSet* input,
   const std::vector<sphcover::Patch>& patches,
   const std::vector<vtkIdType>& cellOfPatch,
   bool refined,
   const sphcover::SphericalCover& cover,
-  const sphcover::RankShare* share,
+  const vtkSphericalCoverSteps::PointCoverage& coverage,
   vtkPolyData* pointsOut)
 {
   const vtkIdType count = static_cast<vtkIdType>(patches.size());
-  const PointCoverage coverage = CoverageOf(cover, share);
   auto normals = vtkNamedArrays::Double(names::Normals, 3, count);
   auto tangents = vtkNamedArrays::Double(names::Tangents, 3, count);
   auto covered = vtkNamedArrays::Double(names::CoveredProjectedSolidAngle, 1, count);
@@ -529,22 +472,41 @@ void WriteStrips(const sphcover::SphericalCover& cover, std::size_t patchCount, 
   stripsOut->AddColumn(depth);
 }
 
-/// The patches a cover is built of, its options and budget, after the refinement.
-struct CoverInput
+}
+
+namespace vtkSphericalCoverSteps
 {
-  sphcover::Scene Scene;
-  std::vector<sphcover::Patch> Patches;
-  /// The input cell each patch was cut from (the identity without refinement).
-  std::vector<vtkIdType> CellOfPatch;
-  sphcover::SphericalCoverOptions Options;
-  MemoryBudget Budget{ 1, 0 };
-  std::vector<glm::dvec3> Emission;
-  /// Where the cover's own progress starts (after the refinement's).
-  double CoverStart = 0.0;
-  /// The one ray caster of the refined patches, shared by the ray fill (its memory estimate
-  /// and its rows) and the lamps' direct light; null when neither casts rays.
-  std::shared_ptr<const sphcover::RayCaster> Rays;
-};
+/// Whether the cover's memory fits the budget; false, with the error reported, when it does
+/// not. Without patches this is the working memory of the grid on every thread (the
+/// refinement builds R-buffers too), from the options alone; with them, an estimate of the
+/// cover from a few rows actually built.
+bool MemoryFits(vtkSphericalCoverFilter* self,
+  const std::vector<sphcover::Patch>& patches,
+  const sphcover::SphericalCoverOptions& options,
+  const MemoryBudget& budget,
+  const std::shared_ptr<const sphcover::RayCaster>& rays)
+{
+  const std::string memory = sphcover::SphericalCover::MemoryProblem(
+    patches, options, budget.Threads, budget.LimitBytes, rays);
+  if (!memory.empty())
+  {
+    vtkErrorWithObjectMacro(
+      self, << "Cannot build the spherical cover: " << memory << " (MemoryLimit).");
+    return false;
+  }
+  return true;
+}
+
+PointCoverage CoverageOf(const sphcover::SphericalCover& cover)
+{
+  PointCoverage coverage;
+  for (size_t i = 0; i < cover.PatchCount(); ++i)
+  {
+    coverage.Covered.push_back(cover.CoveredProjectedSolidAngle(i));
+    coverage.Visible.push_back(static_cast<int>(cover.VisibleSourceCount(i)));
+  }
+  return coverage;
+}
 
 double SecondsSince(std::chrono::steady_clock::time_point start)
 {
@@ -673,101 +635,11 @@ bool ComputeDirectIrradianceOf(vtkSphericalCoverFilter* self,
   return completed;
 }
 
-/// How many chunks of rows each rank builds (BuildRowChunks).
-constexpr std::size_t RowChunksPerRank = 32;
-
-/**
- * This rank's rows of the cover, under MPI, into `bytes` (one AppendRowBlock per chunk) and
- * their count into `receivers`; progress from the cover's start to 0.9. The receivers are cut
- * into K x RowChunksPerRank consecutive chunks of about equal estimated cost
- * (SphericalCover::EstimateRowCosts) and rank r builds chunks r, r + K, ... (share.MyItems):
- * consecutive receivers lie on one surface and cost alike, so dealing the chunks round the
- * ranks evens out what the estimate misses, as the direct light's interleaved nodes do. False,
- * with a warning, when aborted; throws what BuildRowBlock throws.
- */
-bool BuildRowChunks(vtkSphericalCoverFilter* self,
-  const CoverInput& prepared,
-  const sphcover::RankShare& share,
-  std::vector<char>& bytes,
-  double& receivers)
-{
-  const std::size_t chunks = static_cast<std::size_t>(share.Ranks()) * RowChunksPerRank;
-  const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
-    sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options), chunks);
-  const std::vector<std::size_t> myChunks = share.MyItems(chunks);
-  std::size_t mine = 0;
-  for (const std::size_t c : myChunks)
-  {
-    mine += bounds[c + 1] - bounds[c];
-  }
-  receivers = static_cast<double>(mine);
-  vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
-  bytes.clear();
-  std::size_t done = 0;
-  for (const std::size_t c : myChunks)
-  {
-    const std::size_t size = bounds[c + 1] - bounds[c];
-    sphcover::SphericalCover::Arrays block;
-    sphcover::CullingStatistics culling;
-    if (!sphcover::SphericalCover::BuildRowBlock(
-          prepared.Patches,
-          prepared.Options,
-          bounds[c],
-          bounds[c + 1],
-          block,
-          culling,
-          vtkSMPParallelFor::Make(),
-          [&](double fraction)
-          { return progress((done + fraction * size) / std::max<std::size_t>(mine, 1)); },
-          prepared.Rays))
-    {
-      vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
-      bytes.clear();
-      return false;
-    }
-    sphcover::AppendRowBlock(bytes, block, culling);
-    done += size;
-  }
-  return true;
-}
-
-/**
- * GatherRows off: this rank's rows, those of receivers r, r + K, ... (share.MyItems, the light
- * propagation's share), built into `rows` and kept; their count into `receivers`; progress from
- * the cover's start to 0.9. One by one round the ranks, every rank gets a K-th of every surface:
- * no estimate of the rows' costs is needed to even the work out. False, with a warning, when
- * aborted; throws what BuildRowsOf throws.
- */
-bool BuildOwnRows(vtkSphericalCoverFilter* self,
-  const CoverInput& prepared,
-  const sphcover::RankShare& share,
-  sphcover::SphericalCover& rows,
-  double& receivers)
-{
-  const std::vector<std::size_t> mine = share.MyItems(prepared.Patches.size());
-  receivers = static_cast<double>(mine.size());
-  vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
-  if (!rows.BuildRowsOf(
-        prepared.Patches,
-        prepared.Options,
-        mine,
-        vtkSMPParallelFor::Make(),
-        [&progress](double fraction) { return progress(fraction); },
-        prepared.Rays))
-  {
-    vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
-    return false;
-  }
-  return true;
-}
-
-/// Both outputs of a built cover (or of this rank's share of it, `share`: GatherRows off):
-/// the characteristic points with the direct light's nodes, and the strips.
 void WriteOutputs(vtkSphericalCoverFilter* self,
   vtkDataSet* input,
   const CoverInput& prepared,
   const sphcover::SphericalCover& cover,
-  const sphcover::RankShare* share,
+  const PointCoverage& coverage,
   const sphcover::DirectIrradianceNodes& direct,
   vtkPolyData* pointsOut,
   vtkTable* stripsOut)
@@ -778,7 +650,7 @@ void WriteOutputs(vtkSphericalCoverFilter* self,
     prepared.CellOfPatch,
     self->GetRefinement() != vtkSphericalCoverFilter::REFINEMENT_OFF,
     cover,
-    share,
+    coverage,
     pointsOut);
   if (!direct.Empty())
   {
@@ -797,193 +669,6 @@ void WriteOutputs(vtkSphericalCoverFilter* self,
     WriteStrips(cover, patches.size(), stripsOut);
   }
 }
-
-/**
- * The cover on the controller's K ranks (vtkCoverDistribution.h): every rank prepares the same
- * patches (rank 0's input broadcast when the other ranks hold empty pieces, as under pvbatch),
- * builds the rows of its range of receivers, balanced by Core's cost estimate, and the row
- * blocks are joined in receiver order: the serial cover bit for bit. The ranks that hold the
- * whole scene write the outputs (with CoverRankFigures); those that hold an empty piece keep
- * empty outputs (vtkScenePieces.h). Every rank agrees on success before each collective step,
- * so a failure anywhere is one error on every rank and no rank waits forever.
- */
-int BuildDistributed(vtkSphericalCoverFilter* self,
-  vtkMultiProcessController* controller,
-  vtkDataSet* input,
-  vtkScenePieces::Role role,
-  vtkInformationVector* outputVector,
-  vtkPolyData* pointsOut,
-  vtkTable* stripsOut)
-{
-  pointsOut->Initialize();
-  stripsOut->Initialize();
-  const int rank = controller->GetLocalProcessId();
-  const int ranks = controller->GetNumberOfProcesses();
-  const bool whole = role == vtkScenePieces::Role::WholeScene;
-  const bool everyRankWhole = vtkCoverDistribution::Count(controller, whole) == ranks;
-  std::string problem;
-  if (role == vtkScenePieces::Role::PartialScene)
-  {
-    problem = "Cannot build a spherical cover of this input: " +
-      vtkScenePieces::PartialSceneError(outputVector) + ".";
-  }
-  else if (rank == 0 && !whole)
-  {
-    problem = "Cannot build a spherical cover: rank 0 must hold the whole scene (piece 0).";
-  }
-  std::string agreed = vtkCoverDistribution::Agree(controller, problem);
-  if (!agreed.empty())
-  {
-    vtkErrorWithObjectMacro(self, << agreed);
-    return 0;
-  }
-  vtkSmartPointer<vtkDataSet> scene = input;
-  if (!everyRankWhole)
-  {
-    scene = vtkSmartPointer<vtkDataSet>::Take(input->NewInstance());
-    if (rank == 0)
-    {
-      scene->ShallowCopy(input);
-    }
-    vtkCoverDistribution::BroadcastFromFirst(controller, scene);
-  }
-
-  CoverInput prepared;
-  sphcover::DirectIrradianceNodes direct;
-  // GatherRows on: this rank's row blocks, as bytes to gather; off: its rows, kept.
-  const bool keepRows = !self->GetGatherRows();
-  std::vector<char> bytes;
-  sphcover::SphericalCover ownRows;
-  vtkCoverDistribution::RankFigures mine;
-  const sphcover::RankShare share = vtkCoverDistribution::ShareOf(controller);
-  // Each step's messages are held until the ranks agree on them (vtkHeldMessages); an exception
-  // is the step's error.
-  auto step = [self](const std::function<bool()>& body)
-  {
-    vtkHeldMessages held(self);
-    bool done = false;
-    try
-    {
-      done = body();
-    }
-    catch (const std::exception& e)
-    {
-      vtkErrorWithObjectMacro(self, << "Spherical cover failed: " << e.what());
-    }
-    return done ? std::string() : held.First("Spherical cover aborted.");
-  };
-  // Every rank prepares the same patches; the refinement's hemispheres, the rows and the direct
-  // light's nodes are then shared among the ranks, each step collective, with an Agree after
-  // it (the refinement and the direct light join inside too, RankShare.h).
-  agreed = vtkCoverDistribution::Agree(
-    controller, step([&] { return PrepareCover(self, scene, prepared); }));
-  if (agreed.empty())
-  {
-    agreed = vtkCoverDistribution::Agree(
-      controller, step([&] { return RefineCover(self, share, prepared); }));
-  }
-  if (agreed.empty())
-  {
-    problem = step(
-      [&]
-      {
-        if (!MemoryFits(self, prepared.Patches, prepared.Options, prepared.Budget, prepared.Rays))
-        {
-          return false;
-        }
-        const auto start = std::chrono::steady_clock::now();
-        if (keepRows ? !BuildOwnRows(self, prepared, share, ownRows, mine.Receivers)
-                     : !BuildRowChunks(self, prepared, share, bytes, mine.Receivers))
-        {
-          return false;
-        }
-        mine.Seconds = SecondsSince(start);
-        self->RecordStageSeconds(1, mine.Seconds);
-        mine.Bytes = static_cast<double>(keepRows ? ownRows.MemoryBytes() : bytes.size());
-        return true;
-      });
-    agreed = vtkCoverDistribution::Agree(controller, problem);
-  }
-  if (agreed.empty())
-  {
-    agreed = vtkCoverDistribution::Agree(controller,
-      step([&] { return ComputeDirectIrradianceOf(self, share, prepared, direct); }));
-  }
-  prepared.Rays.reset();
-  if (!agreed.empty())
-  {
-    vtkErrorWithObjectMacro(self, << agreed);
-    return 0;
-  }
-
-  const std::vector<vtkCoverDistribution::RankFigures> figures =
-    vtkCoverDistribution::GatherFigures(controller, mine);
-  auto rankFigures = vtkNamedArrays::Double(names::CoverRankFigures, 3, ranks);
-  for (vtkIdType r = 0; r < ranks; ++r)
-  {
-    const vtkCoverDistribution::RankFigures& f = figures[static_cast<size_t>(r)];
-    const double tuple[3] = { f.Receivers, f.Seconds, f.Bytes };
-    rankFigures->SetTuple(r, tuple);
-  }
-  if (keepRows)
-  {
-    // Every rank writes its share: every point, its own rows. The entries carry measures of
-    // their own on every rank or on none, as the whole cover's (SphericalCover::BuildRowsOf).
-    if (vtkCoverDistribution::Count(controller, ownRows.HasMeasures()) > 0)
-    {
-      ownRows.KeepCellMeasures();
-    }
-    WriteOutputs(self, scene, prepared, ownRows, &share, direct, pointsOut, stripsOut);
-    pointsOut->GetFieldData()->AddArray(rankFigures);
-    vtkSphericalCoverArrays::MarkShare(pointsOut, rank, ranks);
-    self->UpdateProgress(1.0);
-    return 1;
-  }
-  // Every rank is ready: the row blocks move, to every rank that writes the cover.
-  std::vector<std::vector<char>> received =
-    vtkCoverDistribution::GatherBytes(controller, std::move(bytes), everyRankWhole);
-  if (!whole)
-  {
-    return 1; // an empty piece (vtkScenePieces.h)
-  }
-  // Chunk c is the (c / K)-th block of rank c mod K (BuildRowChunks, RankShare::MyItems).
-  std::vector<sphcover::SphericalCover::Arrays> blocks(RowChunksPerRank * received.size());
-  sphcover::CullingStatistics culling;
-  for (size_t r = 0; r < received.size(); ++r)
-  {
-    std::vector<sphcover::SphericalCover::Arrays> chunks;
-    sphcover::CullingStatistics counts;
-    problem = sphcover::UnpackRowBlocks(received[r].data(), received[r].size(), chunks, counts);
-    if (problem.empty() && chunks.size() != RowChunksPerRank)
-    {
-      problem = std::to_string(chunks.size()) + " chunks of rows, not " +
-        std::to_string(RowChunksPerRank);
-    }
-    if (!problem.empty())
-    {
-      vtkErrorWithObjectMacro(
-        self, << "Spherical cover failed: the rows of rank " << r << ": " << problem);
-      return 0;
-    }
-    received[r] = std::vector<char>();
-    for (size_t k = 0; k < chunks.size(); ++k)
-    {
-      blocks[k * received.size() + r] = std::move(chunks[k]);
-    }
-    culling += counts;
-  }
-  sphcover::SphericalCover cover;
-  problem = cover.ImportRowBlocks(std::move(blocks), prepared.Options, culling);
-  if (!problem.empty())
-  {
-    vtkErrorWithObjectMacro(self, << "Spherical cover failed: the gathered rows: " << problem);
-    return 0;
-  }
-  WriteOutputs(self, scene, prepared, cover, nullptr, direct, pointsOut, stripsOut);
-  pointsOut->GetFieldData()->AddArray(rankFigures);
-  self->UpdateProgress(1.0);
-  return 1;
-}
 }
 
 vtkStandardNewMacro(vtkSphericalCoverFilter);
@@ -993,15 +678,9 @@ vtkSphericalCoverFilter::vtkSphericalCoverFilter()
   // ParaView's status bar labels progress with this text (vtkStageProgress.h).
   this->SetProgressText("Spherical Cover");
   this->SetNumberOfOutputPorts(2);
-  this->SetController(vtkMultiProcessController::GetGlobalController());
 }
 
-vtkSphericalCoverFilter::~vtkSphericalCoverFilter()
-{
-  this->SetController(nullptr);
-}
-
-vtkCxxSetObjectMacro(vtkSphericalCoverFilter, Controller, vtkMultiProcessController);
+vtkSphericalCoverFilter::~vtkSphericalCoverFilter() = default;
 
 int vtkSphericalCoverFilter::FillInputPortInformation(int, vtkInformation* info)
 {
@@ -1023,12 +702,6 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   vtkPolyData* pointsOut = vtkPolyData::GetData(outputVector, 0);
   vtkTable* stripsOut = vtkTable::GetData(outputVector, 1);
   const vtkScenePieces::Role role = vtkScenePieces::Classify(outputVector, input);
-  if (this->Controller && this->Controller->GetNumberOfProcesses() > 1)
-  {
-    return BuildDistributed(
-      this, this->Controller, input, role, outputVector, pointsOut, stripsOut);
-  }
-
   // Pieces > 0 idle: the whole scene is piece 0 (vtkScenePieces.h).
   if (role != vtkScenePieces::Role::WholeScene)
   {
@@ -1044,6 +717,7 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
   }
 
   CoverInput prepared;
+  // One process: every item of the refinement and the direct light is this process's.
   const sphcover::RankShare serial;
   if (!PrepareCover(this, input, prepared) || !RefineCover(this, serial, prepared))
   {
@@ -1068,7 +742,7 @@ int vtkSphericalCoverFilter::RequestData(vtkInformation*,
     return 0;
   }
   prepared.Rays.reset();
-  WriteOutputs(this, input, prepared, cover, nullptr, direct, pointsOut, stripsOut);
+  WriteOutputs(this, input, prepared, cover, CoverageOf(cover), direct, pointsOut, stripsOut);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -1083,7 +757,6 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
   os << indent << "GenerateStripTable: " << this->GenerateStripTable << "\n";
-  os << indent << "GatherRows: " << this->GatherRows << "\n";
   os << indent << "MeasureLamps: " << this->MeasureLamps << "\n";
   os << indent << "DirectIrradianceNodes: " << this->DirectIrradianceNodes << "\n";
   os << indent << "DirectBounceRays: " << this->DirectBounceRays << "\n";
@@ -1094,5 +767,4 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
             : (this->Refinement == REFINEMENT_ENCLOSURES ? "EnclosureBoundaries" : "Full"))
      << "\n";
   os << indent << "RefinementLevels: " << this->RefinementLevels << "\n";
-  os << indent << "Controller: " << this->Controller << "\n";
 }

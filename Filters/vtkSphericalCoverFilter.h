@@ -43,23 +43,7 @@
  * @warning Rows are built in parallel (vtkSMPTools); the result does not depend on the number
  * of threads.
  *
- * Processes (Controller, by default the global controller: MPI under pvbatch, pvserver and
- * `mpiexec sphcover`). With K > 1 ranks the rows of the cover are built on all of them: the
- * receivers (characteristic points) are cut into K x 32 chunks of consecutive receivers, of
- * about equal estimated work (SphericalCover::EstimateRowCosts), dealt round the ranks, and the
- * row blocks are gathered in receiver order, so the cover is the serial one bit for bit (rows
- * are independent, paper §4.3). When the other ranks hold empty pieces (pvbatch), rank 0's
- * input is broadcast to them first; they help build and keep empty outputs. The refinement's
- * leaves and hemispheres (Steps 1 to 3) and the direct light's nodes are shared among the
- * ranks too. The output then carries the field
- * array `CoverRankFigures` (per rank: receivers, seconds, bytes of its rows). With GatherRows
- * off the rows are not gathered: rank r builds and keeps the rows of receivers r, r + K, ...
- * (the light propagation's share, vtkLightPropagationFilter), and every rank's output holds
- * every characteristic point but only its own rows (field array `CoverRowShare`), so that no
- * rank ever holds the whole cover before the propagation. Every rank must
- * update the filter together (as pvbatch --symmetric, pvserver and mpiexec sphcover do); a
- * failure on any rank is one error on every rank. To build a cover on one rank alone under MPI,
- * set the Controller to nullptr.
+ * One process: vtkPSphericalCoverFilter (Parallel/) builds the rows on several.
  *
  * Pieces (vtkScenePieces.h): the whole scene is piece 0. Asked for a piece > 0 with an empty
  * input (the readers' other pieces, as under `mpiexec -n N pvbatch --symmetric`), the filter
@@ -72,8 +56,6 @@
 
 #include "SphericalCoverFiltersModule.h" // for export macro
 #include "vtkPolyDataAlgorithm.h"
-
-class vtkMultiProcessController;
 
 class SPHERICALCOVERFILTERS_EXPORT vtkSphericalCoverFilter : public vtkPolyDataAlgorithm
 {
@@ -184,21 +166,6 @@ public:
   vtkBooleanMacro(GenerateStripTable, bool);
   ///@}
 
-  ///@{
-  /**
-   * Under MPI (K > 1 ranks): gather the rows built on the ranks into the whole cover on the
-   * ranks that hold the whole scene (rank 0 under pvbatch, whose output ParaView shows). Off:
-   * each rank keeps the rows of its receivers r, r + K, ... and outputs them with every
-   * characteristic point, marked by the field array `CoverRowShare`: the input the light
-   * propagation takes without any rank holding the whole cover (sphcover under mpiexec turns
-   * it off). Other filters that read the cover need it gathered. Default is on; ignored on one
-   * process.
-   */
-  vtkSetMacro(GatherRows, bool);
-  vtkGetMacro(GatherRows, bool);
-  vtkBooleanMacro(GatherRows, bool);
-  ///@}
-
   enum RefinementModes
   {
     REFINEMENT_OFF = 0,
@@ -242,18 +209,9 @@ public:
   vtkGetMacro(MemoryLimit, double);
   ///@}
 
-  ///@{
-  /**
-   * The processes the rows are built on (see above); nullptr or one process: this process
-   * alone. Default is vtkMultiProcessController::GetGlobalController() at construction.
-   */
-  virtual void SetController(vtkMultiProcessController*);
-  vtkGetObjectMacro(Controller, vtkMultiProcessController);
-  ///@}
-
   /**
    * Wall seconds of the last execution's stages on this process: the R-buffer refinement, the
-   * rows of the cover (this rank's, under MPI) and the direct light's nodes. Measurements, not
+   * rows of the cover and the direct light's nodes. Measurements, not
    * part of the output (which stays the same from run to run).
    */
   const double* GetStageSeconds() const { return this->StageSeconds; }
@@ -274,14 +232,12 @@ protected:
   int FillMethod = RAY_CASTING;
   bool BackFacesOcclude = true;
   bool GenerateStripTable = true;
-  bool GatherRows = true;
   bool MeasureLamps = true;
   int DirectIrradianceNodes = 3;
   int DirectBounceRays = 32;
   double MemoryLimit = 8192.0;
   int Refinement = REFINEMENT_ENCLOSURES;
   int RefinementLevels = 3;
-  vtkMultiProcessController* Controller = nullptr;
   double StageSeconds[3] = { 0.0, 0.0, 0.0 };
 
 private:

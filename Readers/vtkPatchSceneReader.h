@@ -10,8 +10,9 @@
  * `SurfaceNameId`, `MaterialId`, `MaterialType`, `Emission` (3), `Diffuse` (3), `Specular` (3),
  * `PhongExponent`, `TwoSided`. Field data: `SurfaceNames`, `MaterialNames`,
  * `MaterialTypeNames`, `MaterialFiles`, `CameraNames`, `CameraParameters` (12 named
- * components), `SceneSettings` (5 named components: theta_bins, phi_bins, max_level, tolerance, min_patch_size), `SourceFile`, `SceneFingerprint` (one
- * string, sphcover::Fingerprint: the stages pass it on, so a saved solution names its scene).
+ * components), `SceneSettings` (5 named components: theta_bins, phi_bins, max_level, tolerance,
+ * min_patch_size), `SourceFile`, `SceneFingerprint` (one string, sphcover::Fingerprint: the stages
+ * pass it on, so a saved solution names its scene).
  *
  * A file with a `.bpt` extension is read as a .bpt file on its own (see vtkBPTReader).
  * Bad input gives one error naming the file, the location (line or JSON pointer) and the

@@ -1,4 +1,4 @@
-# VTK modules (Common/, Readers/, Filters/), their Python wrapping (package `sphericalcover`), the
+# VTK modules (Common/, Readers/, Filters/, Parallel/), their Python wrapping (package `sphericalcover`), the
 # render-view classes of the plug-in (Views/, ParaView's RemotingViews), the
 # ParaView plug-in and the command-line program, all built against the VTK that Debian's
 # ParaView 5.11 bundles (README.md#layout): a system VTK would conflict with python3-paraview.
@@ -49,10 +49,12 @@ vtk_module_scan(
     "${PROJECT_SOURCE_DIR}/Common/vtk.module"
     "${PROJECT_SOURCE_DIR}/Readers/vtk.module"
     "${PROJECT_SOURCE_DIR}/Filters/vtk.module"
+    "${PROJECT_SOURCE_DIR}/Parallel/vtk.module"
     "${PROJECT_SOURCE_DIR}/Views/vtk.module"
   REQUEST_MODULES
     SphericalCover::Readers
     SphericalCover::Filters
+    SphericalCover::Parallel
     SphericalCover::Views
   PROVIDES_MODULES sphcover_modules
   ENABLE_TESTS OFF)

@@ -11,6 +11,7 @@ import vtkmodules.vtkCommonExecutionModel  # noqa: F401
 
 from .SphericalCoverReaders import *  # noqa: F401,F403
 from .SphericalCoverFilters import *  # noqa: F401,F403
+from .SphericalCoverParallel import *  # noqa: F401,F403
 # The plug-in's render-view classes derive from ParaView's RemotingViews: importable where
 # ParaView's Python modules are (pvpython, pvbatch, python3 with python3-paraview).
 try:

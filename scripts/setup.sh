@@ -13,7 +13,8 @@ jobs="${SPHCOVER_JOBS:-$(nproc)}"
 
 # ParaView 5.11 bundles its own VTK 9.2; we build against it (libvtk9-dev would conflict with
 # python3-paraview). ParaView's VTK CMake config also needs the -dev packages on the second line.
-# clang and its runtimes build the fuzz harnesses (Testing/Fuzz) that scripts/test.sh runs.
+# clang and its runtimes build the fuzz harnesses (Testing/Fuzz) that scripts/test.sh runs;
+# clang-format checks the sources' layout (Structure.ClangFormat).
 # qttools5-dev (Qt5Help, qhelpgenerator) and qtxmlpatterns5-dev-tools (xmlpatterns) compile the
 # plug-in's XML documentation into the help that ParaView's "?" shows.
 # libpng-dev decodes the materials' texture PNGs in Core (Core/scene/Texture.cxx).
@@ -26,7 +27,7 @@ packages=(
   libgtest-dev libgmp-dev libeigen3-dev libpng-dev
   openexr
   xvfb xauth
-  clang libclang-rt-14-dev
+  clang libclang-rt-14-dev clang-format
 )
 
 sudo=()

@@ -11,9 +11,9 @@
 #include "SavedSolution.h"
 #include "SceneCamera.h"
 
-#include "RankRenderer.h"
 #include "vtkCoverDistribution.h"
 #include "vtkRadianceImageFilter.h"
+#include "vtkRankRenderer.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSolutionRenderer.h"
 
@@ -237,7 +237,7 @@ struct RankImage
 };
 
 /**
- * A solution kept in pieces rendered by the ranks that hold them (RankRenderer): each builds
+ * A solution kept in pieces rendered by the ranks that hold them (vtkRankRenderer): each builds
  * its renderer from its piece (`illumination`) and the patches, rank 0 renders the view with
  * every rank's directional values. `problem` is what a rank found before ("" if nothing),
  * agreed with the renderers' problems. Collective; true on rank 0 with the image in `result`,
@@ -275,7 +275,7 @@ bool RenderOnRanks(const Options& options,
   {
     throw std::runtime_error(problem);
   }
-  RankRenderer ranks(controller, *renderer);
+  vtkRankRenderer ranks(controller, *renderer);
   if (options.Rank > 0)
   {
     ranks.Serve(vtkSMPParallelFor::Make());

@@ -9,9 +9,9 @@
 #include "OutputFiles.h"
 #include "Pipeline.h"
 #include "ProgressBar.h"
-#include "RankRenderer.h"
 #include "SavedSolution.h"
 #include "SceneCamera.h"
+#include "vtkRankRenderer.h"
 
 #include "vtkCoverDistribution.h"
 #include "vtkSMPParallelFor.h"
@@ -151,7 +151,7 @@ std::string Milliseconds(double seconds)
 int RunWalk(const Options& options)
 {
   // Under mpiexec a solution in as many pieces as ranks is rendered by the ranks together
-  // (RankRenderer), each holding its own share of the cover; any other solution by rank 0.
+  // (vtkRankRenderer), each holding its own share of the cover; any other solution by rank 0.
   vtkMultiProcessController* controller =
     options.Ranks > 1 ? vtkMultiProcessController::GetGlobalController() : nullptr;
   // Everything that can be checked is checked before the solution is read and before any
@@ -250,8 +250,8 @@ int RunWalk(const Options& options)
   }
   const double buildSeconds =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - buildStart).count();
-  std::unique_ptr<RankRenderer> ranks =
-    pieces ? std::make_unique<RankRenderer>(controller, *renderer) : nullptr;
+  std::unique_ptr<vtkRankRenderer> ranks =
+    pieces ? std::make_unique<vtkRankRenderer>(controller, *renderer) : nullptr;
   if (options.Rank > 0)
   {
     ranks->Serve(vtkSMPParallelFor::Make());

@@ -129,8 +129,8 @@ void Solution::Solve(const Options& options, bool gather)
   const int piece = options.Ranks > 1 ? options.Rank : 0;
   if (piece > 0)
   {
-    vtkSmartPointer<vtkDataObject> none =
-      vtkSmartPointer<vtkDataObject>::Take(this->Subdivision->GetOutputDataObject(0)->NewInstance());
+    vtkSmartPointer<vtkDataObject> none = vtkSmartPointer<vtkDataObject>::Take(
+      this->Subdivision->GetOutputDataObject(0)->NewInstance());
     this->Cover->SetInputData(none);
   }
   else

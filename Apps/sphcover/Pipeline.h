@@ -12,9 +12,9 @@
 #include "ErrorCollector.h"
 
 #include "vtkIntervalSubdivisionFilter.h"
-#include "vtkLightPropagationFilter.h"
+#include "vtkPLightPropagationFilter.h"
+#include "vtkPSphericalCoverFilter.h"
 #include "vtkPatchSceneReader.h"
-#include "vtkSphericalCoverFilter.h"
 
 #include "scene/Scene.h"
 
@@ -48,8 +48,8 @@ struct Solution
 {
   vtkNew<vtkPatchSceneReader> Reader;
   vtkNew<vtkIntervalSubdivisionFilter> Subdivision;
-  vtkNew<vtkSphericalCoverFilter> Cover;
-  vtkNew<vtkLightPropagationFilter> Propagation;
+  vtkNew<vtkPSphericalCoverFilter> Cover;
+  vtkNew<vtkPLightPropagationFilter> Propagation;
   ErrorCollector Errors;
   double ReadSeconds = 0.0;
   double SubdivideSeconds = 0.0;

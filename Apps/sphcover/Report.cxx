@@ -111,9 +111,9 @@ nlohmann::json SolutionReport(Solution& solution)
   report["timings_cpu_s"] = solution.CpuTimings();
   // The cover stage's parts on this rank (vtkSphericalCoverFilter::GetStageSeconds).
   const double* stages = solution.Cover->GetStageSeconds();
-  report["cover_stages_s"] = { { "refinement", stages[0] },
-    { "rows", stages[1] },
-    { "direct_light", stages[2] } };
+  report["cover_stages_s"] = {
+    { "refinement", stages[0] }, { "rows", stages[1] }, { "direct_light", stages[2] }
+  };
   // The ranks the cover was built on (vtkSphericalCoverFilter's CoverRankFigures, present when
   // there were several): per rank its receivers, wall seconds and the bytes of its rows.
   vtkDataArray* ranks =
@@ -138,11 +138,10 @@ nlohmann::json SolutionReport(Solution& solution)
     report["propagation_ranks"] = nlohmann::json::array();
     for (std::size_t r = 0; r + 4 <= shooting.size(); r += 4)
     {
-      report["propagation_ranks"].push_back(
-        { { "receivers", static_cast<long long>(shooting[r]) },
-          { "entries", static_cast<long long>(shooting[r + 1]) },
-          { "state_bytes", static_cast<long long>(shooting[r + 2]) },
-          { "seconds", shooting[r + 3] } });
+      report["propagation_ranks"].push_back({ { "receivers", static_cast<long long>(shooting[r]) },
+        { "entries", static_cast<long long>(shooting[r + 1]) },
+        { "state_bytes", static_cast<long long>(shooting[r + 2]) },
+        { "seconds", shooting[r + 3] } });
     }
   }
   // The processes' peak resident memory up to the equilibrium, per rank (the rendering after it

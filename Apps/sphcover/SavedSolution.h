@@ -48,7 +48,7 @@ struct SavedSolution
    * Under mpiexec, a solution written in as many pieces as there are ranks (`controller`'s):
    * every rank reads the patches, the illumination and its own share of the cover, and
    * Illumination is its piece (vtkSolutionPieces::Merge), for rendering by the ranks together
-   * (RankRenderer). Collective then: `problem` (what the caller found before, "" if nothing)
+   * (vtkRankRenderer). Collective then: `problem` (what the caller found before, "" if nothing)
    * and what the reading finds are agreed, and every rank throws the first. False, with
    * nothing read and no communication, when the file is not in that many pieces (every rank
    * parses the same file alike).

@@ -9,6 +9,7 @@
 #include "RenderTestPipeline.h"
 #include "TestFailures.h"
 
+#include "vtkPLightPropagationFilter.h"
 #include "vtkSolutionPieces.h"
 #include "vtkSphericalCoverArrays.h"
 
@@ -94,9 +95,12 @@ std::string JoinProblem(vtkPolyData* points, const std::vector<vtkPolyData*>& sh
 int TestSolutionPieces(int, char*[])
 {
   RenderTestPipeline::Pipeline pipeline("cornell_box.scene", 1, 8, 32);
-  pipeline.Propagation->GatherSolutionOff(); // one process: nothing to keep apart
-  pipeline.Propagation->Update();
-  vtkPolyData* whole = pipeline.Propagation->GetOutput();
+  // The distributed filter on one process: nothing to keep apart.
+  vtkNew<vtkPLightPropagationFilter> alone;
+  alone->SetInputConnection(pipeline.Cover->GetOutputPort(0));
+  alone->GatherSolutionOff();
+  alone->Update();
+  vtkPolyData* whole = alone->GetOutput();
   Check(!vtkSolutionPieces::IsPiece(whole) && whole->GetFieldData()->GetArray("IncidentRadiance"),
     "GatherSolution off on one process: the whole solution, not a piece");
   sphcover::SphericalCover cover;

@@ -11,6 +11,7 @@
 #include "FailureExpectation.h"
 #include "TestFailures.h"
 #include "vtkIntervalSubdivisionFilter.h"
+#include "vtkPSphericalCoverFilter.h"
 #include "vtkPatchSceneReader.h"
 #include "vtkSphericalCoverArrays.h"
 #include "vtkSphericalCoverFilter.h"
@@ -146,7 +147,7 @@ int TestSphericalCoverFilter(int, char*[])
   }
   {
     // GatherRows off on one process: nothing to keep apart, the whole cover, no share marker.
-    vtkNew<vtkSphericalCoverFilter> notGathered;
+    vtkNew<vtkPSphericalCoverFilter> notGathered;
     notGathered->SetInputConnection(boxPatches->GetOutputPort(0));
     notGathered->GatherRowsOff();
     notGathered->Update();

@@ -13,8 +13,8 @@ from paraview.simple import LoadPlugin, OpenDataFile, OutputPort
 plugin, data = sys.argv[1:3]
 LoadPlugin(plugin, remote=False, ns=globals())
 from sphericalcover import (vtkIlluminationField, vtkIntervalSubdivisionFilter,  # noqa: E402
-                            vtkLightPropagationFilter, vtkRadianceImageFilter,
-                            vtkSphericalCoverFilter)
+                            vtkPLightPropagationFilter, vtkPSphericalCoverFilter,
+                            vtkRadianceImageFilter)
 
 failures = []
 scene = OpenDataFile(f"{data}/scenes/cornell_box.scene")
@@ -85,7 +85,7 @@ if abs(total / expected - 1) > 1e-6:
 
 # The spherical cover of the (coarsely) subdivided box.
 cover = globals()["SphericalCover"](Input=OutputPort(subdivision, 0))
-check_properties(cover, vtkSphericalCoverFilter(), ["ThetaBins", "PhiBins", "SamplesPerCell", "FillMethod",
+check_properties(cover, vtkPSphericalCoverFilter(), ["ThetaBins", "PhiBins", "SamplesPerCell", "FillMethod",
                  "BackFacesOcclude", "GenerateStripTable", "GatherRows", "MemoryLimit", "Refinement",
                  "RefinementLevels"])
 subdivision.MaxLevel = 1
@@ -129,7 +129,7 @@ if cover.GetDataInformation(1).GetNumberOfRows() == 0:
 
 # Light propagation over the cover: the Cornell box is all diffuse.
 propagation = globals()["LightPropagation"](Input=OutputPort(cover, 0))
-check_properties(propagation, vtkLightPropagationFilter(), ["ConvergenceTolerance", "MaximumShots",
+check_properties(propagation, vtkPLightPropagationFilter(), ["ConvergenceTolerance", "MaximumShots",
                  "ShootingOrder", "ShotBatch", "BalanceExchanges", "GatherSolution"])
 propagation.UpdatePipeline()
 lit = servermanager.Fetch(propagation)

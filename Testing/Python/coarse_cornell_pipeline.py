@@ -2,7 +2,8 @@
 pipeline at its coarsest useful settings (max_level 1, an 8 x 32 hemisphere grid), the stages
 connected but not updated."""
 from sphericalcover import (vtkIntervalSubdivisionFilter, vtkLightPropagationFilter,
-                            vtkPatchSceneReader, vtkSphericalCoverFilter)
+                            vtkPatchSceneReader, vtkPLightPropagationFilter,
+                            vtkPSphericalCoverFilter, vtkSphericalCoverFilter)
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.vtkCommonCore import VTK_STRING, vtkCommand
 
@@ -22,19 +23,21 @@ class ErrorCollector:
         return algorithm
 
 
-def coarse_cornell_pipeline(data, collector):
+def coarse_cornell_pipeline(data, collector, distributed=False):
     """(reader, subdivision, cover, propagation) of Data/scenes/cornell_box.scene, each observed
-    by `collector`."""
+    by `collector`; `distributed`: the cover and the propagation are the Parallel module's
+    (under MPI every rank holding the whole scene, the ranks sharing the work)."""
     observe = collector.observe
     reader = observe(vtkPatchSceneReader())
     reader.SetFileName(f"{data}/scenes/cornell_box.scene")
     subdivision = observe(vtkIntervalSubdivisionFilter())
     subdivision.SetInputConnection(reader.GetOutputPort())
     subdivision.SetMaxLevel(1)
-    cover = observe(vtkSphericalCoverFilter())
+    cover = observe(vtkPSphericalCoverFilter() if distributed else vtkSphericalCoverFilter())
     cover.SetInputConnection(subdivision.GetOutputPort(0))
     cover.SetThetaBins(8)
     cover.SetPhiBins(32)
-    propagation = observe(vtkLightPropagationFilter())
+    propagation = observe(vtkPLightPropagationFilter() if distributed
+                          else vtkLightPropagationFilter())
     propagation.SetInputConnection(cover.GetOutputPort(0))
     return reader, subdivision, cover, propagation

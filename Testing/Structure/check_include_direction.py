@@ -6,7 +6,9 @@ Core/ has one folder per stage of the method, in the method's order (STAGES). A 
 include headers of its own stage and of earlier ones only, always written from Core's root
 ("cover/RBuffer.h"), and no VTK header. Of the VTK modules, Common/ is the bridge that Readers/
 and Filters/ share: Common includes neither of them, and Readers and Filters include nothing of
-each other (they meet only through the pipeline's datasets).
+each other (they meet only through the pipeline's datasets). Parallel/ (the distributed filters)
+and Views/ stand above Filters/ and include nothing of Readers/; no module includes Apps/ or
+Parallel/ from below.
 
 Usage: check_include_direction.py [ROOT]    (ROOT: the checkout, default: this file's ../..)
        check_include_direction.py --self-test
@@ -20,8 +22,13 @@ import tempfile
 STAGES = ["math", "geometry", "scene", "subdivision", "cover", "reflectance", "propagation",
           "render"]
 # Which of the VTK modules' folders each may include headers of.
+# Parallel/ stands above Filters/ (its classes are the serial filters plus ranks); Views/
+# (the plug-in's render-view classes) above Filters/; Apps/ (the command line) above them all.
 MODULES = {"Common": {"Common"}, "Readers": {"Common", "Readers"},
-           "Filters": {"Common", "Filters"}}
+           "Filters": {"Common", "Filters"},
+           "Parallel": {"Common", "Filters", "Parallel"},
+           "Views": {"Common", "Filters", "Views"},
+           "Apps": {"Common", "Readers", "Filters", "Parallel", "Apps"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^">]+)[">]')
 SOURCE_SUFFIXES = (".h", ".cxx", ".cpp", ".hpp")
 
@@ -100,6 +107,9 @@ def self_test():
         "Common/vtkBridge.h": '#include "vtkReader.h"\n',     # Common -> Readers
         "Readers/vtkReader.h": '#include "vtkBridge.h"\n',    # allowed
         "Filters/vtkFilter.cxx": '#include "vtkReader.h"\n',  # Filters -> Readers
+        "Filters/vtkFilter2.cxx": '#include "vtkPFilter.h"\n',  # Filters -> Parallel
+        "Parallel/vtkPFilter.h": '#include "vtkFilter.h"\n',  # allowed (no such header here)
+        "Views/vtkView.cxx": '#include "vtkPFilter.h"\n',     # Views -> Parallel
     }
     with tempfile.TemporaryDirectory() as root:
         for name, text in files.items():
@@ -108,7 +118,8 @@ def self_test():
                 out.write(text)
         found = check(root)
     expected = ["Core/scene/S.h:1", "Core/cover/C.h:1", "Core/cover/C.h:2", "Core/cover/D.h:1",
-                "Common/vtkBridge.h:1", "Filters/vtkFilter.cxx:1"]
+                "Common/vtkBridge.h:1", "Filters/vtkFilter.cxx:1", "Filters/vtkFilter2.cxx:1",
+                "Views/vtkView.cxx:1"]
     missing = [e for e in expected if not any(p.startswith(e + ":") for p in found)]
     if missing or len(found) != len(expected):
         print("self-test failed: expected violations at", expected, "found", found)
@@ -126,7 +137,7 @@ def main(argv):
         print(problem)
     if not problems:
         print("includes point one way: Core's stages in order "
-              f"({' < '.join(STAGES)}); Common < Readers, Filters")
+              f"({' < '.join(STAGES)}); Common < Readers, Filters < Parallel, Views < Apps")
     return 1 if problems else 0
 
 

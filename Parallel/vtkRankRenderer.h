@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
- * @file RankRenderer.h
+ * @file vtkRankRenderer.h
  * @brief A solution kept in pieces (`solve -o` under mpiexec) rendered by the ranks that hold
  * its pieces, no rank holding the whole cover: rank 0 traces each view and lists the (point,
  * out cell) pairs of the directional part it reads (RadianceRenderer::DirectionalPairs), each
@@ -13,24 +13,25 @@
  * needs nothing from the other ranks. Per view: one broadcast of the pairs (8 bytes each) and
  * one gather of their values (24 bytes each) on rank 0.
  */
-#ifndef SPHCOVER_RANKRENDERER_H
-#define SPHCOVER_RANKRENDERER_H
+#ifndef vtkRankRenderer_h
+#define vtkRankRenderer_h
+
+#include "SphericalCoverParallelModule.h" // for export macro
 
 #include "render/RadianceRenderer.h"
 
 class vtkMultiProcessController;
 
-namespace sphcover_cli
-{
-class RankRenderer
+class SPHERICALCOVERPARALLEL_EXPORT vtkRankRenderer
 {
 public:
   /// `renderer` is this rank's, built from its piece (vtkSolutionRenderer::New with `piece`).
-  RankRenderer(vtkMultiProcessController* controller, const sphcover::RadianceRenderer& renderer);
+  vtkRankRenderer(vtkMultiProcessController* controller,
+    const sphcover::RadianceRenderer& renderer);
   /// Rank 0: Finish, if not yet.
-  ~RankRenderer();
-  RankRenderer(const RankRenderer&) = delete;
-  RankRenderer& operator=(const RankRenderer&) = delete;
+  ~vtkRankRenderer();
+  vtkRankRenderer(const vtkRankRenderer&) = delete;
+  vtkRankRenderer& operator=(const vtkRankRenderer&) = delete;
 
   /// Rank 0: the view, with the directional values of every rank's points (the other ranks
   /// Serve). Throws what RadianceRenderer::Render throws, and std::runtime_error naming the rank
@@ -58,6 +59,5 @@ private:
   const sphcover::RadianceRenderer& Renderer;
   bool Finished = false;
 };
-}
 
 #endif

@@ -12,7 +12,7 @@
 #ifndef vtkSolutionRenderer_h
 #define vtkSolutionRenderer_h
 
-#include "SphericalCoverCommonModule.h" // for export macro
+#include "SphericalCoverFiltersModule.h" // for export macro
 
 #include "render/RadianceRenderer.h" // for the renderer and its image
 
@@ -23,7 +23,7 @@ class vtkDataSet;
 class vtkImageData;
 class vtkPolyData;
 
-class SPHERICALCOVERCOMMON_EXPORT vtkSolutionRenderer
+class SPHERICALCOVERFILTERS_EXPORT vtkSolutionRenderer
 {
 public:
   /**

@@ -18,14 +18,14 @@
 #ifndef vtkSolutionPieces_h
 #define vtkSolutionPieces_h
 
-#include "SphericalCoverCommonModule.h" // for export macro
+#include "SphericalCoverParallelModule.h" // for export macro
 
 #include <string> // for the problem
 #include <vector> // for the shares
 
 class vtkPolyData;
 
-class SPHERICALCOVERCOMMON_EXPORT vtkSolutionPieces
+class SPHERICALCOVERPARALLEL_EXPORT vtkSolutionPieces
 {
 public:
   /// Whether `data` is a piece or a share (it carries `CoverRowShare`).

@@ -44,7 +44,7 @@ std::pair<int, int> MarkerOf(vtkPolyData* share)
 
 bool vtkSolutionPieces::IsPiece(vtkPolyData* data)
 {
-  return data && data->GetFieldData()->GetAbstractArray(names::CoverRowShare);
+  return vtkSphericalCoverArrays::IsShare(data);
 }
 
 void vtkSolutionPieces::Split(vtkPolyData* piece, vtkPolyData* points, vtkPolyData* share)

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "RankRenderer.h"
+#include "vtkRankRenderer.h"
 
 #include "vtkCoverDistribution.h"
 
@@ -11,8 +11,6 @@
 #include <string>
 #include <vector>
 
-namespace sphcover_cli
-{
 namespace
 {
 /// Rank 0's pair count of the next view (-1: no more views) and its pairs, on every rank.
@@ -47,14 +45,14 @@ std::vector<char> Packed(const std::vector<glm::dvec3>& values, const std::strin
 }
 }
 
-RankRenderer::RankRenderer(vtkMultiProcessController* controller,
+vtkRankRenderer::vtkRankRenderer(vtkMultiProcessController* controller,
   const sphcover::RadianceRenderer& renderer)
   : Controller(controller)
   , Renderer(renderer)
 {
 }
 
-RankRenderer::~RankRenderer()
+vtkRankRenderer::~vtkRankRenderer()
 {
   if (this->Controller->GetLocalProcessId() == 0 && !this->Finished)
   {
@@ -62,7 +60,7 @@ RankRenderer::~RankRenderer()
   }
 }
 
-std::vector<glm::dvec3> RankRenderer::OwnValues(const std::vector<uint64_t>& pairs,
+std::vector<glm::dvec3> vtkRankRenderer::OwnValues(const std::vector<uint64_t>& pairs,
   const sphcover::ParallelFor& parallelFor,
   std::string& problem) const
 {
@@ -88,7 +86,7 @@ std::vector<glm::dvec3> RankRenderer::OwnValues(const std::vector<uint64_t>& pai
   return {};
 }
 
-bool RankRenderer::Render(const sphcover::Camera& camera,
+bool vtkRankRenderer::Render(const sphcover::Camera& camera,
   const sphcover::RenderSettings& settings,
   sphcover::RenderedImage& image,
   const sphcover::ParallelFor& parallelFor,
@@ -141,7 +139,7 @@ bool RankRenderer::Render(const sphcover::Camera& camera,
   return this->Renderer.Render(camera, settings, table, image, parallelFor, progress);
 }
 
-void RankRenderer::Serve(const sphcover::ParallelFor& parallelFor)
+void vtkRankRenderer::Serve(const sphcover::ParallelFor& parallelFor)
 {
   std::vector<uint64_t> pairs;
   while (BroadcastPairs(this->Controller, 0, pairs) >= 0)
@@ -152,10 +150,9 @@ void RankRenderer::Serve(const sphcover::ParallelFor& parallelFor)
   }
 }
 
-void RankRenderer::Finish()
+void vtkRankRenderer::Finish()
 {
   this->Finished = true;
   std::vector<uint64_t> none;
   BroadcastPairs(this->Controller, -1, none);
-}
 }
