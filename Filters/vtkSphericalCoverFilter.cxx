@@ -308,6 +308,8 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
         direct.Transmittance.push_back(surface < panes.size() ? panes[surface] : glm::vec3(0.0f));
       }
     }
+    // Two-sided surfaces: the rays pass each side's back, the other side's front.
+    direct.TwoSidedSurfaces = options.FillOptions.TwoSidedSurfaces;
     vtkStageProgress progress(self, "Spherical Cover: direct light", 0.9, 0.98);
     const bool completed = sphcover::ComputeDirectIrradiance(
       patches,
@@ -574,6 +576,11 @@ bool PrepareCover(vtkSphericalCoverFilter* self, vtkDataSet* input, CoverInput& 
   {
     options.SurfaceTransmittance.push_back(glm::vec3(t));
     options.FillOptions.PaneSurfaces.push_back(t != glm::dvec3(0.0));
+  }
+  // Two-sided surfaces (Surface::TwoSided): pairs of one-sided surfaces whose backs the rays pass.
+  for (const sphcover::Surface& surface : prepared.Scene.Surfaces)
+  {
+    options.FillOptions.TwoSidedSurfaces.push_back(surface.TwoSided);
   }
 
   // Refuse before any R-buffer exists what could not fit: first the working memory of the
@@ -956,8 +963,8 @@ int BuildDistributed(vtkSphericalCoverFilter* self,
     problem = sphcover::UnpackRowBlocks(received[r].data(), received[r].size(), chunks, counts);
     if (problem.empty() && chunks.size() != RowChunksPerRank)
     {
-      problem = std::to_string(chunks.size()) + " chunks of rows, not " +
-        std::to_string(RowChunksPerRank);
+      problem =
+        std::to_string(chunks.size()) + " chunks of rows, not " + std::to_string(RowChunksPerRank);
     }
     if (!problem.empty())
     {
