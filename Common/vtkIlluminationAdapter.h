@@ -37,7 +37,8 @@ public:
     sphcover::CharacteristicPointInterpolator Interpolator;
     /// Exitant radiance (Radiosity: diffuse part plus emission) of every point.
     std::vector<glm::dvec3> ExitantRadiance;
-    /// Per surface index: whether its back side shows its radiance too (`TwoSided`).
+    /// Per surface index: whether it is one side of a two-sided surface (`TwoSided`; the eye
+    /// rays pass its back side, the other side's front).
     std::vector<bool> TwoSidedSurface;
     /// The directional part of paper §5.3.1 (null when every point is diffuse).
     std::unique_ptr<sphcover::DirectionalIllumination> Directional;

@@ -170,6 +170,12 @@ bool RefinePatches(vtkSphericalCoverFilter* self,
   }
   sphcover::RefinementSettings settings;
   settings.Cover = options;
+  // Here the cells are the surfaces: the fill's two-sided flags are the cells'.
+  settings.Cover.FillOptions.TwoSidedSurfaces.clear();
+  for (size_t c = 0; c < patches.size(); ++c)
+  {
+    settings.Cover.FillOptions.TwoSidedSurfaces.push_back(scene.Surfaces[c].TwoSided);
+  }
   settings.MaxLevel = deepest + self->GetRefinementLevels();
   settings.AnalyseHemispheres = self->GetRefinement() == vtkSphericalCoverFilter::REFINEMENT_FULL;
   try
@@ -277,6 +283,8 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
         direct.Transmittance.push_back(surface < panes.size() ? panes[surface] : glm::vec3(0.0f));
       }
     }
+    // Two-sided surfaces: the rays pass each side's back, the other side's front.
+    direct.TwoSidedSurfaces = options.FillOptions.TwoSidedSurfaces;
     vtkStageProgress progress(self, "Spherical Cover: direct light", 0.9, 0.98);
     const bool completed = sphcover::ComputeDirectIrradiance(
       patches,
@@ -536,6 +544,15 @@ bool PrepareCover(vtkSphericalCoverFilter* self, vtkDataSet* input, CoverInput& 
   {
     options.SurfaceTransmittance.push_back(glm::vec3(t));
     options.FillOptions.PaneSurfaces.push_back(t != glm::dvec3(0.0));
+  }
+  // Two-sided surfaces (Surface::TwoSided): pairs of one-sided surfaces whose backs the rays
+  // pass. Per surface index (Patch::SurfaceIndex), from the cell of each of its patches.
+  std::vector<bool>& twoSided = options.FillOptions.TwoSidedSurfaces;
+  for (size_t k = 0; k < prepared.Patches.size() && k < prepared.Scene.Surfaces.size(); ++k)
+  {
+    const size_t surface = static_cast<size_t>(std::max(0, prepared.Patches[k].SurfaceIndex));
+    twoSided.resize(std::max(twoSided.size(), surface + 1), false);
+    twoSided[surface] = twoSided[surface] || prepared.Scene.Surfaces[k].TwoSided;
   }
 
   // Refuse before any R-buffer exists what could not fit: first the working memory of the

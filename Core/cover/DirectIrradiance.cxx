@@ -30,21 +30,23 @@ struct NodeFilter
   int32_t Surface;
   float SelfExclusion;
   bool BackFacesOcclude;
-  /// Per patch 1 when it is a pane's side (empty: none), and whether the node is on one.
-  const std::vector<char>* PanePatch;
-  bool OnPane;
+  /// Per patch 1 when the rays pass its back side (a pane's side or a two-sided surface's, its
+  /// reversed copy's front; empty: none), and whether the node is on one.
+  const std::vector<char>* PassedBack;
+  bool OnPassedBack;
 };
 
 bool AcceptForNode(const void* context, std::size_t patch, float distance, bool front)
 {
   const NodeFilter& node = *static_cast<const NodeFilter*>(context);
-  const bool pane = !node.PanePatch->empty() && (*node.PanePatch)[patch];
-  // A pane's back side is its reversed copy's front; a node on a pane lies on that copy too.
-  if (!front && (!node.BackFacesOcclude || pane))
+  const bool passed = !node.PassedBack->empty() && (*node.PassedBack)[patch];
+  // A pane's (or a two-sided surface's) back side is its reversed copy's front; a node on such a
+  // patch lies on that copy too.
+  if (!front && (!node.BackFacesOcclude || passed))
   {
     return false;
   }
-  if (distance < node.SelfExclusion && pane && node.OnPane)
+  if (distance < node.SelfExclusion && passed && node.OnPassedBack)
   {
     return false;
   }
@@ -186,6 +188,19 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     panePatch.clear();
   }
   const std::vector<glm::vec3>* panes = panePatch.empty() ? nullptr : &options.Transmittance;
+  // The patches whose back side the rays pass: the panes' and the two-sided surfaces' sides.
+  std::vector<char> passedBack;
+  for (std::size_t k = 0; k < patches.size(); ++k)
+  {
+    const std::size_t surface = static_cast<std::size_t>(patches[k].SurfaceIndex);
+    const bool twoSided =
+      surface < options.TwoSidedSurfaces.size() && options.TwoSidedSurfaces[surface];
+    passedBack.push_back(twoSided || (!panePatch.empty() && panePatch[k]) ? 1 : 0);
+  }
+  if (std::find(passedBack.begin(), passedBack.end(), 1) == passedBack.end())
+  {
+    passedBack.clear();
+  }
 
   std::vector<std::size_t> piecesOfSurface(lamps.size(), 0);
   std::vector<int32_t> surfaceOfPatch(patches.size());
@@ -259,8 +274,8 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       patch.SurfaceIndex,
       static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
       options.BackFacesOcclude,
-      &panePatch,
-      !panePatch.empty() && panePatch[firstPatch[node]] != 0 };
+      &passedBack,
+      !passedBack.empty() && passedBack[firstPatch[node]] != 0 };
     rays.Origin = RayOrigin(patch,
       static_cast<double>(firstIndex[node] % n) / (n - 1),
       static_cast<double>(firstIndex[node] / n) / (n - 1),

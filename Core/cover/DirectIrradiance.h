@@ -77,6 +77,10 @@ struct DirectIrradianceOptions
    * Lambertian radiance first), and pass its back side, its reversed copy's front.
    */
   std::vector<glm::vec3> Transmittance;
+  /// Per surface (Patch::SurfaceIndex; empty or shorter: none) whether it is one side of a
+  /// two-sided surface (RBufferFillOptions::TwoSidedSurfaces): the rays pass its back side, the
+  /// other side's front.
+  std::vector<bool> TwoSidedSurfaces;
 };
 
 /// Per patch NodesPerSide^2 nodes, RGB irradiance (E_direct + E_bounce) each: patch p's node (i, j)

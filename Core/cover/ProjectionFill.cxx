@@ -168,19 +168,22 @@ private:
         continue;
       }
       const size_t before = this->Pieces.size();
+      // P_i of one side of a two-sided surface lies on the other side too: near P_i, that side
+      // is P_i itself (the ray fill's rule).
+      const bool nearIsSelf = self || (this->IsTwoSided(this->Receiver) && this->IsTwoSided(j));
       if (whole == CandidateClass::BackFacing)
       {
         ++culling.BackFacing;
-        if (!this->Options.BackFacesOcclude)
+        if (!this->BackOccludes(j))
         {
           continue;
         }
-        this->SplitIntoPieces(static_cast<int32_t>(j), self, whole);
+        this->SplitIntoPieces(static_cast<int32_t>(j), nearIsSelf, whole);
         culling.Occluders += this->Pieces.size() - before;
         continue;
       }
       ++culling.Kept;
-      this->SplitIntoPieces(static_cast<int32_t>(j), self, whole);
+      this->SplitIntoPieces(static_cast<int32_t>(j), nearIsSelf, whole);
       culling.Pieces += this->Pieces.size() - before;
     }
     // Nearest depth range first: later pieces mostly lose their depth test outright.
@@ -191,6 +194,21 @@ private:
         return std::tie(a.DepthLo, a.Source, a.Rect.V0, a.Rect.U0) <
           std::tie(b.DepthLo, b.Source, b.Rect.V0, b.Rect.U0);
       });
+  }
+
+  /// Whether patch j is one side of a two-sided surface (RBufferFillOptions::TwoSidedSurfaces).
+  bool IsTwoSided(size_t j) const
+  {
+    const size_t surface = static_cast<size_t>(this->SurfaceOfPatch[j]);
+    return surface < this->Options.TwoSidedSurfaces.size() &&
+      this->Options.TwoSidedSurfaces[surface];
+  }
+
+  /// Whether patch j's back side hides what lies behind it: not a two-sided surface's side, whose
+  /// back is the other side's front at the same place (a source there, projected as such).
+  bool BackOccludes(size_t j) const
+  {
+    return this->Options.BackFacesOcclude && !this->IsTwoSided(j);
   }
 
   bool CentreFaces(const BezierPatch& patch, const UVRect& rect) const
@@ -205,6 +223,7 @@ private:
   {
     const BezierPatch& patch = this->Patches[static_cast<size_t>(source)].Geometry;
     const glm::dvec3& point = this->Frame.Origin;
+    const bool backOccludes = this->BackOccludes(static_cast<size_t>(source));
     struct Node
     {
       UVRect Rect;
@@ -219,7 +238,7 @@ private:
       const CandidateClass cls =
         node.Depth == 0 ? wholeClass : ClassifyCandidate(patch, rect, point, this->Frame.Normal);
       if (cls == CandidateClass::BelowTangentPlane ||
-        (cls == CandidateClass::BackFacing && !this->Options.BackFacesOcclude))
+        (cls == CandidateClass::BackFacing && !backOccludes))
       {
         continue;
       }
@@ -267,7 +286,7 @@ private:
         // invisible at the sample resolution; its centre decides which side P_i sees.
         occluder = cls == CandidateClass::BackFacing ||
           (cls == CandidateClass::Undecided && !this->CentreFaces(patch, rect));
-        accept = coneFits && (!occluder || this->Options.BackFacesOcclude);
+        accept = coneFits && (!occluder || backOccludes);
       }
       else
       {

@@ -114,6 +114,16 @@ struct RBufferFillOptions
    * RayCastFiller::FillBehindPanes. Ray fill only: the projection fill refuses panes.
    */
   std::vector<bool> PaneSurfaces;
+  /**
+   * Per surface (Patch::SurfaceIndex; empty or shorter: none) whether it is one side of a
+   * two-sided surface (Surface::TwoSided; the loader makes it two one-sided surfaces, the patch
+   * and its reversed copy, as for a pane). Each side is a receiver with its own hemispheres and
+   * a source on its front (paper §3.3); its back side is never met, since the other copy's
+   * front is at the same place: both fills let it pass whatever BackFacesOcclude says (the
+   * projection fill projects neither a source nor an occluder of it), so every direction that
+   * meets the surface finds the side it faces.
+   */
+  std::vector<bool> TwoSidedSurfaces;
   /// Ray fill with AdaptiveSampling: cast the rays 16 at a time as Embree packets
   /// (RayCaster::IntersectPacket, in the same order) instead of one by one.
   bool RayPackets = true;

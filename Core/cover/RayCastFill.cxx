@@ -39,36 +39,37 @@ struct ReceiverFilter
   float SelfExclusion;
   bool CountSelf;
   bool BackFacesOcclude;
-  /// Per patch whether it is a pane's side (RBufferFillOptions::PaneSurfaces); may be empty.
-  const std::vector<char>* PanePatch;
+  /// Per patch whether the rays pass its back side (RayCastFiller::PassedBack); may be empty.
+  const std::vector<char>* PassedBack;
 };
 
 /// The filter of the rays from `receiver`'s point under the fill's options.
 ReceiverFilter FilterFor(std::size_t receiver,
   const Patch& patch,
   const RBufferFillOptions& options,
-  const std::vector<char>& panePatch)
+  const std::vector<char>& passedBack)
 {
   return { receiver,
     static_cast<float>(options.SelfExclusionFraction * patch.Geometry.Size()),
     options.CountSelfVisibility,
     options.BackFacesOcclude,
-    &panePatch };
+    &passedBack };
 }
 
 bool AcceptForReceiver(const void* context, std::size_t patch, float distance, bool front)
 {
   const ReceiverFilter& receiver = *static_cast<const ReceiverFilter*>(context);
-  // A pane's back side is its reversed copy's front, which the ray meets at the same place.
-  const bool paneBack = !front && !receiver.PanePatch->empty() && (*receiver.PanePatch)[patch];
-  if (!front && (!receiver.BackFacesOcclude || paneBack))
+  // The back side of a pane or of a two-sided surface is its reversed copy's front, which the
+  // ray meets at the same place.
+  const bool passedBack = !front && !receiver.PassedBack->empty() && (*receiver.PassedBack)[patch];
+  if (!front && (!receiver.BackFacesOcclude || passedBack))
   {
     return false; // a back side the rays pass through
   }
-  // A pane's point lies on its reversed copy too (the same place, the other side): a hit on a
-  // pane that near is that copy, not something the point sees.
-  if (distance < receiver.SelfExclusion && !receiver.PanePatch->empty() &&
-    (*receiver.PanePatch)[receiver.Receiver] && (*receiver.PanePatch)[patch])
+  // The point of such a patch lies on its reversed copy too (the same place, the other side): a
+  // hit on such a patch that near is that copy, not something the point sees.
+  if (distance < receiver.SelfExclusion && !receiver.PassedBack->empty() &&
+    (*receiver.PassedBack)[receiver.Receiver] && (*receiver.PassedBack)[patch])
   {
     return false;
   }
@@ -140,7 +141,9 @@ RayCastFiller::RayCastFiller(const std::vector<Patch>& patches,
       std::to_string(patches.size()));
   }
   const std::vector<bool>& panes = options.PaneSurfaces;
+  const std::vector<bool>& twoSided = options.TwoSidedSurfaces;
   bool anyPane = false;
+  bool anyPassed = false;
   for (const Patch& patch : patches)
   {
     this->SurfaceOfPatch.push_back(patch.SurfaceIndex);
@@ -148,10 +151,18 @@ RayCastFiller::RayCastFiller(const std::vector<Patch>& patches,
     const std::size_t surface = static_cast<std::size_t>(patch.SurfaceIndex);
     this->PanePatch.push_back(surface < panes.size() && panes[surface] ? 1 : 0);
     anyPane = anyPane || this->PanePatch.back() != 0;
+    const bool passed =
+      this->PanePatch.back() != 0 || (surface < twoSided.size() && twoSided[surface]);
+    this->PassedBack.push_back(passed ? 1 : 0);
+    anyPassed = anyPassed || passed;
   }
   if (!anyPane)
   {
     this->PanePatch.clear();
+  }
+  if (!anyPassed)
+  {
+    this->PassedBack.clear();
   }
 }
 
@@ -241,7 +252,7 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
 {
   const HemisphereGrid& grid = this->Grid;
   const ReceiverFilter receiverFilter =
-    FilterFor(receiver, this->Patches[receiver], this->Options, this->PanePatch);
+    FilterFor(receiver, this->Patches[receiver], this->Options, this->PassedBack);
 
   HitScratch& scratch = ThreadScratch();
   scratch.U.resize(grid.SampleCount());
@@ -434,7 +445,7 @@ void RayCastFiller::FillBehindPanes(std::size_t receiver,
   const HemisphereGrid& grid = this->Grid;
   const HemisphereFrame frame = HemisphereFrame::OfPatch(this->Patches[receiver]);
   const ReceiverFilter receiverFilter =
-    FilterFor(receiver, this->Patches[receiver], this->Options, this->PanePatch);
+    FilterFor(receiver, this->Patches[receiver], this->Options, this->PassedBack);
   const RayFilter filter{ AcceptForReceiver, &receiverFilter };
   behind.Reset(receiver);
   const int samplesTheta = grid.SamplesTheta();
@@ -617,7 +628,7 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
 {
   const Patch& self = this->Patches[receiver];
   const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
-  const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options, this->PanePatch);
+  const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options, this->PassedBack);
   const RayFilter filter{ AcceptForReceiver, &receiverFilter };
   return sphcover::VisibleProjectedSolidAngle(
     *this->Rays, frame.Origin, frame.Normal, filter, source, this->Patches[source], minimumSide);

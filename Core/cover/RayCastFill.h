@@ -206,6 +206,10 @@ private:
   std::vector<glm::dvec3> PlaneNormals;
   /// Per patch 1 when it is a pane's side; empty when no patch is.
   std::vector<char> PanePatch;
+  /// Per patch 1 when the rays pass its back side, which is its reversed copy's front: a pane's
+  /// side or one side of a two-sided surface (RBufferFillOptions::TwoSidedSurfaces); empty when
+  /// no patch is.
+  std::vector<char> PassedBack;
   std::shared_ptr<const RayCaster> Rays;
   mutable std::atomic<std::uint64_t> RayCount{ 0 };
 };

@@ -18,7 +18,11 @@ namespace sphcover
 namespace
 {
 /// Whether most rays from (surface, u, v) of patch `patch` first meet back sides.
-bool IsBuried(const Patch& patch, double u, double v, const RayCaster& caster)
+bool IsBuried(const Patch& patch,
+  double u,
+  double v,
+  const RayCaster& caster,
+  const std::vector<char>& passedBack)
 {
   // The point in the patch's own parameters (its Geometry is reparametrised to [0,1]^2).
   const UVRect& d = patch.Domain;
@@ -41,7 +45,8 @@ bool IsBuried(const Patch& patch, double u, double v, const RayCaster& caster)
     std::size_t hitPatch = 0;
     double distance = 0.0;
     bool front = true;
-    if (caster.FirstHit(origin, direction, 0.0, hitPatch, distance, front) && !front)
+    if (caster.FirstHit(origin, direction, 0.0, hitPatch, distance, front) && !front &&
+      (passedBack.empty() || !passedBack[hitPatch]))
     {
       ++backSides;
     }
@@ -52,7 +57,8 @@ bool IsBuried(const Patch& patch, double u, double v, const RayCaster& caster)
 
 std::vector<bool> BuriedPoints(const CharacteristicPointInterpolator& interpolator,
   const std::vector<Patch>& patches,
-  const RayCaster& caster)
+  const RayCaster& caster,
+  const std::vector<char>& passedBack)
 {
   // The patch under each characteristic point (the patches tile the surfaces).
   const CharacteristicPointInterpolator patchLayout =
@@ -66,7 +72,11 @@ std::vector<bool> BuriedPoints(const CharacteristicPointInterpolator& interpolat
     const std::ptrdiff_t patch =
       patchLayout.ContainingPoint(surface, domain.CenterU(), domain.CenterV());
     buried[p] = patch >= 0 &&
-      IsBuried(patches[static_cast<size_t>(patch)], domain.CenterU(), domain.CenterV(), caster);
+      IsBuried(patches[static_cast<size_t>(patch)],
+        domain.CenterU(),
+        domain.CenterV(),
+        caster,
+        passedBack);
     kept[static_cast<size_t>(surface)] += buried[p] ? 0 : 1;
   }
   for (std::size_t p = 0; p < buried.size(); ++p)

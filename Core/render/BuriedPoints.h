@@ -37,11 +37,14 @@ constexpr double BuriedBackSideFraction = 0.5;
 /**
  * Per characteristic point of `interpolator`, whether it is buried (see the file comment).
  * `patches` tile the surfaces (Patch::SurfaceIndex, Domain) and `caster` casts them (the same
- * list, in order: RayCastPatches(patches)).
+ * list, in order: RayCastPatches(patches)). `passedBack` (per patch; empty: none) marks the
+ * patches whose back side is their reversed copy's front at the same place (the sides of a
+ * two-sided surface): a ray meeting such a back side meets that front.
  */
 std::vector<bool> BuriedPoints(const CharacteristicPointInterpolator& interpolator,
   const std::vector<Patch>& patches,
-  const RayCaster& caster);
+  const RayCaster& caster,
+  const std::vector<char>& passedBack = {});
 
 /// The same, with a caster of its own for `patches`.
 std::vector<bool> BuriedPoints(const CharacteristicPointInterpolator& interpolator,

@@ -227,9 +227,10 @@ RadianceRenderer::RadianceRenderer(std::vector<Patch> patches,
       " characteristic points");
   }
   this->Caster = std::make_unique<RayCaster>(RayCastPatches(this->Patches), RayCasterOptions());
+  this->MarkPassedBacks();
   // Buried points stand for no visible surface (BuriedPoints.h): no pixel takes after them.
   this->Interpolator.SetExcludedPoints(
-    BuriedPoints(this->Interpolator, this->Patches, *this->Caster));
+    BuriedPoints(this->Interpolator, this->Patches, *this->Caster, this->PassedBack));
 }
 
 RadianceRenderer::~RadianceRenderer() = default;
@@ -588,25 +589,23 @@ bool RadianceRenderer::ShadeHit(std::size_t patchIndex,
 {
   const Patch& patch = this->Patches[patchIndex];
   const int surface = patch.SurfaceIndex;
-  const bool twoSided = static_cast<size_t>(surface) < this->TwoSided.size() &&
-    this->TwoSided[static_cast<size_t>(surface)];
-  if (!frontSide && !twoSided)
+  if (!frontSide)
   {
-    return false; // a back side sends no light
+    // A back side sends no light; that of a two-sided surface is never met (TraceSample passes
+    // it and meets the other side's front).
+    return false;
   }
   const double u = patch.Domain.U0 + patchU * (patch.Domain.U1 - patch.Domain.U0);
   const double v = patch.Domain.V0 + patchV * (patch.Domain.V1 - patch.Domain.V0);
-  // The front side toward the eye (paper §5.3.1); a two-sided surface's back side shows
-  // its Lambertian part (one hemisphere per point, on the front).
-  radiance = frontSide ? this->RadianceToward(surface, u, v, -direction, cache)
-                       : this->SurfaceRadiance(surface, u, v);
+  // The front side toward the eye (paper §5.3.1).
+  radiance = this->RadianceToward(surface, u, v, -direction, cache);
   return true;
 }
 
 namespace
 {
-/// The eye rays' filter with panes: a pane's back side is its reversed copy's front, met at the
-/// same place (SetSurfaceTransmittance).
+/// The eye rays' filter with panes or two-sided surfaces: the back side of a pane or of a side of
+/// a two-sided surface is its reversed copy's front, met at the same place (PassedBack).
 bool PassPaneBacks(const void* context, std::size_t patch, float, bool front)
 {
   return front || !(*static_cast<const std::vector<char>*>(context))[patch];
@@ -619,7 +618,7 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
   SampleResult& sample) const
 {
   RayCaster::RayHit hit;
-  if (this->PanePatch.empty())
+  if (this->PassedBack.empty())
   {
     if (!this->Caster->CastRay(eye, direction, hit))
     {
@@ -632,7 +631,7 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
     return true;
   }
   // Through panes (paper §5.4): the pane's own radiance, then T times what lies behind it.
-  const RayFilter filter{ PassPaneBacks, &this->PanePatch };
+  const RayFilter filter{ PassPaneBacks, &this->PassedBack };
   glm::dvec3 throughput(1.0);
   float nearest = 0.0f;
   for (int pane = 0; pane <= MaxPanesPerSample; ++pane)
@@ -655,7 +654,7 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
       sample.Radiance += throughput * radiance;
       sample.Lit = true;
     }
-    if (!hit.FrontSide || !this->PanePatch[hit.Patch])
+    if (!hit.FrontSide || this->PanePatch.empty() || !this->PanePatch[hit.Patch])
     {
       break;
     }
@@ -682,6 +681,24 @@ void RadianceRenderer::SetSurfaceTransmittance(std::vector<glm::dvec3> transmitt
   if (!any)
   {
     this->PanePatch.clear();
+  }
+  this->MarkPassedBacks();
+}
+
+void RadianceRenderer::MarkPassedBacks()
+{
+  // Each side of a two-sided surface (paper §5.3 for each side) and of a pane: its back is the
+  // other side's front.
+  this->PassedBack.clear();
+  for (size_t p = 0; p < this->Patches.size(); ++p)
+  {
+    const size_t surface = static_cast<size_t>(this->Patches[p].SurfaceIndex);
+    const bool twoSided = surface < this->TwoSided.size() && this->TwoSided[surface];
+    if (twoSided || (!this->PanePatch.empty() && this->PanePatch[p]))
+    {
+      this->PassedBack.resize(this->Patches.size(), 0);
+      this->PassedBack[p] = 1;
+    }
   }
 }
 

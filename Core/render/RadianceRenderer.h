@@ -188,8 +188,9 @@ public:
    * (u, v).
    * @param interpolator the layout of the characteristic points over the surfaces.
    * @param exitantRadiance I of every characteristic point (RGB, W m^-2 sr^-1).
-   * @param twoSidedSurface per surface index, whether its back side shows its radiance too
-   * (missing entries: one-sided).
+   * @param twoSidedSurface per surface index, whether it is one side of a two-sided surface
+   * (Surface::TwoSided; missing entries: one-sided): the eye rays pass its back side and meet
+   * the other side's front at the same place, which shows that side's own radiance.
    * Throws std::invalid_argument when the sizes differ, std::runtime_error if Embree fails.
    */
   RadianceRenderer(std::vector<Patch> patches,
@@ -416,6 +417,8 @@ private:
   /// (SetSurfaceTextures); `untextured` itself on an untextured surface.
   glm::dvec3 Textured(int surface, double u, double v, const glm::dvec3& untextured) const;
   bool IsTextured(int surface) const;
+  /// Sets PassedBack from TwoSided and PanePatch.
+  void MarkPassedBacks();
 
   std::vector<Patch> Patches;
   std::vector<SurfaceTexture> Textures;
@@ -425,6 +428,9 @@ private:
   std::vector<glm::dvec3> Transmittance;
   /// Per patch 1 when its surface is a pane (SetSurfaceTransmittance); empty without panes.
   std::vector<char> PanePatch;
+  /// Per patch 1 when the eye rays pass its back side, its reversed copy's front: a pane or one
+  /// side of a two-sided surface (TwoSided); empty when no patch is.
+  std::vector<char> PassedBack;
   std::unique_ptr<RayCaster> Caster;
   std::unique_ptr<DirectionalIllumination> Directional;
   DirectLight Direct;

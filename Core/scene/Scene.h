@@ -80,7 +80,14 @@ struct Surface
   int NameIndex = 0;
   /// Index into Scene::Materials.
   int MaterialIndex = 0;
-  /// Sends and receives light on both sides (the scene's "two_sided").
+  /**
+   * One side of a two-sided surface (the scene's "two_sided"): the loader makes such a surface
+   * two one-sided surfaces of the same name, the patch and its reversed copy, next to each other
+   * (as it does a pane). Each sends, receives and reflects light on its front only; its back
+   * side is never met: the rays of the cover, of the direct light and of the render pass it and
+   * meet the other copy's front at the same place (RBufferFillOptions::TwoSidedSurfaces,
+   * RadianceRenderer). Such surfaces come in these pairs; false for a pane's sides.
+   */
   bool TwoSided = false;
   /// The patch came from a mesh triangle and is stored as the degenerate bilinear patch
   /// (P00, P10, P11, P01 = P11).

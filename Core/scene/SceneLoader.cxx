@@ -548,17 +548,22 @@ void SceneParser::AddPlacedSurface(const std::vector<BezierPatch>& patches,
     // and its two sides see different half-spaces: it becomes two one-sided surfaces, the patch
     // and its reversed copy, each with its own characteristic points and hemispheres (paper
     // §5.4: "an hemispherical tessellation in a direction opposite to the normal as well").
+    // An opaque two-sided surface becomes the same pair, both marked TwoSided (Scene.h): each
+    // side gets its own hemispheres in the cover (paper §3.3), emits, receives and reflects on
+    // its own (§3.5), and is seen from its own half-space in the render (§5.3).
     const bool pane =
       scene.Materials[static_cast<size_t>(attributes.MaterialIndex)].IsTransmitter();
+    const bool twoSided = attributes.TwoSided && !pane;
     Surface surface(std::move(placed), nameIndex, attributes.MaterialIndex);
-    surface.TwoSided = attributes.TwoSided && !pane;
+    surface.TwoSided = twoSided;
     surface.IsTriangle = triangles[p];
     scene.Surfaces.push_back(std::move(surface));
-    if (pane)
+    if (pane || twoSided)
     {
       Surface back(PlacePatch(patches[p], attributes.Transform, !attributes.Flip),
         nameIndex,
         attributes.MaterialIndex);
+      back.TwoSided = twoSided;
       back.IsTriangle = triangles[p];
       scene.Surfaces.push_back(std::move(back));
     }

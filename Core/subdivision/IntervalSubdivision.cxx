@@ -148,7 +148,7 @@ void SweepExamination::ExamineReceiver(size_t i)
         return false;
       }
       // A group wholly below the tangent plane sends no light to P_i: classified at once.
-      return receiver.TwoSided || node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
+      return node.Bounds.MaxHeightAbove(receiver.Point, receiver.Normal) > 0.0;
     },
     [&](int32_t item)
     {
@@ -213,7 +213,7 @@ PatchView IntervalSubdivision::ViewOfPatch(const Patch& patch) const
   const Surface& surface = this->Environment.Surfaces[static_cast<size_t>(patch.SurfaceIndex)];
   const Material& material =
     this->Environment.Materials[static_cast<size_t>(surface.MaterialIndex)];
-  return ViewOf(patch, material.Type == MaterialType::Diffuse, surface.TwoSided);
+  return ViewOf(patch, material.Type == MaterialType::Diffuse);
 }
 
 void IntervalSubdivision::Split(int node, SplitReason reason)

@@ -60,7 +60,7 @@ std::string SubdivisionSettings::Problem() const
   return problem.str();
 }
 
-PatchView ViewOf(const Patch& patch, bool diffuse, bool twoSided)
+PatchView ViewOf(const Patch& patch, bool diffuse)
 {
   PatchView view;
   view.Geometry = &patch.Geometry;
@@ -68,7 +68,6 @@ PatchView ViewOf(const Patch& patch, bool diffuse, bool twoSided)
   view.Normal = patch.Normal;
   view.CentreNormalLength = glm::length(patch.Geometry.UnnormalizedNormal(0.5, 0.5));
   view.Diffuse = diffuse;
-  view.TwoSided = twoSided;
   return view;
 }
 
@@ -95,7 +94,6 @@ PairAssessment AssessPair(const PatchView& receiver,
   const double facingTolerance =
     settings.ToleranceOf(Criterion::SelfShadowing) * source.CentreNormalLength * distance;
   const Interval facing = RangeOfFacing(*source.Geometry, whole, receiver.Point, method);
-  const bool backFacing = !source.TwoSided && facing.Lower() >= -facingTolerance;
   const bool frontOnly = facing.Upper() <= facingTolerance;
   const bool backOnly = facing.Lower() >= -facingTolerance;
   result.FrontFacing = frontOnly;
@@ -106,14 +104,14 @@ PairAssessment AssessPair(const PatchView& receiver,
     result.Relation = PairRelation::BelowHorizon;
     return result;
   }
-  if (backFacing)
+  if (backOnly)
   {
     result.Relation = PairRelation::BackFacing;
     return result;
   }
   result.Relation = PairRelation::Exchanging;
 
-  // A silhouette (a two-sided source seen on both sides counts too), then the horizon.
+  // A silhouette, then the horizon.
   if (!sourceMaySplit)
   {
     // No split of Q_j can be asked for.

@@ -108,10 +108,11 @@ struct PatchView
   double CentreNormalLength = 0.0;
   /// Diffuse sources use the distance form of §4.2.3, others the normal form.
   bool Diffuse = true;
-  bool TwoSided = false;
 };
 
-PatchView ViewOf(const Patch& patch, bool diffuse, bool twoSided);
+/// The view of a patch; one-sided, as every surface is (a two-sided surface is two one-sided
+/// surfaces, Scene.h's Surface::TwoSided).
+PatchView ViewOf(const Patch& patch, bool diffuse);
 
 /// How P_i and Q_j stand to each other.
 enum class PairRelation
