@@ -4,9 +4,9 @@
 // (above) and as the 3-D hemisphere in the room (below), coloured by the surface seen through
 // each cell. The blocks, walls and the lamp must appear where the room puts them.
 #include "HemisphereTestScenes.h"
+#include "ImageRegression.h"
 
 #include <vtkCellData.h>
-#include <vtkRegressionTestImage.h>
 
 #include <iostream>
 
@@ -33,5 +33,5 @@ int TestHemisphereExtractorCornell(int argc, char* argv[])
 
   vtkNew<vtkRenderWindow> window;
   HemisphereTestScenes::RenderHemisphere(pipeline, window, 1.0);
-  return vtkRegressionTestImage(window) == vtkTesting::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
+  return ImageRegression::Check(window, argc, argv) ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -7,9 +7,9 @@
 // hemisphere on the side facing it. The cover uses a 16 x 64 grid filled by ray casting, which
 // keeps the test fast (the projection fill of the Bezier teapot at 32 x 128 takes seconds).
 #include "HemisphereTestScenes.h"
+#include "ImageRegression.h"
 
 #include <vtkCellData.h>
-#include <vtkRegressionTestImage.h>
 
 #include <iostream>
 
@@ -39,5 +39,5 @@ int TestHemisphereExtractorTeapot(int argc, char* argv[])
   vtkNew<vtkRenderWindow> window;
   // The scene camera widened: the point lies just below its field of view.
   HemisphereTestScenes::RenderHemisphere(pipeline, window, 0.7, "SurfaceNameId");
-  return vtkRegressionTestImage(window) == vtkTesting::FAILED ? EXIT_FAILURE : EXIT_SUCCESS;
+  return ImageRegression::Check(window, argc, argv) ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -6,10 +6,11 @@
 // - the field agrees with the image filter: the pixel at the image centre (one sample) and the
 //   field interpolated at the same visible point come from the same §5.3.2 interpolation;
 // - bad input (characteristic points without illumination): one clear error;
-// - regression image (VTK-style baseline, vtkRegressionTestImage's default threshold): the
+// - regression image (Data/Baseline, ImageRegression.h: every level counted, mutations fail): the
 //   Cornell box's field in a render window through the scene's camera, coloured by the
 //   radiance mapped to sRGB (no lighting: the colours are the solution's).
 #include "FailureExpectation.h"
+#include "ImageRegression.h"
 #include "RenderTestPipeline.h"
 #include "TestFailures.h"
 #include "vtkIlluminationField.h"
@@ -22,7 +23,6 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
-#include <vtkRegressionTestImage.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkUnsignedCharArray.h>
@@ -165,7 +165,6 @@ int TestIlluminationField(int argc, char* argv[])
   window->SetSize(200, 200);
   window->AddRenderer(renderer);
   window->Render();
-  const int result = vtkRegressionTestImage(window);
-  Check(result != vtkTesting::FAILED, "regression image");
+  Check(ImageRegression::Check(window, argc, argv), "regression image");
   return TestFailures::ExitCode();
 }

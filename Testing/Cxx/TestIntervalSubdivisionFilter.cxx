@@ -6,6 +6,7 @@
 // - the patches keep the MaterialId and SurfaceNameId of their surfaces (the field arrays they
 //   index are passed on).
 #include "FailureExpectation.h"
+#include "ImageRegression.h"
 #include "vtkIntervalSubdivisionFilter.h"
 #include "vtkPatchSceneReader.h"
 #include "vtkSurfaceGridAdapter.h"
@@ -28,7 +29,6 @@
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
-#include <vtkRegressionTestImage.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSphereSource.h>
@@ -241,8 +241,7 @@ int TestIntervalSubdivisionFilter(int argc, char* argv[])
   window->SetSize(400, 300);
   window->AddRenderer(renderer);
   window->Render();
-  const int image = vtkRegressionTestImage(window);
-  if (image == vtkTesting::FAILED)
+  if (!ImageRegression::Check(window, argc, argv))
   {
     ++failures;
   }

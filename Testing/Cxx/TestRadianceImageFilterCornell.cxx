@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkRadianceImageFilter, regression image (VTK-style baseline, vtkImageDifference on the
-// tone-mapped RGB, threshold in RenderTestPipeline.h): the Cornell box through its scene
-// camera, 128 x 128, 4 samples per pixel, from a coarse solution (MaxLevel 2, a 16 x 64
-// hemisphere grid). The lamp, the red and green walls' colour bleeding onto the white ones
-// and the blocks' shading must appear where the room puts them.
+// vtkRadianceImageFilter, regression image (Data/Baseline, vtkImageDifference on the
+// tone-mapped RGB with the thresholds of ImageRegression.h, its mutations failing): the Cornell
+// box through its scene camera, 128 x 128, 4 samples per pixel, from a coarse solution (MaxLevel 2,
+// a 16 x 64 hemisphere grid). The lamp, the red and green walls' colour bleeding onto the white
+// ones and the blocks' shading must appear where the room puts them.
 #include "RenderTestPipeline.h"
 
 #include <iostream>

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// vtkRadianceImageFilter on non-diffuse surfaces (paper §5.3.1), regression image (VTK-style
-// baseline, vtkImageDifference on the tone-mapped RGB, threshold in RenderTestPipeline.h): the
+// vtkRadianceImageFilter on non-diffuse surfaces (paper §5.3.1), regression image
+// (Data/Baseline, vtkImageDifference on the tone-mapped RGB, ImageRegression.h's thresholds): the
 // teapot room (a mirror wall of k_s = 0.9, a phong teapot) through its scene camera, 96 x 72,
 // 2 samples per pixel, from a coarse solution (MaxLevel 2, a 16 x 64 hemisphere grid). The
 // mirror must show the room (its emission and diffuse part are zero, so without the
