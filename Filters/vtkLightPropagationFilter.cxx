@@ -12,8 +12,10 @@
 
 #include "cover/BrightEmitters.h"
 #include "cover/HemisphereGrid.h"
-#include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
+#include "distributed/RowBlockBytes.h"
+#include "distributed/RowShares.h"
+#include "distributed/SharedPropagation.h"
 #include "math/ByteBuffer.h"
 #include "propagation/ExchangeBalance.h"
 #include "propagation/LightPropagation.h"
@@ -338,7 +340,7 @@ std::string GatherShares(vtkMultiProcessController* controller,
   }
   if (problem.empty())
   {
-    problem = whole.JoinRows(std::move(shares), options, {});
+    problem = sphcover::RowShares::JoinRows(whole, std::move(shares), options, {});
     if (!problem.empty())
     {
       problem = "the ranks' shares of the cover: " + problem;
@@ -457,10 +459,11 @@ void WarnOfOpaquePanes(vtkLightPropagationFilter* self,
 }
 
 /// Rank `rank`'s (of `ranks`) rows of `cover`: those of its receivers rank, rank + K, ...
-/// (RankShare::MyItems, as LightPropagation::SetRankShare takes them).
+/// (RankShare::MyItems, as sphcover::SharePropagation takes them).
 sphcover::SphericalCover RowsOfRank(const sphcover::SphericalCover& cover, int rank, int ranks)
 {
-  return cover.RowsOf(sphcover::RankShare::ItemsOf(rank, ranks, cover.PatchCount()));
+  return sphcover::RowShares::RowsOf(
+    cover, sphcover::RankShare::ItemsOf(rank, ranks, cover.PatchCount()));
 }
 
 /**
@@ -528,7 +531,7 @@ bool Propagate(vtkLightPropagationFilter* self,
   }
   if (ranks.Share.Distributed())
   {
-    propagation.SetRankShare(ranks.Share);
+    sphcover::SharePropagation(propagation, ranks.Share);
   }
   bool aborted = false;
   vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
@@ -1115,7 +1118,7 @@ int vtkLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* contr
       if (held == CoverHeld::Shares)
       {
         rows = std::move(cover);
-        const std::size_t foreign = rows.FirstForeignRow(ranks.Share);
+        const std::size_t foreign = sphcover::RowShares::FirstForeignRow(rows, ranks.Share);
         if (foreign < rows.PatchCount())
         {
           problem = "this rank's share of the cover holds the row of receiver " +

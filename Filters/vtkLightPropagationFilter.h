@@ -56,7 +56,7 @@
  * whole cover until rank 0 gathers it for the solution once the propagation's state is gone.
  * Either way the K ranks then balance the
  * exchange (ExchangeBalance under a share: each its own rows, the factors the whole cover's bit
- * for bit) and propagate together (LightPropagation::SetRankShare), and the results are
+ * for bit) and propagate together (sphcover::SharePropagation), and the results are
  * gathered: on every rank in the first case, on rank 0 alone in the others (it writes the
  * solution, the others keep empty outputs, as above), or kept in pieces (GatherSolution off:
  * each rank its own rows' regions, below). So the outputs are the serial ones (the

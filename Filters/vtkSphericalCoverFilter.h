@@ -46,7 +46,7 @@
  * Processes (Controller, by default the global controller: MPI under pvbatch, pvserver and
  * `mpiexec sphcover`). With K > 1 ranks the rows of the cover are built on all of them: the
  * receivers (characteristic points) are cut into K x 32 chunks of consecutive receivers, of
- * about equal estimated work (SphericalCover::EstimateRowCosts), dealt round the ranks, and the
+ * about equal estimated work (RowShares::EstimateRowCosts), dealt round the ranks, and the
  * row blocks are gathered in receiver order, so the cover is the serial one bit for bit (rows
  * are independent, paper §4.3). When the other ranks hold empty pieces (pvbatch), rank 0's
  * input is broadcast to them first; they help build and keep empty outputs. The refinement's

@@ -340,7 +340,10 @@ void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
   }
   this->Frames = std::move(frames);
   this->EncodeFallbacks();
-  this->ShotNeedsKnown = false;
+  if (this->Hook)
+  {
+    this->Hook->FallbacksChanged();
+  }
 }
 
 void LightPropagation::EncodeFallbacks()

@@ -13,6 +13,7 @@
 #include "render/RadianceRenderer.h"
 
 #include "CoverTestUtilities.h"
+#include "distributed/InProcessRanks.h"
 
 #include <gtest/gtest.h>
 
