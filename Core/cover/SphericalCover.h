@@ -36,12 +36,10 @@
  * fill: there each such region h_ij gets the projected solid angle of the visible part of Q_j
  * integrated over Q_j (RayCastFiller::VisibleProjectedSolidAngle), and the row's other regions
  * are scaled by one factor so that the row keeps its covered measure (a closed scene's rows
- * still sum to pi, the white furnace stays exact). The cells keep their sources: only the
- * weight with which each region counts changes. Why: a lamp a few dozen cells wide is counted
- * to +-10 % per point by its boundary cells (Documentation/notes/time-to-accuracy.md), and that
- * error, multiplied by the lamp's contrast with what surrounds it, is most of the Cornell box's
- * error against a path tracer. A source that wins no cell of a row stays unseen there.
- * Measures are stored per entry (a float) only when some row has a measured region.
+ * still sum to pi, the white furnace stays exact); the cells keep their sources. Why: the cells
+ * count a small lamp's region only to its boundary cells' precision, which was most of the
+ * Cornell box's error (Documentation/notes/time-to-accuracy.md). A source that wins no cell of
+ * a row stays unseen there. Measures are stored per entry (a float) only when some row has one.
  *
  * Panes (paper §5.4; SphericalCoverOptions::SurfaceTransmittance). A thin pane passes light
  * straight through, so along a direction P_i receives L(y_1) + T_1 L(y_2) + T_1 T_2 L(y_3) +
@@ -61,12 +59,8 @@
  * behind the first (light through more panes is dropped). FindEntry, ExpandRow,
  * CoveredProjectedSolidAngle and FormFactors are of layer 0 (the geometric cover, panes
  * opaque); the propagation walks every entry. Ray fill only.
- *
- * Building runs the receivers through a ParallelFor in batches; progress is reported, and
- * abort honoured, from the calling thread between batches. Rows are computed independently
- * and appended in receiver order, so the cover does not depend on the thread count.
- * Complexity: one R-buffer fill per receiver over the candidates CandidateCulling keeps
- * (O(N^2) pairs at worst, the paper's O(N^2) cover); memory as above, O(entries + strips).
+ * Complexity: one R-buffer fill per receiver (Build) over the candidates CandidateCulling
+ * keeps (O(N^2) pairs at worst, the paper's O(N^2) cover); memory O(entries + strips).
  */
 #ifndef SPHCOVER_SPHERICALCOVER_H
 #define SPHCOVER_SPHERICALCOVER_H
@@ -165,7 +159,10 @@ public:
    * `rays` when given (a RayCaster of these patches with RayCastOptions(options.FillOptions),
    * shared with the direct light: RayCastFiller), else builds its own. Throws
    * std::invalid_argument for bad options or more than 2^32 - 1 patches, std::runtime_error if
-   * the ray fill cannot initialise Embree.
+   * the ray fill cannot initialise Embree. The receivers run through `parallelFor` in batches;
+   * progress is reported, and abort honoured, from the calling thread between batches. Rows
+   * are computed independently and appended in receiver order, so the cover does not depend on
+   * the thread count.
    */
   bool Build(const std::vector<Patch>& patches,
     const SphericalCoverOptions& options = {},
