@@ -97,7 +97,7 @@ constexpr const char* CoverTransmittances = "CoverTransmittances";
 constexpr const char* CoverRankFigures = "CoverRankFigures";
 /// Field data of one rank's share of a cover built on K > 1 ranks that keep their rows
 /// (vtkSphericalCoverFilter's GatherRows off), 2 ints: the rank r and K. The cover arrays then
-/// hold the rows of receivers r, r + K, ... only (SphericalCover::BuildRowsOf), the others
+/// hold the rows of receivers r, r + K, ... only (RowShares::BuildRowsOf), the others
 /// empty; the point data is every point's.
 constexpr const char* CoverRowShare = "CoverRowShare";
 /// Point data, 3 n^2 components: the lamps' direct irradiance (RGB, W m^-2) at the n x n nodes

@@ -323,9 +323,9 @@ void WarnOfOpaquePanes(vtkLightPropagationFilter* self,
 /// warning, when aborted.
 bool Propagate(vtkLightPropagationFilter* self,
   vtkPolyData* input,
-  const sphcover::RankShare& share,
   const std::vector<double>& factors,
-  sphcover::LightPropagation& propagation)
+  sphcover::LightPropagation& propagation,
+  const std::function<void(sphcover::LightPropagation&)>& shareAmongRanks)
 {
   sphcover::PropagationSettings settings;
   settings.ConvergenceTolerance = self->GetConvergenceTolerance();
@@ -345,9 +345,9 @@ bool Propagate(vtkLightPropagationFilter* self,
   {
     propagation.SetExchangeFactors(factors);
   }
-  if (share.Distributed())
+  if (shareAmongRanks)
   {
-    propagation.SetRankShare(share);
+    shareAmongRanks(propagation);
   }
   bool aborted = false;
   vtkStageProgress progress(self, "Light Propagation: shooting", 0.05, 0.95);
@@ -681,7 +681,7 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     bool firstBounce = false;
     LampPatchesOf(input, rows, materials, lampPatch, firstBounce);
     auto propagation = std::make_unique<sphcover::LightPropagation>(rows, materials);
-    if (!Propagate(this, input, alone, factors, *propagation))
+    if (!Propagate(this, input, factors, *propagation, nullptr))
     {
       return 0;
     }

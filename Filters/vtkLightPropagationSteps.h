@@ -27,6 +27,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -123,12 +124,13 @@ SPHERICALCOVERFILTERS_EXPORT void WarnOfOpaquePanes(vtkLightPropagationFilter* s
 
 /// The progressive shooting of paper §5.1 (5% to 95% of the progress), with the exchange
 /// balance's `factors` when there are some (none: the cover's exchange as built); false, with a
-/// warning, when aborted.
+/// warning, when aborted. `shareAmongRanks`, when given, shares the propagation among ranks
+/// (vtkPLightPropagationFilter: sphcover::SharePropagation) once its frames and factors are set.
 SPHERICALCOVERFILTERS_EXPORT bool Propagate(vtkLightPropagationFilter* self,
   vtkPolyData* input,
-  const sphcover::RankShare& share,
   const std::vector<double>& factors,
-  sphcover::LightPropagation& propagation);
+  sphcover::LightPropagation& propagation,
+  const std::function<void(sphcover::LightPropagation&)>& shareAmongRanks);
 
 /// Square metres per squared scene unit, from the input's SceneUnitMetres (1 without it: a scene
 /// in metres, or a dataset from elsewhere): the propagation's powers are radiance times

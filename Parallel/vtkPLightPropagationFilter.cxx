@@ -8,8 +8,10 @@
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 
-#include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
+#include "distributed/RowBlockBytes.h"
+#include "distributed/RowShares.h"
+#include "distributed/SharedPropagation.h"
 #include "math/ByteBuffer.h"
 #include "math/RankShare.h"
 #include "propagation/LightPropagation.h"
@@ -82,7 +84,7 @@ std::string GatherShares(vtkMultiProcessController* controller,
   }
   if (problem.empty())
   {
-    problem = whole.JoinRows(std::move(shares), options, {});
+    problem = sphcover::RowShares::JoinRows(whole, std::move(shares), options, {});
     if (!problem.empty())
     {
       problem = "the ranks' shares of the cover: " + problem;
@@ -185,7 +187,8 @@ std::string JoinCoverFigures(const sphcover::RankShare& share,
 /// (RankShare::MyItems, as LightPropagation::SetRankShare takes them).
 sphcover::SphericalCover RowsOfRank(const sphcover::SphericalCover& cover, int rank, int ranks)
 {
-  return cover.RowsOf(sphcover::RankShare::ItemsOf(rank, ranks, cover.PatchCount()));
+  return sphcover::RowShares::RowsOf(
+    cover, sphcover::RankShare::ItemsOf(rank, ranks, cover.PatchCount()));
 }
 
 /**
@@ -518,7 +521,7 @@ int vtkPLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* cont
       if (held == CoverHeld::Shares)
       {
         rows = std::move(cover);
-        const std::size_t foreign = rows.FirstForeignRow(ranks.Share);
+        const std::size_t foreign = sphcover::RowShares::FirstForeignRow(rows, ranks.Share);
         if (foreign < rows.PatchCount())
         {
           problem = "this rank's share of the cover holds the row of receiver " +
@@ -550,7 +553,15 @@ int vtkPLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* cont
     LampPatchesOf(input, rows, materials, lampPatch, firstBounce);
     auto propagation = std::make_unique<sphcover::LightPropagation>(rows, materials);
     if (!completedOnEveryRank(
-          [&] { return Propagate(this, input, ranks.Share, factors, *propagation); }))
+          [&]
+          {
+            return Propagate(this,
+              input,
+              factors,
+              *propagation,
+              [&ranks](sphcover::LightPropagation& shared)
+              { sphcover::SharePropagation(shared, ranks.Share); });
+          }))
     {
       return 0;
     }

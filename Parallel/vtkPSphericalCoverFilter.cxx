@@ -11,8 +11,9 @@
 #include "vtkSphericalCoverSteps.h"
 #include "vtkStageProgress.h"
 
-#include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
+#include "distributed/RowBlockBytes.h"
+#include "distributed/RowShares.h"
 #include "math/RankShare.h"
 
 #include <vtkDataSet.h>
@@ -41,13 +42,13 @@ namespace
 constexpr std::size_t RowChunksPerRank = 32;
 
 /**
- * This rank's rows of the cover, under MPI, into `bytes` (one AppendRowBlock per chunk) and
- * their count into `receivers`; progress from the cover's start to 0.9. The receivers are cut
- * into K x RowChunksPerRank consecutive chunks of about equal estimated cost
- * (SphericalCover::EstimateRowCosts) and rank r builds chunks r, r + K, ... (share.MyItems):
- * consecutive receivers lie on one surface and cost alike, so dealing the chunks round the
- * ranks evens out what the estimate misses, as the direct light's interleaved nodes do. False,
- * with a warning, when aborted; throws what BuildRowBlock throws.
+ * This rank's rows of the cover, under MPI, into `bytes` (PackRowBlock of its share) and their
+ * count into `receivers`; progress from the cover's start to 0.9. The receivers are cut into
+ * K x RowChunksPerRank consecutive chunks of about equal estimated cost
+ * (RowShares::EstimateRowCosts) and rank r builds the rows of chunks r, r + K, ...
+ * (share.MyItems) into one share: consecutive receivers lie on one surface and cost alike, so
+ * dealing the chunks round the ranks evens out what the estimate misses, as the direct light's
+ * interleaved nodes do. False, with a warning, when aborted; throws what BuildRowsOf throws.
  */
 bool BuildRowChunks(vtkPSphericalCoverFilter* self,
   const CoverInput& prepared,
@@ -56,42 +57,28 @@ bool BuildRowChunks(vtkPSphericalCoverFilter* self,
   double& receivers)
 {
   const std::size_t chunks = static_cast<std::size_t>(share.Ranks()) * RowChunksPerRank;
-  const std::vector<std::size_t> bounds = sphcover::SphericalCover::PartitionRows(
-    sphcover::SphericalCover::EstimateRowCosts(prepared.Patches, prepared.Options), chunks);
-  const std::vector<std::size_t> myChunks = share.MyItems(chunks);
-  std::size_t mine = 0;
-  for (const std::size_t c : myChunks)
-  {
-    mine += bounds[c + 1] - bounds[c];
-  }
-  receivers = static_cast<double>(mine);
+  const std::vector<std::size_t> bounds = sphcover::RowShares::PartitionRows(
+    sphcover::RowShares::EstimateRowCosts(prepared.Patches, prepared.Options), chunks);
+  const std::vector<std::size_t> mine =
+    sphcover::RowShares::ReceiversOfRanges(bounds, share.MyItems(chunks));
+  receivers = static_cast<double>(mine.size());
   vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
   bytes.clear();
-  std::size_t done = 0;
-  for (const std::size_t c : myChunks)
+  sphcover::SphericalCover rows;
+  if (!sphcover::RowShares::BuildRowsOf(
+        rows,
+        prepared.Patches,
+        prepared.Options,
+        mine,
+        vtkSMPParallelFor::Make(),
+        [&progress](double fraction) { return progress(fraction); },
+        prepared.Rays))
   {
-    const std::size_t size = bounds[c + 1] - bounds[c];
-    sphcover::SphericalCover::Arrays block;
-    sphcover::CullingStatistics culling;
-    if (!sphcover::SphericalCover::BuildRowBlock(
-          prepared.Patches,
-          prepared.Options,
-          bounds[c],
-          bounds[c + 1],
-          block,
-          culling,
-          vtkSMPParallelFor::Make(),
-          [&](double fraction)
-          { return progress((done + fraction * size) / std::max<std::size_t>(mine, 1)); },
-          prepared.Rays))
-    {
-      vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
-      bytes.clear();
-      return false;
-    }
-    sphcover::AppendRowBlock(bytes, block, culling);
-    done += size;
+    vtkWarningWithObjectMacro(self, "Spherical cover aborted.");
+    return false;
   }
+  const sphcover::CullingStatistics culling = rows.Culling();
+  bytes = sphcover::PackRowBlock(std::move(rows).ExportArrays(), culling);
   return true;
 }
 
@@ -111,7 +98,8 @@ bool BuildOwnRows(vtkPSphericalCoverFilter* self,
   const std::vector<std::size_t> mine = share.MyItems(prepared.Patches.size());
   receivers = static_cast<double>(mine.size());
   vtkStageProgress progress(self, "Spherical Cover: cover", prepared.CoverStart, 0.9);
-  if (!rows.BuildRowsOf(
+  if (!sphcover::RowShares::BuildRowsOf(
+        rows,
         prepared.Patches,
         prepared.Options,
         mine,
@@ -258,7 +246,7 @@ int BuildDistributed(vtkPSphericalCoverFilter* self,
     // their own on every rank or on none, as the whole cover's (SphericalCover::BuildRowsOf).
     if (vtkCoverDistribution::Count(controller, ownRows.HasMeasures()) > 0)
     {
-      ownRows.KeepCellMeasures();
+      sphcover::RowShares::KeepCellMeasures(ownRows);
     }
     // Of a share each rank knows its own rows' coverage only: each point's from its owner.
     PointCoverage coverage = CoverageOf(ownRows);
@@ -277,19 +265,13 @@ int BuildDistributed(vtkPSphericalCoverFilter* self,
   {
     return 1; // an empty piece (vtkScenePieces.h)
   }
-  // Chunk c is the (c / K)-th block of rank c mod K (BuildRowChunks, RankShare::MyItems).
-  std::vector<sphcover::SphericalCover::Arrays> blocks(RowChunksPerRank * received.size());
+  // Every rank's share of the rows (BuildRowChunks), joined.
+  std::vector<sphcover::SphericalCover::Arrays> shares(received.size());
   sphcover::CullingStatistics culling;
   for (size_t r = 0; r < received.size(); ++r)
   {
-    std::vector<sphcover::SphericalCover::Arrays> chunks;
     sphcover::CullingStatistics counts;
-    problem = sphcover::UnpackRowBlocks(received[r].data(), received[r].size(), chunks, counts);
-    if (problem.empty() && chunks.size() != RowChunksPerRank)
-    {
-      problem =
-        std::to_string(chunks.size()) + " chunks of rows, not " + std::to_string(RowChunksPerRank);
-    }
+    problem = sphcover::UnpackRowBlock(received[r].data(), received[r].size(), shares[r], counts);
     if (!problem.empty())
     {
       vtkErrorWithObjectMacro(
@@ -297,14 +279,10 @@ int BuildDistributed(vtkPSphericalCoverFilter* self,
       return 0;
     }
     received[r] = std::vector<char>();
-    for (size_t k = 0; k < chunks.size(); ++k)
-    {
-      blocks[k * received.size() + r] = std::move(chunks[k]);
-    }
     culling += counts;
   }
   sphcover::SphericalCover cover;
-  problem = cover.ImportRowBlocks(std::move(blocks), prepared.Options, culling);
+  problem = sphcover::RowShares::JoinRows(cover, std::move(shares), prepared.Options, culling);
   if (!problem.empty())
   {
     vtkErrorWithObjectMacro(self, << "Spherical cover failed: the gathered rows: " << problem);

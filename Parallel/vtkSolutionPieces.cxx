@@ -5,6 +5,7 @@
 #include "vtkSphericalCoverArrays.h"
 
 #include "cover/SphericalCover.h"
+#include "distributed/RowShares.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
@@ -177,7 +178,7 @@ std::string vtkSolutionPieces::Join(vtkPolyData* points,
     cover = sphcover::SphericalCover();
   }
   sphcover::SphericalCover cover;
-  const std::string problem = cover.JoinRows(std::move(arrays), options, {});
+  const std::string problem = sphcover::RowShares::JoinRows(cover, std::move(arrays), options, {});
   if (!problem.empty())
   {
     return "the ranks' shares: " + problem;

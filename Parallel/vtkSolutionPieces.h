@@ -12,7 +12,7 @@
  * IncidentRadiance and the marker), so that a solution file holds the illumination once and the
  * K shares beside it (`sphcover solve` under mpiexec: Documentation/Pipeline.md). Join is the
  * inverse: the points and every rank's share give the gathered solution, the one
- * GatherSolution on gives, bit for bit (SphericalCover::JoinRows, and each region's
+ * GatherSolution on gives, bit for bit (RowShares::JoinRows, and each region's
  * IncidentRadiance from the share holding its row).
  */
 #ifndef vtkSolutionPieces_h

@@ -441,8 +441,8 @@ bool CoverRefinement::AnalyseRound(const HemisphereGrid& grid,
       completed = !progress ||
         progress(progressStart +
           (1.0 - progressStart) *
-            std::min(1.0,
-              (this->Stats.Rounds + double(first + batch) / mine.size()) / expectedRounds));
+            std::min(
+              1.0, (this->Stats.Rounds + double(first + batch) / mine.size()) / expectedRounds));
     }
   }
   catch (...)

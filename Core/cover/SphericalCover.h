@@ -36,12 +36,10 @@
  * fill: there each such region h_ij gets the projected solid angle of the visible part of Q_j
  * integrated over Q_j (RayCastFiller::VisibleProjectedSolidAngle), and the row's other regions
  * are scaled by one factor so that the row keeps its covered measure (a closed scene's rows
- * still sum to pi, the white furnace stays exact). The cells keep their sources: only the
- * weight with which each region counts changes. Why: a lamp a few dozen cells wide is counted
- * to +-10 % per point by its boundary cells (Documentation/notes/time-to-accuracy.md), and that
- * error, multiplied by the lamp's contrast with what surrounds it, is most of the Cornell box's
- * error against a path tracer. A source that wins no cell of a row stays unseen there.
- * Measures are stored per entry (a float) only when some row has a measured region.
+ * still sum to pi, the white furnace stays exact); the cells keep their sources. Why: the cells
+ * count a small lamp's region only to its boundary cells' precision, which was most of the
+ * Cornell box's error (Documentation/notes/time-to-accuracy.md). A source that wins no cell of
+ * a row stays unseen there. Measures are stored per entry (a float) only when some row has one.
  *
  * Panes (paper §5.4; SphericalCoverOptions::SurfaceTransmittance). A thin pane passes light
  * straight through, so along a direction P_i receives L(y_1) + T_1 L(y_2) + T_1 T_2 L(y_3) +
@@ -61,12 +59,8 @@
  * behind the first (light through more panes is dropped). FindEntry, ExpandRow,
  * CoveredProjectedSolidAngle and FormFactors are of layer 0 (the geometric cover, panes
  * opaque); the propagation walks every entry. Ray fill only.
- *
- * Building runs the receivers through a ParallelFor in batches; progress is reported, and
- * abort honoured, from the calling thread between batches. Rows are computed independently
- * and appended in receiver order, so the cover does not depend on the thread count.
- * Complexity: one R-buffer fill per receiver over the candidates CandidateCulling keeps
- * (O(N^2) pairs at worst, the paper's O(N^2) cover); memory as above, O(entries + strips).
+ * Complexity: one R-buffer fill per receiver (Build) over the candidates CandidateCulling
+ * keeps (O(N^2) pairs at worst, the paper's O(N^2) cover); memory O(entries + strips).
  */
 #ifndef SPHCOVER_SPHERICALCOVER_H
 #define SPHCOVER_SPHERICALCOVER_H
@@ -88,7 +82,6 @@ namespace sphcover
 {
 
 struct Patch;
-class RankShare;
 class RayCastFiller;
 class RayCaster;
 
@@ -166,7 +159,10 @@ public:
    * `rays` when given (a RayCaster of these patches with RayCastOptions(options.FillOptions),
    * shared with the direct light: RayCastFiller), else builds its own. Throws
    * std::invalid_argument for bad options or more than 2^32 - 1 patches, std::runtime_error if
-   * the ray fill cannot initialise Embree.
+   * the ray fill cannot initialise Embree. The receivers run through `parallelFor` in batches;
+   * progress is reported, and abort honoured, from the calling thread between batches. Rows
+   * are computed independently and appended in receiver order, so the cover does not depend on
+   * the thread count.
    */
   bool Build(const std::vector<Patch>& patches,
     const SphericalCoverOptions& options = {},
@@ -302,111 +298,8 @@ public:
   /// indices and cell ranges); returns an explanation (and leaves the cover empty) if not.
   std::string ImportArrays(Arrays arrays);
 
-  // --- row blocks (a cover built by several processes) -----------------------------------------
-  // Rows are independent (paper §4.3: one R-buffer per characteristic point), so the rows of
-  // consecutive receiver ranges can be built apart and joined: what the distributed filter
-  // (vtkSphericalCoverFilter under MPI) does. A row block is an Arrays whose RowOffsets hold
-  // the block's rows from 0, whose entries' FirstStrip count from the block's first strip and
-  // whose Areas are its receivers'; Measures are empty when no row of the block is measured.
-
-  /**
-   * An estimate of the work of each receiver's row, for splitting rows among processes by work
-   * rather than by count: a fixed part per row plus the number of other patches whose control
-   * net reaches above the tangent plane of P_i (paper §4.2.2's hemispherical containment,
-   * bounded by the control net's box instead of Bernstein ranges), the candidates a fill
-   * considers. The fixed part is 1 for the projection fill, whose work is its candidates'
-   * projections, and 2N for the ray fill, whose rays through the cells cost about as much per
-   * row as 2N candidates (fitted to the teapot room's rows timed on two ranks,
-   * Documentation/notes/distributed-solve.md). O(N^2) box tests, about a thousandth of a build.
-   */
-  static std::vector<double> EstimateRowCosts(const std::vector<Patch>& patches,
-    const SphericalCoverOptions& options);
-  /**
-   * Boundaries b_0 = 0 <= b_1 <= ... <= b_parts = costs.size() of `parts` consecutive receiver
-   * ranges [b_k, b_k+1) of about equal summed cost: range k ends at the first receiver whose
-   * running cost reaches (k+1)/parts of the total. Throws std::invalid_argument for parts = 0.
-   */
-  static std::vector<std::size_t> PartitionRows(const std::vector<double>& costs,
-    std::size_t parts);
-  /**
-   * Builds the rows of receivers [first, last) of the cover of `patches` into `block` (see
-   * above), with the summed culling counts; everything else as Build, whose rows these are bit
-   * for bit. Returns false, leaving `block` empty, when `progress` returned false (progress
-   * counts the block's rows). Throws as Build does, and std::invalid_argument when
-   * first > last or last > patches.size().
-   */
-  static bool BuildRowBlock(const std::vector<Patch>& patches,
-    const SphericalCoverOptions& options,
-    std::size_t first,
-    std::size_t last,
-    Arrays& block,
-    CullingStatistics& culling,
-    const ParallelFor& parallelFor = SequentialFor,
-    const ProgressCallback& progress = nullptr,
-    std::shared_ptr<const RayCaster> rays = nullptr);
-  /**
-   * Replaces the cover with the row blocks of consecutive receiver ranges, in receiver order,
-   * that together hold every receiver once: the cover Build(patches, options) gives, bit for bit
-   * (a block without measured rows gets its cells' measures where another block has measured
-   * ones, as Build's rows before its first measured row do). `options` and `culling` become
-   * Options() and Culling(). Returns an explanation (and leaves the cover empty) when the
-   * blocks are inconsistent (as ImportArrays) or their grid is not the options'.
-   */
-  std::string ImportRowBlocks(std::vector<Arrays> blocks,
-    const SphericalCoverOptions& options,
-    const CullingStatistics& culling);
-
-  /**
-   * A copy that keeps the rows of `receivers` (ascending, each once) and empties the others
-   * (their areas and the panes' transmittances stay): the part of the cover one rank of a
-   * distributed propagation holds (LightPropagation::SetRankShare). The copy's entries are the
-   * kept rows' entries in receiver order (KeptEntries). Throws std::invalid_argument for a
-   * receiver out of range or out of order.
-   */
-  SphericalCover RowsOf(const std::vector<std::size_t>& receivers) const;
-
-  /**
-   * Replaces the cover with the rows of `receivers` (ascending, each once) of the cover
-   * Build(patches, options) gives, the others empty: Build's RowsOf(receivers) bit for bit, but
-   * for two things a share cannot know alone: its entries carry measures of their own only when
-   * one of its rows is measured (KeepCellMeasures, when another share's is), and Culling()
-   * counts its rows only. How a rank of a distributed build keeps its rows
-   * (vtkSphericalCoverFilter's GatherRows off) without the whole cover ever meeting on one.
-   * False, with the cover cleared, when `progress` returned false (it counts the kept rows).
-   * Throws as Build does, and std::invalid_argument as RowsOf.
-   */
-  bool BuildRowsOf(const std::vector<Patch>& patches,
-    const SphericalCoverOptions& options,
-    const std::vector<std::size_t>& receivers,
-    const ParallelFor& parallelFor = SequentialFor,
-    const ProgressCallback& progress = nullptr,
-    std::shared_ptr<const RayCaster> rays = nullptr);
   /// Whether the entries carry measures of their own (some row measured: see the file comment).
   bool HasMeasures() const { return !this->Measures.empty(); }
-  /// Gives every entry its cells' measure when it has no measures of its own, as Build gives
-  /// the rows before its first measured one: a share whose rows are not measured, of a cover
-  /// some of whose rows are.
-  void KeepCellMeasures();
-  /**
-   * Replaces the cover with the join of shares of one cover (RowsOf's or BuildRowsOf's copies,
-   * exported): receiver i's row is the one share's whose row i is not empty (or empty). With
-   * the shares of every receiver it is the whole cover, bit for bit (measures as
-   * ImportRowBlocks gives them). `options` and `culling` become Options() and Culling().
-   * Returns an explanation (and leaves the cover empty) when a share is inconsistent (as
-   * ImportArrays), when the shares differ in their grid, patches or areas, or when two hold
-   * the same row.
-   */
-  std::string JoinRows(std::vector<Arrays> shares,
-    const SphericalCoverOptions& options,
-    const CullingStatistics& culling);
-
-  /// The indices of the entries of `receivers`' rows in receiver order: entry e of
-  /// RowsOf(receivers) is entry KeptEntries(receivers)[e] of this cover.
-  std::vector<std::size_t> KeptEntries(const std::vector<std::size_t>& receivers) const;
-
-  /// The first receiver whose row is not empty though another rank owns it (RankShare::Owns),
-  /// or PatchCount() when there is none, as for RowsOf(share.MyItems(PatchCount())).
-  std::size_t FirstForeignRow(const RankShare& share) const;
 
   // --- statistics and memory -------------------------------------------------------------------
   /// Candidate culling counts summed over all receivers (projection fill only).
@@ -453,6 +346,10 @@ public:
     std::shared_ptr<const RayCaster> rays = nullptr);
 
 private:
+  // Rows are independent (paper §4.3: one R-buffer per characteristic point): a distributed
+  // solve builds, cuts and joins them in shares (distributed/RowShares.h) with BuildRows,
+  // EmptyArrays, CheckArrays and Adopt.
+  friend class RowShares;
   struct Row;
   /// Build's rows of `receivers` (ascending), one after the other from row 0, with their areas
   /// (all receivers: the whole cover, without its columns); false, with the cover cleared,
@@ -465,14 +362,13 @@ private:
     std::shared_ptr<const RayCaster> rays);
   /// Why `arrays` are not a consistent cover ("" when they are).
   static std::string CheckArrays(const Arrays& arrays);
+  /// Arrays on the grid and with the fill of `options`, without rows (RowOffsets {0}).
+  static Arrays EmptyArrays(const SphericalCoverOptions& options, bool unoccludedKnown);
   /// Takes consistent `arrays` with `options` as the build's and derives the columns.
   void Adopt(Arrays arrays, const SphericalCoverOptions& options);
   /// ExportArrays' one body: the arrays of `cover` copied (a const cover) or moved (an rvalue).
   template<typename Cover>
   static Arrays ArraysOf(Cover&& cover);
-  /// Appends row `receiver` (its entries, their strips and per-entry values) to `to`'s arrays,
-  /// the entries' first strips counted in `to`.
-  void AppendRowTo(std::size_t receiver, Arrays& to) const;
   /// Appends the regions of `buffer` to `row` as entries of layer `layer`; `filterOfCell` (by
   /// cell index) gives their filters when layer > 0.
   static void ExtractRow(const RBuffer& buffer,

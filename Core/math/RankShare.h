@@ -2,12 +2,15 @@
 /**
  * @file RankShare.h
  * @brief The hook through which Core's engines share independent items among the K processes
- * (MPI ranks) of one solve without depending on MPI or VTK: each rank computes its share of
- * the items (MyItems, or a range the engine chooses), and Join gives every rank every rank's
- * results, in rank order. An engine that merges the joined results in item order gives the
- * serial result bit for bit whatever K.
- * The VTK filters give a RankShare over their vtkMultiProcessController (vtkCoverDistribution);
- * Core's tests and benchmarks run K ranks as threads (InProcessRanks).
+ * (MPI ranks) of one solve without depending on MPI or VTK: which items are this rank's
+ * (MyItems, Owns) and a join of bytes (Join: every rank's, in rank order, on every rank), with
+ * the few typed joins the engines call (ShareItems, JoinOwnedItems, CombineOverRanks,
+ * JoinValues). The default RankShare is one process: every item is its own and a join gives
+ * back what it is given, so a serial engine reads no further. An engine that merges the joined
+ * results in item order gives the serial result bit for bit whatever K.
+ * What is distributed beyond that (the cover's rows dealt to the ranks, their bytes, the shared
+ * propagation, K ranks as threads for the tests) lives in distributed/, the last stage of Core.
+ * The VTK filters give a RankShare over their vtkMultiProcessController (vtkCoverDistribution).
  *
  * Contract: Join is collective (every rank calls it at the same point, as often); a rank that
  * fails still calls it, with `ok` false, so that no rank waits forever, and every rank then
@@ -20,14 +23,11 @@
 #include "math/ByteBuffer.h"
 
 #include <algorithm>
-#include <condition_variable>
 #include <cstddef>
 #include <exception>
 #include <functional>
-#include <mutex>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -163,91 +163,10 @@ private:
 };
 
 /**
- * K ranks as threads of one process, for Core's tests and benchmarks: Share(r) is rank r's
- * RankShare; each rank's thread calls its engine, and Join waits for all K (a barrier).
- * The object must outlive the shares' use.
- */
-class InProcessRanks
-{
-public:
-  explicit InProcessRanks(int ranks)
-    : Slots(static_cast<std::size_t>(ranks))
-    , Oks(static_cast<std::size_t>(ranks), 1)
-  {
-  }
-
-  RankShare Share(int rank)
-  {
-    return RankShare(rank,
-      static_cast<int>(this->Slots.size()),
-      [this, rank](const std::vector<char>& mine,
-        bool ok,
-        bool,
-        std::vector<std::vector<char>>& all,
-        std::vector<char>& oks) { this->Exchange(rank, mine, ok, all, oks); });
-  }
-
-  /// Runs body(Share(r), r) on one thread per rank and waits for all of them; `body` must not
-  /// throw.
-  void Run(const std::function<void(const RankShare&, int)>& body)
-  {
-    std::vector<std::thread> threads;
-    for (int r = 0; r < static_cast<int>(this->Slots.size()); ++r)
-    {
-      threads.emplace_back([this, r, &body] { body(this->Share(r), r); });
-    }
-    for (std::thread& thread : threads)
-    {
-      thread.join();
-    }
-  }
-
-private:
-  void Exchange(int rank,
-    const std::vector<char>& mine,
-    bool ok,
-    std::vector<std::vector<char>>& all,
-    std::vector<char>& oks)
-  {
-    std::unique_lock<std::mutex> lock(this->Mutex);
-    // Wait until the previous exchange has been read by every rank.
-    this->Changed.wait(lock, [this] { return this->Reading == 0; });
-    const std::size_t generation = this->Generation;
-    this->Slots[static_cast<std::size_t>(rank)] = mine;
-    this->Oks[static_cast<std::size_t>(rank)] = ok ? 1 : 0;
-    if (++this->Arrived == this->Slots.size())
-    {
-      this->Arrived = 0;
-      this->Reading = this->Slots.size();
-      ++this->Generation;
-      this->Changed.notify_all();
-    }
-    else
-    {
-      this->Changed.wait(lock, [this, generation] { return this->Generation != generation; });
-    }
-    all = this->Slots;
-    oks = this->Oks;
-    if (--this->Reading == 0)
-    {
-      this->Changed.notify_all();
-    }
-  }
-
-  std::mutex Mutex;
-  std::condition_variable Changed;
-  std::vector<std::vector<char>> Slots;
-  std::vector<char> Oks;
-  std::size_t Arrived = 0;
-  std::size_t Reading = 0;
-  std::size_t Generation = 0;
-};
-
-/**
  * The values in every rank's bytes (ByteWriter::Values of each), concatenated in rank order.
  * Throws std::runtime_error when a rank's bytes are not whole values.
  */
-template <typename Value>
+template<typename Value>
 std::vector<Value> ValuesOfRanks(const std::vector<std::vector<char>>& all)
 {
   std::vector<Value> joinedValues;
@@ -255,8 +174,8 @@ std::vector<Value> ValuesOfRanks(const std::vector<std::vector<char>>& all)
   {
     if (bytes.size() % sizeof(Value) != 0)
     {
-      throw std::runtime_error("JoinValues: a rank sent " + std::to_string(bytes.size()) +
-        " bytes, not whole values");
+      throw std::runtime_error(
+        "JoinValues: a rank sent " + std::to_string(bytes.size()) + " bytes, not whole values");
     }
     const std::size_t at = joinedValues.size();
     joinedValues.resize(at + bytes.size() / sizeof(Value));
@@ -270,7 +189,7 @@ std::vector<Value> ValuesOfRanks(const std::vector<std::vector<char>>& all)
  * rank gives as many, one collective). Collective; throws RankShare::PeerFailure when a rank
  * failed, std::runtime_error when a rank's bytes are not whole values. One process: a copy.
  */
-template <typename Value>
+template<typename Value>
 std::vector<Value> JoinValues(const RankShare& share,
   const Value* values,
   std::size_t count,
@@ -279,8 +198,7 @@ std::vector<Value> JoinValues(const RankShare& share,
   std::vector<char> mine;
   ByteWriter(mine).Values(values, count);
   std::vector<std::vector<char>> all;
-  const bool joined =
-    sameSize ? share.JoinSameSize(mine, true, all) : share.Join(mine, true, all);
+  const bool joined = sameSize ? share.JoinSameSize(mine, true, all) : share.Join(mine, true, all);
   if (!joined)
   {
     throw RankShare::PeerFailure();
@@ -393,7 +311,7 @@ void CombineOverRanks(const RankShare& share, std::vector<Value>& values, const 
  * rank failed, and std::runtime_error when a rank's bytes are not its items' values
  * (ItemsFromRanks). One process: computeMine gets every item, nothing is copied.
  */
-template <typename Value, typename ComputeMine>
+template<typename Value, typename ComputeMine>
 bool ShareItems(const RankShare& share,
   std::size_t count,
   std::vector<Value>& values,

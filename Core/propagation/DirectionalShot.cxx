@@ -46,15 +46,13 @@ void LightPropagation::SetUpModels(const std::vector<Material>& materialOfPatch)
   this->Reset();
 }
 
-void LightPropagation::MatchTransposedEntries(
-  const std::vector<std::vector<EntryKey>>& remoteRows)
+void LightPropagation::MatchTransposedEntries(const std::vector<std::vector<EntryKey>>& remoteRows)
 {
   const SphericalCover& cover = this->Cover;
   // Row j is sorted by (source, layer, filter), column j by receiver and then in the order of
   // the receiver's row, so one merge of the two finds, for every receiver i of column j, the
   // entry (j, i) of row j seen through the same panes (SphericalCover.h, "Panes").
-  auto keyOf = [&cover](std::size_t entry) -> EntryKey
-  {
+  auto keyOf = [&cover](std::size_t entry) -> EntryKey {
     return { cover.EntryAt(entry).Source, cover.Layer(entry), glm::vec3(cover.Filter(entry)) };
   };
   auto compare = [](const EntryKey& a, const EntryKey& b)
@@ -340,7 +338,10 @@ void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
   }
   this->Frames = std::move(frames);
   this->EncodeFallbacks();
-  this->ShotNeedsKnown = false;
+  if (this->Hook)
+  {
+    this->Hook->FallbacksChanged();
+  }
 }
 
 void LightPropagation::EncodeFallbacks()

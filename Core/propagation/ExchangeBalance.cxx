@@ -224,7 +224,12 @@ ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
   if (share.Distributed())
   {
     // A rank holding another's row fails; the others learn it in the join, not by waiting.
-    const std::size_t foreign = cover.FirstForeignRow(share);
+    std::size_t foreign = 0;
+    while (foreign < cover.PatchCount() &&
+      (share.Owns(foreign) || cover.VisibleSourceCount(foreign) == 0))
+    {
+      ++foreign;
+    }
     const bool own = foreign == cover.PatchCount();
     if (!share.EveryRankOk(own))
     {
@@ -233,7 +238,7 @@ ExchangeBalance::ExchangeBalance(const SphericalCover& cover,
         throw RankShare::PeerFailure();
       }
       throw std::invalid_argument("ExchangeBalance: row " + std::to_string(foreign) +
-        " is another rank's receiver's but not empty (SphericalCover::RowsOf)");
+        " is another rank's receiver's but not empty (RowShares::RowsOf)");
     }
   }
   MatrixScaling scaling(cover, share);

@@ -62,8 +62,8 @@ public:
   /**
    * Balances the exchange of `cover`. Progress is the iteration count over MaximumIterations;
    * returning false from `progress` stops early (Aborted()). Under `share` the ranks balance
-   * together, `cover` holding this rank's receivers' rows (SphericalCover::RowsOf of
-   * share.MyItems, as LightPropagation::SetRankShare): EntryFactors are then those of its
+   * together, `cover` holding this rank's receivers' rows (RowShares::RowsOf of
+   * share.MyItems, as SharePropagation): EntryFactors are then those of its
    * entries, equal to the whole cover's bit for bit, and a rank that stops stops every rank
    * (each is Aborted() after the same iteration). Collective under a share; throws
    * RankShare::PeerFailure when another rank failed, std::invalid_argument when `cover` holds

@@ -267,7 +267,7 @@ std::vector<ShotRecord> LightPropagation::ShootBatch(const std::vector<Candidate
   if (this->Shared() &&
     std::any_of(batch.begin(), batch.end(), [](const Candidate& c) { return c.Directional; }))
   {
-    this->ShareDirectionalShots(batch, directional, this->BatchShots, ok);
+    this->Hook->ShareDirectionalShots(batch, directional, this->BatchShots, ok);
   }
   if (failure)
   {
@@ -492,13 +492,9 @@ bool LightPropagation::Run(const PropagationSettings& settings, const ProgressCa
     const std::size_t best = this->Brightest(largest, unshot);
     std::vector<Candidate> batch = this->LocalBatch(best, largest, batchSize);
     const bool everyRankGoesOn =
-      !shared || this->JoinScan(batch, largest, unshot, batchSize, stop, records);
+      !shared || this->Hook->JoinScan(batch, largest, unshot, batchSize, stop, records);
     return std::make_pair(std::move(batch), everyRankGoesOn);
   };
-  if (shared && !this->Reflectances.Empty() && !this->ShotNeedsKnown)
-  {
-    this->ExchangeShotNeeds();
-  }
   std::vector<Candidate> batch = scan(false, nullptr).first;
   const double initialUnshot = unshot;
   double reported = 0.0;

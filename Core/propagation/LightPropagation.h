@@ -65,6 +65,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace sphcover
@@ -207,29 +208,8 @@ public:
   void SetExchangeFactors(const std::vector<double>& entryFactors);
   bool HasExchangeFactors() const { return this->Balanced; }
 
-  /**
-   * Under MPI (math/RankShare.h): the ranks propagate together, each over the rows of its own
-   * receivers, i with i mod K = the rank (RankShare::MyItems), which are all the rows the cover
-   * given to the constructor holds (SphericalCover::RowsOf). Receivers dealt round the ranks
-   * one by one give each rank about a K-th of every surface (neighbouring patches cost alike),
-   * so the ranks' work is balanced without an estimate, and so are the non-diffuse shooters of
-   * each batch, whose owners reflect them at the same time. Every batch, the ranks agree on its
-   * shooters (from every rank's candidates, chosen as the serial scan chooses), their owners
-   * send what they shoot (the unshot radiance, with the scan; for the non-diffuse shooters, all
-   * in one exchange, their reflected radiance toward the regions and the fallback cells the
-   * other ranks' receivers read: ExchangeShotNeeds) and each rank updates its own receivers in
-   * column order. So every owned patch's state, and each result of an owned patch (Irradiance,
-   * ExitantRadiance, Brightness, the incident radiances of its row), is the serial one bit for
-   * bit; the history's shooters and powers are serial's, its sums over the ranks
-   * (UnshotEnergy, ReceiverUpdates) equal up to the order of addition. Call after the
-   * constructor and SetExchangeFactors (whose factors are then the kept rows'); collective (the
-   * ranks exchange the keys of their non-diffuse rows once). Run is then collective and
-   * BrightestFirst only, Energy and LampIrradiance are collective, the other results are of
-   * owned patches only. Throws std::invalid_argument for a row of another rank's receiver that
-   * is not empty.
-   */
-  void SetRankShare(RankShare share);
-  /// Whether this rank holds the patch's row and results (every patch without a share).
+  /// Whether this rank holds the patch's row and results: every patch, unless the propagation
+  /// is shared among ranks (distributed/SharedPropagation.h).
   bool Owns(std::size_t patch) const { return this->Share.Owns(patch); }
 
   /// Back to the start: E = 0, unshot radiance = emission, no history.
@@ -399,31 +379,38 @@ private:
   /// ColumnBack: for every entry (i, j) of column j the position of (j, i) in row j, if any;
   /// row j from `remoteRows[j]` where that is not empty (the keys of another rank's row).
   void MatchTransposedEntries(const std::vector<std::vector<EntryKey>>& remoteRows = {});
-  // Under a share (SharedPropagation.cxx).
-  /// Every rank's batch of its own patches (LocalBatch), largest power, unshot energy, whether
-  /// it stops and the last batch's counts, joined: the batch (SelectBatch over the ranks'), the
-  /// largest power and the total unshot energy, the counts summed into `records` (when given);
-  /// false when some rank stops.
-  bool JoinScan(std::vector<Candidate>& batch,
-    double& largest,
-    double& unshot,
-    std::size_t size,
-    bool stop,
-    std::vector<ShotRecord>* records);
-  /// Which of a non-diffuse shot's values the other ranks read, per non-diffuse row j: the
-  /// positions in row j of the entries (j, i) of their receivers i (SentPositions[j]) and the
-  /// cells of the directions toward their receivers without h_ji (SentCells[j]), each the
-  /// sorted union over the ranks, the same on every rank. Collective; from Run, once after
-  /// SetRankShare or SetFrames.
-  void ExchangeShotNeeds();
-  /// The batch's non-diffuse shots: each rank computes those of its own shooters into
-  /// `data[m]` (m the member), then every rank gets every one, as far as it reads it (the
-  /// values ExchangeShotNeeds found). `ok`: this rank's succeeded.
-  void ShareDirectionalShots(const std::vector<Candidate>& batch,
-    const std::vector<bool>& directional,
-    std::vector<DirectionalShotData>& data,
-    bool ok);
-  bool Shared() const { return this->Share.Distributed(); }
+  /**
+   * What a propagation shared among ranks adds to Run's batches (SharePropagation in
+   * distributed/SharedPropagation.h installs it; none: the propagation is serial, and every
+   * patch is this rank's). Each call is collective: every rank makes it at the same point.
+   */
+  class BatchHook
+  {
+  public:
+    virtual ~BatchHook() = default;
+    /// Run's scan before every batch: this rank's batch of its own patches (LocalBatch), its
+    /// largest power and unshot energy, whether it stops and the last batch's counts (none
+    /// before the first batch) joined into the batch of all the ranks' (SelectBatch), the
+    /// largest power and the total unshot energy, the counts summed into `records`; false when
+    /// some rank stops.
+    virtual bool JoinScan(std::vector<Candidate>& batch,
+      double& largest,
+      double& unshot,
+      std::size_t size,
+      bool stop,
+      std::vector<ShotRecord>* records) = 0;
+    /// ShootBatch's non-diffuse shots, each computed by its shooter's owner into `data[m]` (m
+    /// the member), given to every rank as far as its receivers read them. `ok`: this rank's
+    /// succeeded.
+    virtual void ShareDirectionalShots(const std::vector<Candidate>& batch,
+      const std::vector<bool>& directional,
+      std::vector<DirectionalShotData>& data,
+      bool ok) = 0;
+    /// SetFrames changed what the receivers without a region h_ji read (EncodeFallbacks).
+    virtual void FallbacksChanged() = 0;
+  };
+  friend class SharedPropagation;
+  bool Shared() const { return this->Hook != nullptr; }
   /// ColumnAlbedoMeasure: a_e Omega_e of every entry of a non-diffuse row.
   void ComputeAlbedoMeasures();
   /// Exitant radiance of non-diffuse patch j (from its unshot dE, which it takes) averaged over
@@ -514,12 +501,10 @@ private:
   ReflectanceWeights::Scratch ReflectScratch;
   DirectionalMethod Method = DirectionalMethod::Automatic;
   std::vector<HemisphereFrame> Frames;
-  /// Under MPI (SetRankShare): the ranks, which say this rank's receivers (RankShare::Owns).
+  /// The ranks, which say this rank's receivers (RankShare::Owns; every patch without a
+  /// share), and the hook of a shared propagation (none: serial).
   RankShare Share;
-  /// ExchangeShotNeeds' unions, by row, and whether they are up to date.
-  std::vector<std::vector<uint32_t>> SentPositions;
-  std::vector<std::vector<uint32_t>> SentCells;
-  bool ShotNeedsKnown = false;
+  std::unique_ptr<BatchHook> Hook;
 };
 
 } // namespace sphcover

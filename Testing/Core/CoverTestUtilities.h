@@ -130,7 +130,8 @@ struct PaneScene
     {
       throw std::runtime_error("cover not built");
     }
-    this->Materials = sphcover::LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
+    this->Materials =
+      sphcover::LightPropagation::MaterialsOfPatches(this->Environment, this->Patches);
   }
 };
 

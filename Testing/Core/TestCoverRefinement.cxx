@@ -8,6 +8,7 @@
 
 #include "CoverTestUtilities.h"
 #include "cover/SphericalCover.h"
+#include "distributed/InProcessRanks.h"
 #include "math/Constants.h"
 #include "subdivision/IntervalSubdivision.h"
 

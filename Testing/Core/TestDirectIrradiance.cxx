@@ -13,6 +13,7 @@
 #include "render/RadianceRenderer.h"
 
 #include "CoverTestUtilities.h"
+#include "distributed/InProcessRanks.h"
 
 #include <gtest/gtest.h>
 
@@ -241,8 +242,7 @@ TEST(DirectIrradiance, SharedAmongRanksEqualsSerial)
   options.NodesPerSide = 5;
   options.BounceRaysPerSide = 8;
   DirectIrradianceNodes serial;
-  ASSERT_TRUE(
-    ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, options, serial));
+  ASSERT_TRUE(ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, options, serial));
   ASSERT_FALSE(serial.Empty());
   for (const int ranks : { 2, 3, 5 })
   {
@@ -291,7 +291,8 @@ TEST(DirectIrradiance, ARankThatAbortsStopsEveryRank)
       DirectIrradianceNodes nodes;
       try
       {
-        const bool completed = ComputeDirectIrradiance(patches,
+        const bool completed = ComputeDirectIrradiance(
+          patches,
           caster,
           lamps,
           emission,

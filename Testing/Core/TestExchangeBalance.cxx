@@ -8,6 +8,8 @@
 
 #include "CoverTestUtilities.h"
 #include "cover/SphericalCover.h"
+#include "distributed/InProcessRanks.h"
+#include "distributed/RowShares.h"
 #include "math/RankShare.h"
 #include "propagation/LightPropagation.h"
 
@@ -223,8 +225,8 @@ TEST(ExchangeBalance, SharedAmongRanksEqualsWhole)
         try
         {
           const std::vector<std::size_t> mine = share.MyItems(setup.Cover.PatchCount());
-          const ExchangeBalance shared(setup.Cover.RowsOf(mine), {}, nullptr, share);
-          const std::vector<std::size_t> kept = setup.Cover.KeptEntries(mine);
+          const ExchangeBalance shared(RowShares::RowsOf(setup.Cover, mine), {}, nullptr, share);
+          const std::vector<std::size_t> kept = RowShares::KeptEntries(setup.Cover, mine);
           if (shared.EntryFactors().size() != kept.size())
           {
             failure = "factors of " + std::to_string(shared.EntryFactors().size()) + " entries";
@@ -273,7 +275,8 @@ TEST(ExchangeBalance, SharedStopsAndRefusalsReachEveryRank)
       int calls = 0;
       const ProgressCallback stopAtThree = [&calls, rank](double)
       { return !(rank == 1 && ++calls == 3); };
-      const ExchangeBalance shared(setup.Cover.RowsOf(share.MyItems(n)), {}, stopAtThree, share);
+      const ExchangeBalance shared(
+        RowShares::RowsOf(setup.Cover, share.MyItems(n)), {}, stopAtThree, share);
       aborted[static_cast<std::size_t>(rank)] = shared.Aborted() && shared.EntryFactors().empty()
         ? static_cast<int>(shared.Iterations())
         : -1;
@@ -288,8 +291,9 @@ TEST(ExchangeBalance, SharedStopsAndRefusalsReachEveryRank)
       try
       {
         // Rank 0 holds every row, rank 1 its own.
-        const SphericalCover rows = rank == 0 ? setup.Cover.RowsOf(RankShare::ItemsOf(0, 1, n))
-                                              : setup.Cover.RowsOf(share.MyItems(n));
+        const SphericalCover rows = rank == 0
+          ? RowShares::RowsOf(setup.Cover, RankShare::ItemsOf(0, 1, n))
+          : RowShares::RowsOf(setup.Cover, share.MyItems(n));
         const ExchangeBalance shared(rows, {}, nullptr, share);
       }
       catch (const RankShare::PeerFailure& e)

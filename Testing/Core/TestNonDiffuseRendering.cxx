@@ -6,6 +6,7 @@
 
 #include "CoverTestUtilities.h"
 #include "cover/SphericalCover.h"
+#include "distributed/RowShares.h"
 #include "math/RankShare.h"
 #include "propagation/LightPropagation.h"
 
@@ -298,8 +299,8 @@ TEST(NonDiffuseRendering, DirectionalPartFromSharesOfTheCoverGivesTheWholeCovers
   {
     const std::vector<size_t> receivers = RankShare::ItemsOf(rank, ranks, cover.PatchCount());
     DirectionalIllumination share;
-    share.Cover = cover.RowsOf(receivers);
-    for (const size_t e : cover.KeptEntries(receivers))
+    share.Cover = RowShares::RowsOf(cover, receivers);
+    for (const size_t e : RowShares::KeptEntries(cover, receivers))
     {
       share.IncidentRadiance.push_back(solution.Directional.IncidentRadiance[e]);
     }

@@ -2,6 +2,7 @@
 // The joins that put the ranks' own items back in item order (math/RankShare.h): rank r holds
 // items r, r + K, ... (MyItems); ItemsFromRanks, JoinOwnedItems and CombineOverRanks must give
 // every rank the serial values whatever K, and refuse a rank's bytes that are not its items'.
+#include "distributed/InProcessRanks.h"
 #include "math/ByteBuffer.h"
 #include "math/RankShare.h"
 

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The cover built in row blocks (SphericalCover::BuildRowBlock, the rows of a range of
-// characteristic points, paper §4.3: one R-buffer per point), sent as bytes (RowBlockBytes.h)
-// and joined (ImportRowBlocks) is the cover Build gives, bit for bit, however the receivers are
-// split: what the distributed filter relies on.
+// The cover built in shares of rows (RowShares::BuildRowsOf, the rows of some characteristic
+// points, paper §4.3: one R-buffer per point), sent as bytes (RowBlockBytes.h) and joined
+// (RowShares::JoinRows) is the cover Build gives, bit for bit, however the receivers are split
+// (ranges of about equal cost, or dealt round the ranks): what the distributed filters rely on.
 #include "CoverTestUtilities.h"
 #include "cover/RayCastFill.h"
-#include "cover/RowBlockBytes.h"
 #include "cover/SphericalCover.h"
+#include "distributed/RowBlockBytes.h"
+#include "distributed/RowShares.h"
 #include "geometry/RayCaster.h"
 #include "math/RankShare.h"
 
@@ -54,28 +55,34 @@ void ExpectSameCover(const SphericalCover& joined, const SphericalCover& serial)
   EXPECT_EQ(joined.Options().MeasuredSurfaces, serial.Options().MeasuredSurfaces);
 }
 
-/// The cover of `patches` built in `parts` blocks split by cost, each through its bytes.
+/// The cover of `patches` built in `parts` shares, one per range of receivers split by cost,
+/// each through its bytes.
 SphericalCover BuildInBlocks(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
   std::size_t parts,
   const std::shared_ptr<const RayCaster>& rays = nullptr)
 {
   const std::vector<std::size_t> bounds =
-    SphericalCover::PartitionRows(SphericalCover::EstimateRowCosts(patches, options), parts);
+    RowShares::PartitionRows(RowShares::EstimateRowCosts(patches, options), parts);
   std::vector<SphericalCover::Arrays> blocks(parts);
   CullingStatistics culling;
   for (std::size_t k = 0; k < parts; ++k)
   {
-    SphericalCover::Arrays block;
+    SphericalCover block;
+    EXPECT_TRUE(RowShares::BuildRowsOf(block,
+      patches,
+      options,
+      RowShares::ReceiversOfRanges(bounds, { k }),
+      ThreadedFor(2),
+      nullptr,
+      rays));
+    const std::vector<char> bytes = PackRowBlock(block.ExportArrays(), block.Culling());
     CullingStatistics counts;
-    EXPECT_TRUE(SphericalCover::BuildRowBlock(
-      patches, options, bounds[k], bounds[k + 1], block, counts, ThreadedFor(2), nullptr, rays));
-    const std::vector<char> bytes = PackRowBlock(block, counts);
     EXPECT_EQ(UnpackRowBlock(bytes.data(), bytes.size(), blocks[k], counts), "");
     culling += counts;
   }
   SphericalCover cover;
-  EXPECT_EQ(cover.ImportRowBlocks(std::move(blocks), options, culling), "");
+  EXPECT_EQ(RowShares::JoinRows(cover, std::move(blocks), options, culling), "");
   return cover;
 }
 
@@ -187,9 +194,9 @@ TEST(RowBlocks, ASharedCasterGivesTheSameRows)
   EXPECT_TRUE(refused.Empty());
 }
 
-// A process's several blocks in one buffer (AppendRowBlock, UnpackRowBlocks): the filter's
-// ranks each build every K-th of K x 32 chunks of rows; the chunks, read back from the ranks'
-// buffers and put in receiver order, join to the serial cover. Damaged buffers are refused.
+// The cover filter's ranks each build every K-th of K x 32 chunks of rows (ranges of about
+// equal cost) into one share (RowShares::ReceiversOfRanges); the ranks' shares, read back from
+// their bytes, join to the serial cover. Damaged bytes are refused.
 TEST(RowBlocks, ChunksDealtRoundTheRanksJoinToSerial)
 {
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
@@ -199,53 +206,48 @@ TEST(RowBlocks, ChunksDealtRoundTheRanksJoinToSerial)
   options.PhiBins = 32;
   SphericalCover serial;
   ASSERT_TRUE(serial.Build(patches, options, ThreadedFor(2)));
-  const std::size_t ranks = 3;
+  const int ranks = 3;
   const std::size_t chunks = 32 * ranks;
   const std::vector<std::size_t> bounds =
-    SphericalCover::PartitionRows(SphericalCover::EstimateRowCosts(patches, options), chunks);
+    RowShares::PartitionRows(RowShares::EstimateRowCosts(patches, options), chunks);
   std::vector<std::vector<char>> buffers(ranks);
-  for (std::size_t c = 0; c < chunks; ++c)
+  std::size_t receivers = 0;
+  for (int r = 0; r < ranks; ++r)
   {
-    SphericalCover::Arrays block;
-    CullingStatistics counts;
-    ASSERT_TRUE(
-      SphericalCover::BuildRowBlock(patches, options, bounds[c], bounds[c + 1], block, counts));
-    AppendRowBlock(buffers[c % ranks], block, counts);
+    const std::vector<std::size_t> mine =
+      RowShares::ReceiversOfRanges(bounds, RankShare::ItemsOf(r, ranks, chunks));
+    receivers += mine.size();
+    SphericalCover share;
+    ASSERT_TRUE(RowShares::BuildRowsOf(share, patches, options, mine));
+    buffers[static_cast<std::size_t>(r)] = PackRowBlock(share.ExportArrays(), share.Culling());
   }
-  std::vector<SphericalCover::Arrays> blocks(chunks);
+  EXPECT_EQ(receivers, patches.size());
+  std::vector<SphericalCover::Arrays> shares(ranks);
   CullingStatistics culling;
-  for (std::size_t r = 0; r < ranks; ++r)
+  for (std::size_t r = 0; r < buffers.size(); ++r)
   {
-    std::vector<SphericalCover::Arrays> read;
     CullingStatistics counts;
-    ASSERT_EQ(UnpackRowBlocks(buffers[r].data(), buffers[r].size(), read, counts), "");
-    ASSERT_EQ(read.size(), chunks / ranks);
-    for (std::size_t k = 0; k < read.size(); ++k)
-    {
-      blocks[k * ranks + r] = std::move(read[k]);
-    }
+    ASSERT_EQ(UnpackRowBlock(buffers[r].data(), buffers[r].size(), shares[r], counts), "");
     culling += counts;
   }
   SphericalCover joined;
-  ASSERT_EQ(joined.ImportRowBlocks(std::move(blocks), options, culling), "");
+  ASSERT_EQ(RowShares::JoinRows(joined, std::move(shares), options, culling), "");
   ExpectSameCover(joined, serial);
 
-  std::vector<SphericalCover::Arrays> read;
+  SphericalCover::Arrays read;
   CullingStatistics counts;
   std::vector<char> bytes = buffers[0];
-  EXPECT_EQ(UnpackRowBlocks(bytes.data(), 0, read, counts), "");
-  EXPECT_TRUE(read.empty());
-  EXPECT_NE(UnpackRowBlocks(bytes.data(), bytes.size() - 1, read, counts), "");
-  EXPECT_TRUE(read.empty());
-  EXPECT_NE(UnpackRowBlocks(bytes.data(), 4, read, counts), "");
-  bytes[8] ^= 1; // the first block's tag
-  EXPECT_NE(UnpackRowBlocks(bytes.data(), bytes.size(), read, counts), "");
-  EXPECT_TRUE(read.empty());
-  EXPECT_EQ(counts.Candidates, 0u);
+  EXPECT_NE(UnpackRowBlock(bytes.data(), 0, read, counts), "");
+  EXPECT_NE(UnpackRowBlock(bytes.data(), bytes.size() - 1, read, counts), "");
+  EXPECT_TRUE(read.Entries.empty());
+  EXPECT_NE(UnpackRowBlock(bytes.data(), 4, read, counts), "");
+  bytes[0] ^= 1; // the tag
+  EXPECT_NE(UnpackRowBlock(bytes.data(), bytes.size(), read, counts), "");
+  EXPECT_TRUE(read.Entries.empty());
 }
 
-// The lamp measured on the lamp (ray fill): blocks without a measured row get their cells'
-// measures as Build's rows do, whichever block holds the first measured row.
+// The lamp measured on the lamp (ray fill): shares without a measured row get their cells'
+// measures as Build's rows do, whichever share holds the first measured row.
 TEST(RowBlocks, MeasuredLampJoinedEqualsSerial)
 {
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
@@ -306,7 +308,8 @@ void ExpectSharesJoinToSerial(const std::vector<Patch>& patches,
   bool measured = false;
   for (std::size_t s = 0; s < shares.size(); ++s)
   {
-    ASSERT_TRUE(shares[s].BuildRowsOf(patches, options, receiverSets[s], ThreadedFor(2)));
+    ASSERT_TRUE(
+      RowShares::BuildRowsOf(shares[s], patches, options, receiverSets[s], ThreadedFor(2)));
     measured = measured || shares[s].HasMeasures();
   }
   std::vector<SphericalCover::Arrays> sent;
@@ -316,9 +319,9 @@ void ExpectSharesJoinToSerial(const std::vector<Patch>& patches,
     SCOPED_TRACE(testing::Message() << "share " << s);
     if (measured)
     {
-      shares[s].KeepCellMeasures();
+      RowShares::KeepCellMeasures(shares[s]);
     }
-    ExpectSameRows(shares[s], serial.RowsOf(receiverSets[s]));
+    ExpectSameRows(shares[s], RowShares::RowsOf(serial, receiverSets[s]));
     const std::vector<char> bytes = PackRowBlock(shares[s].ExportArrays(), shares[s].Culling());
     SphericalCover::Arrays read;
     CullingStatistics counts;
@@ -327,7 +330,7 @@ void ExpectSharesJoinToSerial(const std::vector<Patch>& patches,
     culling += counts;
   }
   SphericalCover joined;
-  ASSERT_EQ(joined.JoinRows(std::move(sent), options, culling), "");
+  ASSERT_EQ(RowShares::JoinRows(joined, std::move(sent), options, culling), "");
   ExpectSameCover(joined, serial);
 
   // The form factors summed from the shares' rows (each receiver's sums from the share that
@@ -405,7 +408,7 @@ TEST(RowBlocks, SharesBuiltApartJoinToSerial)
     lampAndRest[patches[i].SurfaceIndex == lamp ? 0 : 1].push_back(i);
   }
   SphericalCover lampRows;
-  ASSERT_TRUE(lampRows.BuildRowsOf(patches, measuredLamp, lampAndRest[0]));
+  ASSERT_TRUE(RowShares::BuildRowsOf(lampRows, patches, measuredLamp, lampAndRest[0]));
   EXPECT_FALSE(lampRows.HasMeasures()); // the path KeepCellMeasures is for
   ExpectSharesJoinToSerial(patches, measuredLamp, lampAndRest, serial);
 
@@ -431,38 +434,41 @@ TEST(RowBlocks, BadSharesRefused)
   options.PhiBins = 32;
   SphericalCover first;
   SphericalCover second;
-  ASSERT_TRUE(first.BuildRowsOf(patches, options, { 0, 1, 2 }));
-  ASSERT_TRUE(second.BuildRowsOf(patches, options, { 2, 3 }));
+  ASSERT_TRUE(RowShares::BuildRowsOf(first, patches, options, { 0, 1, 2 }));
+  ASSERT_TRUE(RowShares::BuildRowsOf(second, patches, options, { 2, 3 }));
   SphericalCover joined;
   const std::string twice =
-    joined.JoinRows({ first.ExportArrays(), second.ExportArrays() }, options, {});
+    RowShares::JoinRows(joined, { first.ExportArrays(), second.ExportArrays() }, options, {});
   EXPECT_NE(twice.find("receiver 2's row is in share 0 and in share 1"), std::string::npos)
     << twice;
   EXPECT_TRUE(joined.Empty());
   SphericalCoverOptions other = options;
   other.PhiBins = 64;
-  EXPECT_NE(joined.JoinRows({ first.ExportArrays() }, other, {}), "");
+  EXPECT_NE(RowShares::JoinRows(joined, { first.ExportArrays() }, other, {}), "");
   std::vector<Patch> fewer(patches.begin(), patches.end() - 1);
   SphericalCover short_;
-  ASSERT_TRUE(short_.BuildRowsOf(fewer, options, { 3 }));
-  EXPECT_NE(joined.JoinRows({ first.ExportArrays(), short_.ExportArrays() }, options, {}), "");
+  ASSERT_TRUE(RowShares::BuildRowsOf(short_, fewer, options, { 3 }));
+  EXPECT_NE(
+    RowShares::JoinRows(joined, { first.ExportArrays(), short_.ExportArrays() }, options, {}), "");
   SphericalCover::Arrays damaged = first.ExportArrays();
   damaged.RowOffsets.back() += 1; // past the entries
-  EXPECT_NE(joined.JoinRows({ damaged }, options, {}), "");
-  EXPECT_NE(joined.JoinRows({}, options, {}), "");
+  EXPECT_NE(RowShares::JoinRows(joined, { damaged }, options, {}), "");
+  EXPECT_NE(RowShares::JoinRows(joined, {}, options, {}), "");
   EXPECT_TRUE(joined.Empty());
   SphericalCover unordered;
-  EXPECT_THROW(unordered.BuildRowsOf(patches, options, { 2, 1 }), std::invalid_argument);
-  EXPECT_THROW(unordered.BuildRowsOf(patches, options, { patches.size() }), std::invalid_argument);
+  EXPECT_THROW(
+    RowShares::BuildRowsOf(unordered, patches, options, { 2, 1 }), std::invalid_argument);
+  EXPECT_THROW(
+    RowShares::BuildRowsOf(unordered, patches, options, { patches.size() }), std::invalid_argument);
 }
 
 // The split follows the cost, not the count; every receiver is in exactly one range.
 TEST(RowBlocks, PartitionByCost)
 {
   const std::vector<double> costs = { 10, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1 };
-  const std::vector<std::size_t> two = SphericalCover::PartitionRows(costs, 2);
+  const std::vector<std::size_t> two = RowShares::PartitionRows(costs, 2);
   EXPECT_EQ(two, (std::vector<std::size_t>{ 0, 1, 11 }));
-  const std::vector<std::size_t> many = SphericalCover::PartitionRows({ 1, 1 }, 4);
+  const std::vector<std::size_t> many = RowShares::PartitionRows({ 1, 1 }, 4);
   ASSERT_EQ(many.size(), 5u);
   EXPECT_EQ(many.front(), 0u);
   EXPECT_EQ(many.back(), 2u);
@@ -470,14 +476,14 @@ TEST(RowBlocks, PartitionByCost)
   {
     EXPECT_LE(many[k], many[k + 1]);
   }
-  EXPECT_THROW(SphericalCover::PartitionRows(costs, 0), std::invalid_argument);
+  EXPECT_THROW(RowShares::PartitionRows(costs, 0), std::invalid_argument);
 
   // A point in a corner sees less of the room than one in the middle of a wall.
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
   const std::vector<Patch> patches = CornellPatches(scene);
   SphericalCoverOptions projection;
   projection.Fill = RBufferFill::Projection;
-  const std::vector<double> estimate = SphericalCover::EstimateRowCosts(patches, projection);
+  const std::vector<double> estimate = RowShares::EstimateRowCosts(patches, projection);
   ASSERT_EQ(estimate.size(), patches.size());
   const auto [low, high] = std::minmax_element(estimate.begin(), estimate.end());
   EXPECT_GE(*low, 1.0);
@@ -486,11 +492,11 @@ TEST(RowBlocks, PartitionByCost)
   // The ray fill's rows cost their rays besides their candidates: a fixed part of 2N each.
   SphericalCoverOptions rays;
   rays.Fill = RBufferFill::RayCasting;
-  const std::vector<double> rayEstimate = SphericalCover::EstimateRowCosts(patches, rays);
+  const std::vector<double> rayEstimate = RowShares::EstimateRowCosts(patches, rays);
   EXPECT_EQ(rayEstimate[0] - estimate[0], 2.0 * static_cast<double>(patches.size()) - 1.0);
 }
 
-// Damaged bytes and inconsistent blocks are refused with a reason, the cover left empty.
+// Damaged bytes and a share of another grid are refused with a reason, the cover left empty.
 TEST(RowBlocks, BadBlocksRefused)
 {
   const Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
@@ -499,9 +505,10 @@ TEST(RowBlocks, BadBlocksRefused)
   options.ThetaBins = 8;
   options.PhiBins = 32;
   options.Fill = RBufferFill::RayCasting;
-  SphericalCover::Arrays block;
-  CullingStatistics culling;
-  ASSERT_TRUE(SphericalCover::BuildRowBlock(patches, options, 0, 4, block, culling));
+  SphericalCover rows;
+  ASSERT_TRUE(RowShares::BuildRowsOf(rows, patches, options, { 0, 1, 2, 3 }));
+  CullingStatistics culling = rows.Culling();
+  const SphericalCover::Arrays block = rows.ExportArrays();
   std::vector<char> bytes = PackRowBlock(block, culling);
   SphericalCover::Arrays read;
   EXPECT_NE(UnpackRowBlock(bytes.data(), bytes.size() - 1, read, culling), "");
@@ -511,14 +518,21 @@ TEST(RowBlocks, BadBlocksRefused)
   bytes[0] ^= 1;
   EXPECT_NE(UnpackRowBlock(bytes.data(), bytes.size() - 1, read, culling), "");
 
-  // The rows of four receivers only: their sources name patches the joined cover lacks.
   SphericalCover cover;
-  EXPECT_NE(cover.ImportRowBlocks({ block }, options, culling), "");
-  EXPECT_TRUE(cover.Empty());
   SphericalCoverOptions other = options;
   other.PhiBins = 64;
-  EXPECT_NE(cover.ImportRowBlocks({ block }, other, culling), "");
-  EXPECT_NE(cover.ImportRowBlocks({}, options, culling), "");
-  EXPECT_THROW(
-    SphericalCover::BuildRowBlock(patches, options, 5, 4, block, culling), std::invalid_argument);
+  EXPECT_NE(RowShares::JoinRows(cover, { block }, other, culling), "");
+  EXPECT_TRUE(cover.Empty());
+  EXPECT_NE(RowShares::JoinRows(cover, {}, options, culling), "");
+  // The rows of four receivers alone are a cover whose other rows are empty.
+  EXPECT_EQ(RowShares::JoinRows(cover, { block }, options, culling), "");
+  EXPECT_EQ(cover.PatchCount(), patches.size());
+  EXPECT_EQ(cover.EntryBegin(4), cover.EntryCount());
+
+  // Ranges of receivers: those of the ranges given, in order.
+  const std::vector<std::size_t> bounds = { 0, 2, 2, 5 };
+  EXPECT_EQ(
+    RowShares::ReceiversOfRanges(bounds, { 0, 2 }), (std::vector<std::size_t>{ 0, 1, 2, 3, 4 }));
+  EXPECT_TRUE(RowShares::ReceiversOfRanges(bounds, { 1 }).empty());
+  EXPECT_THROW(RowShares::ReceiversOfRanges(bounds, { 3 }), std::out_of_range);
 }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// The propagation shared among ranks (LightPropagation::SetRankShare): each rank holds the rows
-// of its own receivers, dealt round the ranks (SphericalCover::RowsOf), the ranks agree on every
+// The propagation shared among ranks (SharePropagation): each rank holds the rows
+// of its own receivers, dealt round the ranks (RowShares::RowsOf), the ranks agree on every
 // shooter and its owner sends what it shoots. Every owned patch's results must be the serial ones
 // bit for bit, for Lambertian, mirror, phong and tabulated shooters (strip-pair and grid shots),
 // whatever the number of ranks (run here as threads, InProcessRanks).
@@ -8,6 +8,9 @@
 #include "MaterialTestUtilities.h"
 #include "cover/BrightEmitters.h"
 #include "cover/HemisphereGrid.h"
+#include "distributed/InProcessRanks.h"
+#include "distributed/RowShares.h"
+#include "distributed/SharedPropagation.h"
 #include "math/RankShare.h"
 #include "propagation/LightPropagation.h"
 #include "scene/SceneLoader.h"
@@ -102,11 +105,11 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
       try
       {
         result.Receivers = share.MyItems(cover.PatchCount());
-        const SphericalCover rows = cover.RowsOf(result.Receivers);
+        const SphericalCover rows = RowShares::RowsOf(cover, result.Receivers);
         LightPropagation shared(rows, materials);
         shared.SetFrames(frames);
         shared.SetDirectionalMethod(method);
-        shared.SetRankShare(share);
+        SharePropagation(shared, share);
         result.Converged = shared.Run(settings);
         result.History = shared.History();
         for (const std::size_t i : result.Receivers)
@@ -156,7 +159,7 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
     }
     // The rows' incident radiances are the serial ones, entry e of the rank's rows being entry
     // KeptEntries(Receivers)[e] of the cover.
-    const std::vector<std::size_t> kept = cover.KeptEntries(result.Receivers);
+    const std::vector<std::size_t> kept = RowShares::KeptEntries(cover, result.Receivers);
     ASSERT_EQ(result.Incident.size(), kept.size());
     const std::vector<glm::dvec3>& serialIncident = serial.IncidentRadiances();
     for (std::size_t e = 0; e < result.Incident.size(); ++e)
@@ -165,7 +168,8 @@ void ExpectSharedEqualsSerial(const SphericalCover& cover,
     }
     for (int b = 0; b < 3; ++b)
     {
-      EXPECT_NEAR(result.Energy.Emitted[b], serialEnergy.Emitted[b], 1e-12 * serialEnergy.Emitted[b]);
+      EXPECT_NEAR(
+        result.Energy.Emitted[b], serialEnergy.Emitted[b], 1e-12 * serialEnergy.Emitted[b]);
       EXPECT_NEAR(
         result.Energy.Absorbed[b], serialEnergy.Absorbed[b], 1e-12 * serialEnergy.Emitted[b]);
       EXPECT_NEAR(result.Energy.Unshot[b], serialEnergy.Unshot[b], 1e-12 * serialEnergy.Emitted[b]);
@@ -204,11 +208,11 @@ std::vector<RankEnd> RunOnRanks(const SphericalCover& cover,
       try
       {
         const RankShare rankShare = share(world, rank);
-        const SphericalCover rows = cover.RowsOf(rankShare.MyItems(cover.PatchCount()));
+        const SphericalCover rows = RowShares::RowsOf(cover, rankShare.MyItems(cover.PatchCount()));
         LightPropagation shared(rows, materials);
         shared.SetFrames(frames);
         shared.SetDirectionalMethod(DirectionalMethod::StripPairs);
-        shared.SetRankShare(rankShare);
+        SharePropagation(shared, rankShare);
         end.Converged = shared.Run(settings, progress(rank));
         end.Shots = shared.History().size();
       }
@@ -296,7 +300,7 @@ TEST(SharedPropagation, MixedMaterialsEqualSerial)
 }
 
 // Panes (paper §5.4): the transposed entries another rank's receivers match are those seen
-// through the same panes (the keys exchanged by SetRankShare carry layer and filter). Here, of
+// through the same panes (the keys exchanged by SharePropagation carry layer and filter). Here, of
 // the scenes above, other ranks' receivers also read fallback cells of a shot (receivers
 // without h_ji): by both methods, the owner's radiance toward those cells.
 TEST(SharedPropagation, PanesEqualSerial)
@@ -321,14 +325,14 @@ TEST(SharedPropagation, RefusesAnotherRanksRows)
   const std::size_t n = setup.Cover.PatchCount();
   InProcessRanks world(2);
   LightPropagation whole(setup.Cover, setup.Materials);
-  EXPECT_THROW(whole.SetRankShare(world.Share(0)), std::invalid_argument);
+  EXPECT_THROW(SharePropagation(whole, world.Share(0)), std::invalid_argument);
   // The propagation keeps a reference to its cover: the rows outlive it.
-  const SphericalCover rank1Rows = setup.Cover.RowsOf(RankShare::ItemsOf(1, 2, n));
+  const SphericalCover rank1Rows = RowShares::RowsOf(setup.Cover, RankShare::ItemsOf(1, 2, n));
   LightPropagation others(rank1Rows, setup.Materials);
-  EXPECT_THROW(others.SetRankShare(world.Share(0)), std::invalid_argument);
-  const SphericalCover noRows = setup.Cover.RowsOf({});
+  EXPECT_THROW(SharePropagation(others, world.Share(0)), std::invalid_argument);
+  const SphericalCover noRows = RowShares::RowsOf(setup.Cover, {});
   LightPropagation empty(noRows, setup.Materials);
-  EXPECT_NO_THROW(empty.SetRankShare(RankShare()));
+  EXPECT_NO_THROW(SharePropagation(empty, RankShare()));
 }
 
 // RowsOf keeps the given rows whole and in order (strips, measures, the entries' strips
@@ -338,8 +342,8 @@ TEST(SharedPropagation, RowsOfKeepsTheGivenRows)
   const CoveredScene setup("cornell_box.scene", 2);
   const SphericalCover& cover = setup.Cover;
   const std::vector<std::size_t> receivers = RankShare::ItemsOf(1, 3, cover.PatchCount());
-  const SphericalCover rows = cover.RowsOf(receivers);
-  const std::vector<std::size_t> kept = cover.KeptEntries(receivers);
+  const SphericalCover rows = RowShares::RowsOf(cover, receivers);
+  const std::vector<std::size_t> kept = RowShares::KeptEntries(cover, receivers);
   ASSERT_EQ(rows.PatchCount(), cover.PatchCount());
   ASSERT_EQ(rows.EntryCount(), kept.size());
   std::size_t next = 0;
@@ -375,8 +379,8 @@ TEST(SharedPropagation, RowsOfKeepsTheGivenRows)
       }
     }
   }
-  EXPECT_THROW(cover.RowsOf({ 2, 1 }), std::invalid_argument);
-  EXPECT_THROW(cover.RowsOf({ cover.PatchCount() }), std::invalid_argument);
+  EXPECT_THROW(RowShares::RowsOf(cover, { 2, 1 }), std::invalid_argument);
+  EXPECT_THROW(RowShares::RowsOf(cover, { cover.PatchCount() }), std::invalid_argument);
 }
 
 // A rank whose progress asks to stop (ParaView's abort on one rank) stops every rank after the

@@ -14,6 +14,7 @@
 #include "vtkSphericalCoverArrays.h"
 
 #include "cover/SphericalCover.h"
+#include "distributed/RowShares.h"
 #include "math/RankShare.h"
 
 #include <vtkDataArray.h>
@@ -68,12 +69,12 @@ vtkSmartPointer<vtkPolyData> PieceOf(vtkPolyData* whole,
       fd->RemoveArray(a);
     }
   }
-  vtkSphericalCoverArrays::Store(cover.RowsOf(receivers), piece);
+  vtkSphericalCoverArrays::Store(sphcover::RowShares::RowsOf(cover, receivers), piece);
   vtkDataArray* incident = whole->GetFieldData()->GetArray("IncidentRadiance");
   vtkNew<vtkDoubleArray> own;
   own->SetName("IncidentRadiance");
   own->SetNumberOfComponents(3);
-  for (const std::size_t e : cover.KeptEntries(receivers))
+  for (const std::size_t e : sphcover::RowShares::KeptEntries(cover, receivers))
   {
     own->InsertNextTuple(incident->GetTuple(static_cast<vtkIdType>(e)));
   }

@@ -19,8 +19,10 @@ import re
 import sys
 import tempfile
 
+# distributed/ comes last: the method's stages run serially, and what shares their work among
+# processes (ranks) builds on all of them; none of them includes it.
 STAGES = ["math", "geometry", "scene", "subdivision", "cover", "reflectance", "propagation",
-          "render"]
+          "render", "distributed"]
 # Which of the VTK modules' folders each may include headers of.
 # Parallel/ stands above Filters/ (its classes are the serial filters plus ranks); Views/
 # (the plug-in's render-view classes) above Filters/; Apps/ (the command line) above them all.
@@ -104,6 +106,8 @@ def self_test():
         "Core/scene/S.h": '#include "cover/C.h"\n',          # later stage
         "Core/cover/C.h": '#include "M.h"\n#include <vtkObject.h>\n',  # not rooted; VTK
         "Core/cover/D.h": '#include "cover/Missing.h"\n',    # no such file
+        "Core/distributed/P.h": '#include "render/R.h"\n',   # allowed: the last stage
+        "Core/render/R.h": '#include "distributed/P.h"\n',   # a stage includes distributed/
         "Common/vtkBridge.h": '#include "vtkReader.h"\n',     # Common -> Readers
         "Readers/vtkReader.h": '#include "vtkBridge.h"\n',    # allowed
         "Filters/vtkFilter.cxx": '#include "vtkReader.h"\n',  # Filters -> Readers
@@ -118,8 +122,8 @@ def self_test():
                 out.write(text)
         found = check(root)
     expected = ["Core/scene/S.h:1", "Core/cover/C.h:1", "Core/cover/C.h:2", "Core/cover/D.h:1",
-                "Common/vtkBridge.h:1", "Filters/vtkFilter.cxx:1", "Filters/vtkFilter2.cxx:1",
-                "Views/vtkView.cxx:1"]
+                "Core/render/R.h:1", "Common/vtkBridge.h:1", "Filters/vtkFilter.cxx:1",
+                "Filters/vtkFilter2.cxx:1", "Views/vtkView.cxx:1"]
     missing = [e for e in expected if not any(p.startswith(e + ":") for p in found)]
     if missing or len(found) != len(expected):
         print("self-test failed: expected violations at", expected, "found", found)

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: BSD-3-Clause
 /**
  * @file RowBlockBytes.h
- * @brief A row block of the spherical cover (SphericalCover::BuildRowBlock: the rows H_i of a
- * range of characteristic points, paper §3.3 / §4.3) as one byte buffer and back, so that the
- * processes of a distributed build can exchange their rows (vtkSphericalCoverFilter under MPI)
- * without Core knowing how they are sent.
+ * @brief A share of the spherical cover's rows (RowShares.h: the rows H_i of some
+ * characteristic points, paper §3.3 / §4.3) as one byte buffer and back, so that the processes
+ * of a distributed solve can exchange their rows (vtkSphericalCoverFilter and
+ * vtkLightPropagationFilter under MPI) without Core knowing how they are sent.
  *
  * Layout: a tag and a version (uint32 each), the grid and fill (five int32 and the
  * UnoccludedKnown flag), the six culling counts (uint64), then every array of
@@ -31,26 +31,11 @@ std::vector<char> PackRowBlock(const SphericalCover::Arrays& block,
 /**
  * Reads PackRowBlock's bytes into `block` and `culling`. Returns what is wrong ("" on success:
  * a wrong tag or version, or bytes missing or left over); the values themselves are checked when
- * the blocks join (SphericalCover::ImportRowBlocks).
+ * the shares join (RowShares::JoinRows).
  */
 std::string UnpackRowBlock(const char* bytes,
   std::size_t size,
   SphericalCover::Arrays& block,
-  CullingStatistics& culling);
-
-/// Appends the bytes of `block` and its culling counts (PackRowBlock's) to `bytes`, after their
-/// length (uint64): one process's several blocks in one buffer, read by UnpackRowBlocks.
-void AppendRowBlock(std::vector<char>& bytes,
-  const SphericalCover::Arrays& block,
-  const CullingStatistics& culling);
-
-/**
- * Reads AppendRowBlock's blocks, in order, into `blocks`, their culling counts summed into
- * `culling`. Returns what is wrong ("" on success), as UnpackRowBlock, naming the block.
- */
-std::string UnpackRowBlocks(const char* bytes,
-  std::size_t size,
-  std::vector<SphericalCover::Arrays>& blocks,
   CullingStatistics& culling);
 }
 

@@ -1,19 +1,21 @@
 // SPDX-License-Identifier: BSD-3-Clause
-// LightPropagation under MPI (SetRankShare in LightPropagation.h; the class is declared
-// there): the ranks' rows, the once-only exchange of the keys of their non-diffuse rows, the
-// scan joined every batch, and the batch's non-diffuse shots sent by their owners.
-// Communication per batch of B shots: one all-gather of K x (32 + 48 B + 24 B) bytes (the scan,
-// with what a Lambertian shot sends and the last batch's counts), and when the batch has
+// LightPropagation under MPI (SharePropagation in SharedPropagation.h), through its batch hook
+// (LightPropagation::BatchHook): the ranks' rows, the once-only exchange of the keys of their
+// non-diffuse rows, the scan joined every batch, and the batch's non-diffuse shots sent by their
+// owners. Communication per batch of B shots: one all-gather of K x (32 + 48 B + 24 B) bytes (the
+// scan, with what a Lambertian shot sends and the last batch's counts), and when the batch has
 // non-diffuse shooters a second join of their radiance toward what the other ranks' receivers
 // read (the regions of their rows, the cells of their fallbacks: ExchangeShotNeeds)
 // (Documentation/notes/distributed-solve.md).
-#include "propagation/LightPropagation.h"
+#include "distributed/SharedPropagation.h"
 
 #include "cover/SphericalCover.h"
+#include "distributed/RowShares.h"
 #include "math/ByteBuffer.h"
 
 #include <algorithm>
 #include <exception>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -45,19 +47,70 @@ void SortUnique(std::vector<uint32_t>& values)
 
 } // namespace
 
-void LightPropagation::SetRankShare(RankShare share)
+/// The batch hook of a propagation shared among ranks (LightPropagation::BatchHook): what it
+/// adds to each batch, and the shot needs it keeps for them.
+class SharedPropagation final : public LightPropagation::BatchHook
 {
-  const std::size_t n = this->PatchCount();
-  const std::size_t i = this->Cover.FirstForeignRow(share);
+public:
+  explicit SharedPropagation(LightPropagation& propagation)
+    : Propagation(propagation)
+  {
+  }
+  /// SharePropagation's body (SharedPropagation.h).
+  static void Install(LightPropagation& propagation, RankShare share);
+
+  bool JoinScan(std::vector<LightPropagation::Candidate>& batch,
+    double& largest,
+    double& unshot,
+    std::size_t size,
+    bool stop,
+    std::vector<ShotRecord>* records) override;
+  void ShareDirectionalShots(const std::vector<LightPropagation::Candidate>& batch,
+    const std::vector<bool>& directional,
+    std::vector<LightPropagation::DirectionalShotData>& data,
+    bool ok) override;
+  void FallbacksChanged() override { this->ShotNeedsKnown = false; }
+
+private:
+  /**
+   * Which of a non-diffuse shot's values the other ranks read, per non-diffuse row j: the
+   * positions in row j of the entries (j, i) of their receivers i (SentPositions[j]) and the
+   * cells of the directions toward their receivers without h_ji (SentCells[j]), each the sorted
+   * union over the ranks, the same on every rank. Collective; from the first JoinScan of a Run,
+   * once after SharePropagation or SetFrames.
+   */
+  void ExchangeShotNeeds();
+
+  LightPropagation& Propagation;
+  /// ExchangeShotNeeds' unions, by row, and whether they are up to date.
+  std::vector<std::vector<uint32_t>> SentPositions;
+  std::vector<std::vector<uint32_t>> SentCells;
+  bool ShotNeedsKnown = false;
+};
+
+void SharePropagation(LightPropagation& propagation, RankShare share)
+{
+  SharedPropagation::Install(propagation, std::move(share));
+}
+
+void SharedPropagation::Install(LightPropagation& propagation, RankShare share)
+{
+  const std::size_t n = propagation.PatchCount();
+  const std::size_t i = RowShares::FirstForeignRow(propagation.Cover, share);
   if (i < n)
   {
     throw std::invalid_argument("LightPropagation: row " + std::to_string(i) + " is rank " +
       std::to_string(i % static_cast<std::size_t>(share.Ranks())) + "'s receiver's, not rank " +
-      std::to_string(share.Rank()) + "'s, but not empty (SphericalCover::RowsOf)");
+      std::to_string(share.Rank()) + "'s, but not empty (RowShares::RowsOf)");
   }
-  this->Share = std::move(share);
-  this->ShotNeedsKnown = false;
-  if (this->Reflectances.Empty() || !this->Shared())
+  propagation.Share = std::move(share);
+  propagation.Hook.reset();
+  if (!propagation.Share.Distributed())
+  {
+    return;
+  }
+  propagation.Hook = std::make_unique<SharedPropagation>(propagation);
+  if (propagation.Reflectances.Empty())
   {
     return;
   }
@@ -66,32 +119,32 @@ void LightPropagation::SetRankShare(RankShare share)
   // here from the keys of every rank's non-diffuse rows.
   std::vector<char> mine;
   ByteWriter out(mine);
-  for (const std::size_t j : this->Share.MyItems(n))
+  for (const std::size_t j : propagation.Share.MyItems(n))
   {
-    if (this->ModelOfPatch[j] < 0)
+    if (propagation.ModelOfPatch[j] < 0)
     {
       continue;
     }
-    std::vector<EntryKey> keys;
-    for (std::size_t e = this->Cover.EntryBegin(j); e < this->Cover.EntryEnd(j); ++e)
+    std::vector<LightPropagation::EntryKey> keys;
+    for (std::size_t e = propagation.Cover.EntryBegin(j); e < propagation.Cover.EntryEnd(j); ++e)
     {
-      keys.push_back({ this->Cover.EntryAt(e).Source,
-        this->Cover.Layer(e),
-        glm::vec3(this->Cover.Filter(e)) });
+      keys.push_back({ propagation.Cover.EntryAt(e).Source,
+        propagation.Cover.Layer(e),
+        glm::vec3(propagation.Cover.Filter(e)) });
     }
     out.Value(static_cast<uint64_t>(j));
     out.Array(keys);
   }
   std::vector<std::vector<char>> all;
-  if (!this->Share.Join(mine, true, all))
+  if (!propagation.Share.Join(mine, true, all))
   {
     throw RankShare::PeerFailure();
   }
-  std::vector<std::vector<EntryKey>> remoteRows(n);
-  std::vector<EntryKey> ownKeys;
+  std::vector<std::vector<LightPropagation::EntryKey>> remoteRows(n);
+  std::vector<LightPropagation::EntryKey> ownKeys;
   for (std::size_t r = 0; r < all.size(); ++r)
   {
-    const bool own = static_cast<int>(r) == this->Share.Rank();
+    const bool own = static_cast<int>(r) == propagation.Share.Rank();
     ByteReader in(all[r]);
     while (!in.AtEnd())
     {
@@ -101,39 +154,41 @@ void LightPropagation::SetRankShare(RankShare share)
         "row keys");
     }
   }
-  this->MatchTransposedEntries(remoteRows);
-  this->EncodeFallbacks();
+  propagation.MatchTransposedEntries(remoteRows);
+  propagation.EncodeFallbacks();
 }
 
-void LightPropagation::ExchangeShotNeeds()
+void SharedPropagation::ExchangeShotNeeds()
 {
   // Each rank lists, for every non-diffuse row another rank owns, what its receivers in that
   // row's column read of a shot: the positions ColumnBack points at and the cells of its
   // fallbacks (the mean goes with every shot). Every rank gets every list and forms the same
   // unions: the owner packs those values, the others find them in that order.
-  const std::size_t n = this->PatchCount();
+  const std::size_t n = this->Propagation.PatchCount();
   std::vector<char> mine;
   ByteWriter out(mine);
   std::vector<uint32_t> positions;
   std::vector<uint32_t> cells;
   for (std::size_t j = 0; j < n; ++j)
   {
-    if (this->ModelOfPatch[j] < 0 || this->Owns(j))
+    if (this->Propagation.ModelOfPatch[j] < 0 || this->Propagation.Owns(j))
     {
       continue;
     }
     positions.clear();
     cells.clear();
-    for (std::size_t k = this->Cover.ColumnBegin(j); k < this->Cover.ColumnEnd(j); ++k)
+    for (std::size_t k = this->Propagation.Cover.ColumnBegin(j);
+         k < this->Propagation.Cover.ColumnEnd(j);
+         ++k)
     {
-      const uint32_t back = this->ColumnBack[k];
-      if (back < FallbackFlag)
+      const uint32_t back = this->Propagation.ColumnBack[k];
+      if (back < LightPropagation::FallbackFlag)
       {
         positions.push_back(back);
       }
-      else if (back != NoEntry)
+      else if (back != LightPropagation::NoEntry)
       {
-        cells.push_back(back & ~FallbackFlag);
+        cells.push_back(back & ~LightPropagation::FallbackFlag);
       }
     }
     if (positions.empty() && cells.empty())
@@ -147,21 +202,21 @@ void LightPropagation::ExchangeShotNeeds()
     out.Array(cells);
   }
   std::vector<std::vector<char>> all;
-  if (!this->Share.Join(mine, true, all))
+  if (!this->Propagation.Share.Join(mine, true, all))
   {
     throw RankShare::PeerFailure();
   }
   this->SentPositions.assign(n, {});
   this->SentCells.assign(n, {});
-  const uint32_t cellCount = static_cast<uint32_t>(this->Cover.Grid().CellCount());
+  const uint32_t cellCount = static_cast<uint32_t>(this->Propagation.Cover.Grid().CellCount());
   for (const std::vector<char>& rankBytes : all)
   {
     ByteReader in(rankBytes);
     while (!in.AtEnd())
     {
       uint64_t j = 0;
-      Expect(in.Value(j) && j < n && this->ModelOfPatch[j] >= 0 && in.Array(positions) &&
-          in.Array(cells),
+      Expect(in.Value(j) && j < n && this->Propagation.ModelOfPatch[j] >= 0 &&
+          in.Array(positions) && in.Array(cells),
         "shot needs");
       for (const uint32_t cell : cells)
       {
@@ -180,13 +235,14 @@ void LightPropagation::ExchangeShotNeeds()
     SortUnique(this->SentCells[j]);
     // An owner's row must hold every position its receivers elsewhere read. Only the owner
     // can tell, so the ranks join its verdict: none goes on alone.
-    if (this->Owns(j) && !this->SentPositions[j].empty())
+    if (this->Propagation.Owns(j) && !this->SentPositions[j].empty())
     {
-      fits =
-        fits && this->SentPositions[j].back() < this->Cover.EntryEnd(j) - this->Cover.EntryBegin(j);
+      fits = fits &&
+        this->SentPositions[j].back() <
+          this->Propagation.Cover.EntryEnd(j) - this->Propagation.Cover.EntryBegin(j);
     }
   }
-  if (!this->Share.EveryRankOk(fits))
+  if (!this->Propagation.Share.EveryRankOk(fits))
   {
     Expect(fits, "shot needs");
     throw RankShare::PeerFailure();
@@ -194,13 +250,19 @@ void LightPropagation::ExchangeShotNeeds()
   this->ShotNeedsKnown = true;
 }
 
-bool LightPropagation::JoinScan(std::vector<Candidate>& batch,
+bool SharedPropagation::JoinScan(std::vector<LightPropagation::Candidate>& batch,
   double& largest,
   double& unshot,
   std::size_t size,
   bool stop,
   std::vector<ShotRecord>* records)
 {
+  // What the other ranks read of a non-diffuse shot, found once (again after SetFrames), before
+  // the first scan of a Run: every rank is here at the same point.
+  if (!this->Propagation.Reflectances.Empty() && !this->ShotNeedsKnown)
+  {
+    this->ExchangeShotNeeds();
+  }
   // One block of doubles per rank, as many on every rank: its largest power, unshot energy,
   // whether it stops, the last batch's counts per member (every rank had the same batch), and
   // its candidates padded to `size`, each with what a Lambertian shot of it sends (its unshot
@@ -222,8 +284,8 @@ bool LightPropagation::JoinScan(std::vector<Candidate>& batch,
   mine.push_back(static_cast<double>(batch.size()));
   for (std::size_t c = 0; c < size; ++c)
   {
-    const Candidate none;
-    const Candidate& candidate = c < batch.size() ? batch[c] : none;
+    const LightPropagation::Candidate none;
+    const LightPropagation::Candidate& candidate = c < batch.size() ? batch[c] : none;
     mine.push_back(static_cast<double>(candidate.Shooter));
     mine.push_back(candidate.Power);
     mine.push_back(candidate.Increment.x);
@@ -232,8 +294,8 @@ bool LightPropagation::JoinScan(std::vector<Candidate>& batch,
     mine.push_back(candidate.Directional ? 1.0 : 0.0);
   }
   const std::size_t stride = mine.size();
-  const std::vector<double> scans = JoinValues(this->Share, mine.data(), stride, true);
-  if (scans.size() != stride * static_cast<std::size_t>(this->Share.Ranks()))
+  const std::vector<double> scans = JoinValues(this->Propagation.Share, mine.data(), stride, true);
+  if (scans.size() != stride * static_cast<std::size_t>(this->Propagation.Share.Ranks()))
   {
     throw std::runtime_error("LightPropagation: a rank's scan is damaged");
   }
@@ -259,16 +321,16 @@ bool LightPropagation::JoinScan(std::vector<Candidate>& batch,
     for (std::size_t c = 0; c < count; ++c)
     {
       const double* values = candidates + 1 + PerCandidate * c;
-      Candidate candidate;
+      LightPropagation::Candidate candidate;
       candidate.Shooter = static_cast<std::size_t>(values[0]);
-      Expect(candidate.Shooter < this->PatchCount(), "scans");
+      Expect(candidate.Shooter < this->Propagation.PatchCount(), "scans");
       candidate.Power = values[1];
       candidate.Increment = glm::dvec3(values[2], values[3], values[4]);
       candidate.Directional = values[5] != 0.0;
       batch.push_back(candidate);
     }
   }
-  SelectBatch(batch, largest, size);
+  LightPropagation::SelectBatch(batch, largest, size);
   for (std::size_t m = 0; m < members; ++m)
   {
     ShotRecord& record = (*records)[m];
@@ -279,9 +341,9 @@ bool LightPropagation::JoinScan(std::vector<Candidate>& batch,
   return !someRankStops;
 }
 
-void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch,
+void SharedPropagation::ShareDirectionalShots(const std::vector<LightPropagation::Candidate>& batch,
   const std::vector<bool>& directional,
-  std::vector<DirectionalShotData>& data,
+  std::vector<LightPropagation::DirectionalShotData>& data,
   bool ok)
 {
   // Each rank packs the shots of its own members (computed by ShootBatch, as serial), in the
@@ -294,13 +356,13 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
     for (std::size_t m = 0; m < batch.size(); ++m)
     {
       const std::size_t shooter = batch[m].Shooter;
-      if (!directional[m] || !this->Owns(shooter))
+      if (!directional[m] || !this->Propagation.Owns(shooter))
       {
         continue;
       }
       // Only what the other ranks read (ExchangeShotNeeds): the radiance toward their
       // receivers' entries of the row, then toward the cells of their fallbacks.
-      const DirectionalShotData& shot = data[m];
+      const LightPropagation::DirectionalShotData& shot = data[m];
       values.clear();
       for (const uint32_t position : this->SentPositions[shooter])
       {
@@ -309,7 +371,8 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
       std::size_t unused = 0;
       for (const uint32_t cell : this->SentCells[shooter])
       {
-        values.push_back(this->TowardReceiver(shooter, FallbackFlag | cell, shot, unused));
+        values.push_back(this->Propagation.TowardReceiver(
+          shooter, LightPropagation::FallbackFlag | cell, shot, unused));
       }
       out.Value(static_cast<uint64_t>(m));
       out.Value(shot.Mean);
@@ -319,7 +382,7 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
     }
   }
   std::vector<std::vector<char>> all;
-  if (!this->Share.Join(bytes, ok, all))
+  if (!this->Propagation.Share.Join(bytes, ok, all))
   {
     if (!ok)
     {
@@ -327,12 +390,13 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
     }
     throw RankShare::PeerFailure();
   }
-  const std::size_t cellCount = static_cast<std::size_t>(this->Cover.Grid().CellCount());
+  const std::size_t cellCount =
+    static_cast<std::size_t>(this->Propagation.Cover.Grid().CellCount());
   std::vector<bool> received(batch.size(), false);
   for (std::size_t r = 0; r < all.size(); ++r)
   {
     // Its own block too (Expect); a rank keeps its own shots as it computed them.
-    const bool own = static_cast<int>(r) == this->Share.Rank();
+    const bool own = static_cast<int>(r) == this->Propagation.Share.Rank();
     ByteReader in(all[r]);
     while (!in.AtEnd())
     {
@@ -352,7 +416,7 @@ void LightPropagation::ShareDirectionalShots(const std::vector<Candidate>& batch
       {
         continue;
       }
-      DirectionalShotData& shot = data[m];
+      LightPropagation::DirectionalShotData& shot = data[m];
       shot.Mean = mean;
       shot.Grid = grid != 0;
       shot.WeightEvaluations = static_cast<std::size_t>(evaluations);

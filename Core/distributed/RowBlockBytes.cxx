@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "cover/RowBlockBytes.h"
+#include "distributed/RowBlockBytes.h"
 
 #include "math/ByteBuffer.h"
 
 #include <cstdint>
-#include <cstring>
 
 namespace sphcover
 {
@@ -99,58 +98,6 @@ std::string UnpackRowBlock(const char* bytes,
   block.SamplesPhi = grid[3];
   block.Fill = grid[4];
   block.UnoccludedKnown = unoccludedKnown != 0;
-  return std::string();
-}
-
-void AppendRowBlock(std::vector<char>& bytes,
-  const SphericalCover::Arrays& block,
-  const CullingStatistics& culling)
-{
-  const std::vector<char> packed = PackRowBlock(block, culling);
-  ByteWriter(bytes).Value(static_cast<uint64_t>(packed.size()));
-  bytes.insert(bytes.end(), packed.begin(), packed.end());
-}
-
-std::string UnpackRowBlocks(const char* bytes,
-  std::size_t size,
-  std::vector<SphericalCover::Arrays>& blocks,
-  CullingStatistics& culling)
-{
-  blocks.clear();
-  culling = CullingStatistics();
-  const auto refuse = [&](const std::string& problem)
-  {
-    const std::string named = "block " + std::to_string(blocks.size()) + ": " + problem;
-    blocks.clear();
-    culling = CullingStatistics();
-    return named;
-  };
-  std::size_t at = 0;
-  while (at < size)
-  {
-    uint64_t length = 0;
-    if (size - at < sizeof(length))
-    {
-      return refuse("its length is truncated");
-    }
-    std::memcpy(&length, bytes + at, sizeof(length));
-    at += sizeof(length);
-    if (length > size - at)
-    {
-      return refuse("the row block is truncated");
-    }
-    SphericalCover::Arrays block;
-    CullingStatistics counts;
-    const std::string problem =
-      UnpackRowBlock(bytes + at, static_cast<std::size_t>(length), block, counts);
-    if (!problem.empty())
-    {
-      return refuse(problem);
-    }
-    at += static_cast<std::size_t>(length);
-    blocks.push_back(std::move(block));
-    culling += counts;
-  }
   return std::string();
 }
 }
