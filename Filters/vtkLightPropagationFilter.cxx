@@ -520,6 +520,28 @@ void WriteIllumination(const PropagationResults& results,
   output->GetFieldData()->AddArray(statistics);
 }
 
+bool WriteSolution(vtkLightPropagationFilter* self,
+  const PropagationResults& results,
+  int shots,
+  double watts,
+  const sphcover::CoverFigures* figures,
+  sphcover::PointIllumination surfaces,
+  vtkPolyData* output)
+{
+  WriteIllumination(results, shots, watts, output);
+  if (figures)
+  {
+    const std::string problem = StoreFigures(*figures, std::move(surfaces), output);
+    if (!problem.empty())
+    {
+      output->Initialize();
+      vtkErrorWithObjectMacro(self, << "Cannot sum up the solution: " << problem);
+      return false;
+    }
+  }
+  return true;
+}
+
 /// Output 1: one row per shot (shooter, relative change, unshot energy in watts: the propagation's
 /// times `watts`, seconds).
 void WriteShotHistory(const std::vector<sphcover::ShotRecord>& shots,
@@ -701,16 +723,10 @@ int vtkLightPropagationFilter::RequestData(vtkInformation*,
     return 0;
   }
   output->ShallowCopy(input);
-  WriteIllumination(results, this->Shots, watts, output);
-  if (named)
+  if (!WriteSolution(
+        this, results, this->Shots, watts, named ? &figures : nullptr, std::move(surfaces), output))
   {
-    const std::string figuresProblem = StoreFigures(figures, std::move(surfaces), output);
-    if (!figuresProblem.empty())
-    {
-      output->Initialize();
-      vtkErrorMacro(<< "Cannot sum up the solution: " << figuresProblem);
-      return 0;
-    }
+    return 0;
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -169,6 +169,17 @@ SPHERICALCOVERFILTERS_EXPORT void WriteIllumination(const PropagationResults& re
   double watts,
   vtkPolyData* output);
 
+/// Output 0's own arrays (WriteIllumination) and, with `figures` (the cover's part), the
+/// solution's figures (StoreFigures); false, with the error reported and `output` emptied, when
+/// the figures cannot be summed up.
+SPHERICALCOVERFILTERS_EXPORT bool WriteSolution(vtkLightPropagationFilter* self,
+  const PropagationResults& results,
+  int shots,
+  double watts,
+  const sphcover::CoverFigures* figures,
+  sphcover::PointIllumination surfaces,
+  vtkPolyData* output);
+
 /// Output 1: one row per shot (shooter, relative change, unshot energy in watts: the propagation's
 /// times `watts`, seconds).
 SPHERICALCOVERFILTERS_EXPORT void WriteShotHistory(const std::vector<sphcover::ShotRecord>& shots,

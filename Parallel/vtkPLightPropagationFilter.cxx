@@ -677,17 +677,17 @@ int vtkPLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* cont
     }
     output->GetFieldData()->RemoveArray(names::CoverRowShare);
   }
-  WriteIllumination(results, this->Shots, watts, output);
   // The figures sum up the whole: of a cover in shares, rank 0 alone sums them up.
-  if (named && (wholeCover || first))
+  const bool sumsUp = named && (wholeCover || first);
+  if (!WriteSolution(this,
+        results,
+        this->Shots,
+        watts,
+        sumsUp ? &figures : nullptr,
+        std::move(surfaces),
+        output))
   {
-    const std::string figuresProblem = StoreFigures(figures, std::move(surfaces), output);
-    if (!figuresProblem.empty())
-    {
-      output->Initialize();
-      vtkErrorMacro(<< "Cannot sum up the solution: " << figuresProblem);
-      return 0;
-    }
+    return 0;
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -4,19 +4,17 @@
 #include "vtkCoverDistribution.h"
 #include "vtkCoverPatches.h"
 #include "vtkHeldMessages.h"
+#include "vtkLightPropagationSteps.h"
 #include "vtkRankRenderer.h"
 #include "vtkSMPParallelFor.h"
 #include "vtkSolutionRenderer.h"
-#include "vtkSphericalCoverArrayNames.h"
 #include "vtkSphericalCoverArrays.h"
 #include "vtkStageProgress.h"
 
 #include "render/RadianceRenderer.h"
 #include "scene/Camera.h"
 
-#include <vtkDataArray.h>
 #include <vtkDataSet.h>
-#include <vtkFieldData.h>
 #include <vtkImageData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -28,24 +26,7 @@
 #include <exception>
 #include <memory>
 #include <string>
-
-namespace names = vtkSphericalCoverArrayNames;
-
-namespace
-{
-/// "" when `illumination` is rank `rank` of `ranks`' piece (CoverRowShare), else the problem.
-std::string PieceProblem(vtkPolyData* illumination, int rank, int ranks)
-{
-  vtkDataArray* share = illumination->GetFieldData()->GetArray(names::CoverRowShare);
-  if (share->GetNumberOfComponents() == 2 && share->GetNumberOfTuples() == 1 &&
-    share->GetComponent(0, 0) == rank && share->GetComponent(0, 1) == ranks)
-  {
-    return std::string();
-  }
-  return "this rank's input is not its piece (" + std::to_string(rank) + " of " +
-    std::to_string(ranks) + ") of a solution kept in pieces on these ranks";
-}
-}
+#include <utility>
 
 vtkStandardNewMacro(vtkPRadianceImageFilter);
 
@@ -91,7 +72,14 @@ int vtkPRadianceImageFilter::RequestData(vtkInformation* request,
   }
   else
   {
-    problem = PieceProblem(illumination, rank, ranks);
+    // Of these ranks, each its own (as vtkPLightPropagationFilter checks a share of the rows).
+    const std::pair<int, int> piece = vtkLightPropagationSteps::RowShareOf(illumination);
+    if (piece != std::make_pair(rank, ranks))
+    {
+      problem = "this rank's input is " + vtkLightPropagationSteps::ShareName(piece) +
+        " of a solution kept in pieces, not " +
+        vtkLightPropagationSteps::ShareName({ rank, ranks });
+    }
   }
   if (problem.empty() && !patchesInput)
   {
