@@ -25,8 +25,8 @@
  * its centre (same source and grazing flag, R NaN); every other cell's are cast, cells in
  * row-major order; with RayPackets the rays of both passes go in that order 16 at a time
  * through RayCaster::IntersectPacket (the same hits as one by one on every sample compared,
- * Testing/Core/TestAdaptiveSampling.cxx). A uniform cell's representative sample is its centre,
- * so its R is the
+ * Testing/Core/cover/TestAdaptiveSampling.cxx). A uniform cell's representative sample is its
+ * centre, so its R is the
  * centre's, exact. What the full sampling would see and this does not: a source (or a gap)
  * that meets no centre sample within a 3 x 3 block of cells, i.e. smaller than about a cell,
  * and within one surface a patch boundary inside a uniform cell (the cell goes to the patch

@@ -16,7 +16,7 @@ off: e = 0.0337, means -0.57 %, -0.57 %, -0.51 %). The error is
 method error: interpolation across shadow and occlusion boundaries (the ceiling next to the
 lamp, the floor at the blocks' bases) and a low bias of the walls of 1.2 to 2 % (0.3 to 1 %
 when RBuffer::Classify diffuses its rounding error along the rows: the plain plurality vote
-loses 1-2 % of the lamp's projected solid angle, Testing/Core/TestCornellDirectLight.cxx).
+loses 1-2 % of the lamp's projected solid angle, Testing/Core/cover/TestCornellDirectLight.cxx).
 
 2026-12-03: with the lamps' direct light and its first bounce taken from the patches' nodes
 (vtkSphericalCoverFilter's DirectIrradianceNodes and DirectBounceRays,

@@ -534,7 +534,8 @@ def texture_support_files():
     ramp = png_file(4, 2, 8, 0, [bytes([0, 85, 170, 255])] * 2)
     files = {
         "grey_ramp.png": ramp,
-        # 16-bit RGB, 2 x 2: top row red, green; bottom row blue, 32768 grey (Testing/Core/TestTexture).
+        # 16-bit RGB, 2 x 2: top row red, green; bottom row blue, 32768 grey
+        # (Testing/Core/scene/TestTexture).
         "rgb16.png": png_file(2, 2, 16, 2, [
             bytes([255, 255, 0, 0, 0, 0, 0, 0, 255, 255, 0, 0]),
             bytes([0, 0, 0, 0, 255, 255, 128, 0, 128, 0, 128, 0])]),

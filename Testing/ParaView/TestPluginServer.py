@@ -27,7 +27,9 @@ def client(port, plugin, data):
     failures = []
     # The serial reference in this process first, with the plug-in's classes loaded locally.
     LoadPlugin(plugin, remote=False, ns=globals())
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    # The pipeline the Python.* tests share, in Testing/Python.
+    here = os.path.dirname(os.path.abspath(__file__))
+    sys.path.insert(0, os.path.join(here, os.pardir, "Python"))
     from coarse_cornell_pipeline import ErrorCollector, coarse_cornell_pipeline
     collector = ErrorCollector()
     # The serial filters: this process alone, whatever MPI this client was started with.

@@ -41,7 +41,8 @@ LoadPlugin(plugin, remote=False, ns=globals())
 from sphericalcover import (vtkHemisphereExtractor, vtkPLightPropagationFilter,  # noqa: E402
                             vtkRadianceImageFilter)
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+# The pipeline the Python.* tests share, in Testing/Python.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "Python"))
 from coarse_cornell_pipeline import ErrorCollector, coarse_cornell_pipeline  # noqa: E402
 
 controller = vtkMultiProcessController.GetGlobalController()
