@@ -1,7 +1,7 @@
-#ifndef sphcover_OutputFiles_h
-#define sphcover_OutputFiles_h
+// SPDX-License-Identifier: BSD-3-Clause
 /**
- * Output files that appear whole or not at all: no run of sphcover, failed, interrupted or
+ * @file OutputFiles.h
+ * @brief Output files that appear whole or not at all: no run of sphcover, failed, interrupted or
  * killed, leaves a half-written output or replaces an existing one with a broken file.
  *
  * Every output is written into a hidden staging folder beside its target,
@@ -15,6 +15,8 @@
  * SIGINT, SIGTERM and SIGHUP print "sphcover: interrupted" and end the process by the signal,
  * never in the middle of the renames into place.
  */
+#ifndef SPHCOVER_OUTPUTFILES_H
+#define SPHCOVER_OUTPUTFILES_H
 
 #include <filesystem>
 #include <functional>

@@ -20,7 +20,7 @@
  *  - Entry (a non-null H(i, j)): uint32 source j, uint32 index of its first strip (its strips
  *    run to the next entry's first strip): 8 bytes; plus a float unoccluded projected solid
  *    angle (below) and the column index (uint32 receiver, uint32 entry): 20 bytes per entry. A
- * row's entries are sorted by source.
+ *    row's entries are sorted by source.
  *  - Per patch: row offset, column offset (uint64 each) and area (double): 24 bytes.
  * The source index is stored once per h_ij, not per strip.
  *
@@ -36,28 +36,25 @@
  * fill: there each such region h_ij gets the projected solid angle of the visible part of Q_j
  * integrated over Q_j (RayCastFiller::VisibleProjectedSolidAngle), and the row's other regions
  * are scaled by one factor so that the row keeps its covered measure (a closed scene's rows
- * still sum to pi, the white furnace stays exact); the cells keep their sources. Why: the cells
- * count a small lamp's region only to its boundary cells' precision, which was most of the
- * Cornell box's error (Documentation/notes/time-to-accuracy.md). A source that wins no cell of
- * a row stays unseen there. Measures are stored per entry (a float) only when some row has one.
+ * still sum to pi, the white furnace stays exact); the cells keep their sources. A source that
+ * wins no cell of a row stays unseen there. Measures are stored per entry (a float) only when
+ * some row has one (why, measured: Documentation/notes/time-to-accuracy.md).
  *
  * Panes (paper §5.4; SphericalCoverOptions::SurfaceTransmittance). A thin pane passes light
- * straight through, so along a direction P_i receives L(y_1) + T_1 L(y_2) + T_1 T_2 L(y_3) +
- * ..., y_1, y_2, ... the surfaces the line meets in order, L a surface's own emitted and
- * reflected radiance, T_k the transmittance of the pane y_k. Row i then has, besides its
- * regions of layer 0 (what P_i sees first: they partition the covered hemisphere as without
- * panes), regions of layer k >= 1: the cells in which the first k surfaces met are panes, by
- * what the (k+1)-th is (RayCastFiller::FillBehindPanes). Each such entry carries its filter,
- * the product of the transmittances of the k panes in front of its source (per band; in each
- * cell those of the cells' winners of the layers before), and entries of one source with
- * different layers or filters are different entries; they overlap the pane's region of the
- * layer before. A pane receives all the light that reaches its side (its own entries), and
- * what it lets through reaches the points behind it through their filtered entries: nothing is
- * counted twice, the filtered entries are reciprocal as the others are (the same panes lie
- * between i and j both ways), and in a closed scene every cell of a pane of layer k - 1 is
- * covered in layer k, so a white furnace with panes stays exact. At most MaxPaneDepth layers
- * behind the first (light through more panes is dropped). FindEntry, ExpandRow,
- * CoveredProjectedSolidAngle and FormFactors are of layer 0 (the geometric cover, panes
+ * straight through, so along a direction P_i receives L(y_1) + T_1 L(y_2) + T_1 T_2 L(y_3) + ...,
+ * y_1, y_2, ... the surfaces the line meets in order, L a surface's own emitted and reflected
+ * radiance, T_k the transmittance of the pane y_k. Row i then has, besides its regions of layer 0
+ * (what P_i sees first: they partition the covered hemisphere as without panes), regions of layer
+ * k >= 1: the cells in which the first k surfaces met are panes, by what the (k+1)-th is
+ * (RayCastFiller::FillBehindPanes). Each such entry carries its filter, the product of the
+ * transmittances of the k panes in front of its source (per band; in each cell those of the cells'
+ * winners of the layers before), and entries of one source with different layers or filters are
+ * different entries; they overlap the pane's region of the layer before. A pane receives what
+ * reaches its side (its own entries) and passes on what it lets through by the filtered entries of
+ * the points behind it: nothing is counted twice, the filtered entries are reciprocal and a white
+ * furnace with panes stays exact (why: Documentation/notes/panes-and-textures.md, 2026-12-04). At
+ * most MaxPaneDepth layers behind the first (light through more panes is dropped). FindEntry,
+ * ExpandRow, CoveredProjectedSolidAngle and FormFactors are of layer 0 (the geometric cover, panes
  * opaque); the propagation walks every entry. Ray fill only.
  * Complexity: one R-buffer fill per receiver (Build) over the candidates CandidateCulling
  * keeps (O(N^2) pairs at worst, the paper's O(N^2) cover); memory O(entries + strips).
