@@ -7,6 +7,7 @@
 // ranks' own pieces are compared with the serial solution in ParaView.PluginParallel and
 // CommandLine.MPI). GatherSolution off on one process leaves the solution whole.
 #include "RenderTestPipeline.h"
+#include "SolutionPieceTestUtilities.h"
 #include "TestFailures.h"
 
 #include "vtkPLightPropagationFilter.h"
@@ -32,6 +33,7 @@
 
 namespace
 {
+using SolutionPieceTestUtilities::PieceOf;
 using TestFailures::Check;
 
 /// Whether the two arrays hold the same values, bit for bit (both missing: true).
@@ -47,40 +49,6 @@ bool SameValues(vtkDataArray* a, vtkDataArray* b)
     std::memcmp(a->GetVoidPointer(0),
       b->GetVoidPointer(0),
       static_cast<size_t>(a->GetNumberOfValues()) * static_cast<size_t>(a->GetDataTypeSize())) == 0;
-}
-
-/// Rank `rank` of `ranks`' piece of `whole`, cut with Core: the rows of its receivers and
-/// their regions' incident radiance, marked as its share.
-vtkSmartPointer<vtkPolyData> PieceOf(vtkPolyData* whole,
-  const sphcover::SphericalCover& cover,
-  int rank,
-  int ranks)
-{
-  const std::vector<std::size_t> receivers =
-    sphcover::RankShare::ItemsOf(rank, ranks, cover.PatchCount());
-  auto piece = vtkSmartPointer<vtkPolyData>::New();
-  piece->ShallowCopy(whole);
-  vtkFieldData* fd = piece->GetFieldData();
-  for (int a = fd->GetNumberOfArrays() - 1; a >= 0; --a)
-  {
-    const char* name = fd->GetAbstractArray(a)->GetName();
-    if (vtkSphericalCoverArrays::IsCoverArray(name) || std::string(name) == "IncidentRadiance")
-    {
-      fd->RemoveArray(a);
-    }
-  }
-  vtkSphericalCoverArrays::Store(sphcover::RowShares::RowsOf(cover, receivers), piece);
-  vtkDataArray* incident = whole->GetFieldData()->GetArray("IncidentRadiance");
-  vtkNew<vtkDoubleArray> own;
-  own->SetName("IncidentRadiance");
-  own->SetNumberOfComponents(3);
-  for (const std::size_t e : sphcover::RowShares::KeptEntries(cover, receivers))
-  {
-    own->InsertNextTuple(incident->GetTuple(static_cast<vtkIdType>(e)));
-  }
-  fd->AddArray(own);
-  vtkSphericalCoverArrays::MarkShare(piece, rank, ranks);
-  return piece;
 }
 
 /// Join's problem for `shares` of `points`, printed; "" when they join.
