@@ -314,7 +314,7 @@ int vtkIlluminationField::RequestData(vtkInformation*,
   {
     return 0;
   }
-  WriteField(field, patchCount, n, std::exp2(this->Exposure), output);
+  WriteField(field, patchCount, n, std::exp2(this->ExposureStops), output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -323,5 +323,5 @@ void vtkIlluminationField::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Resolution: " << this->Resolution << "\n";
-  os << indent << "Exposure: " << this->Exposure << " stops\n";
+  os << indent << "ExposureStops: " << this->ExposureStops << "\n";
 }

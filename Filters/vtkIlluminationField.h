@@ -16,7 +16,7 @@
  * Output (vtkPolyData): quads with point data `Radiance` (float RGB, W m^-2 sr^-1), `Normals`
  * (front side), `SurfaceId`, `UV` (the vertex's (u, v) in its surface's parameters, where
  * vtkViewDependentRadiance evaluates the view-dependent radiance) and, as the active scalars,
- * `DisplayRGB` (unsigned char RGB: the radiance times 2^Exposure, clamped to [0, 1] and
+ * `DisplayRGB` (unsigned char RGB: the radiance times 2^ExposureStops, clamped to [0, 1] and
  * sRGB-encoded, as vtkRadianceImageFilter's `RGB`), and cell data `PatchId`. Show `DisplayRGB` with
  * Map Scalars off and lighting off (the colours are the light already) to see the true colours;
  * colour by `Radiance` for values. Non-diffuse surfaces show their emission plus diffuse part (the
@@ -50,12 +50,13 @@ public:
 
   ///@{
   /**
-   * Exposure of `DisplayRGB` in stops: the radiance is scaled by 2^Exposure before the sRGB
-   * encoding, so radiance 2^-Exposure shows as white. -20 to 20. Default is 0 (radiance 1 is
-   * white, as the Radiance Image's default Exposure factor 1).
+   * Exposure of `DisplayRGB` in photographic stops: the radiance is scaled by 2^ExposureStops
+   * before the sRGB encoding, so radiance 2^-ExposureStops shows as white. -20 to 20. Default is
+   * 0 (radiance 1 is white, as in vtkRadianceImageFilter at its default ExposureFactor 1: that
+   * filter's exposure is a factor, this one a power of two).
    */
-  vtkSetClampMacro(Exposure, double, -20.0, 20.0);
-  vtkGetMacro(Exposure, double);
+  vtkSetClampMacro(ExposureStops, double, -20.0, 20.0);
+  vtkGetMacro(ExposureStops, double);
   ///@}
 
 protected:
@@ -66,7 +67,7 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   int Resolution = 8;
-  double Exposure = 0.0;
+  double ExposureStops = 0.0;
 
 private:
   vtkIlluminationField(const vtkIlluminationField&) = delete;

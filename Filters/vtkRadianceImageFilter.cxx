@@ -245,10 +245,10 @@ std::string vtkRadianceImageFilter::ViewOf(vtkInformationVector** inputVector,
   // The size announced by RequestInformation, from the same pipeline information.
   this->ImageSize(inputVector, camera.Width, camera.Height);
   settings = RenderSettingsOf(this);
-  if (!(this->Exposure > 0.0 && std::isfinite(this->Exposure)))
+  if (!(this->ExposureFactor > 0.0 && std::isfinite(this->ExposureFactor)))
   {
     std::ostringstream text;
-    text << "Exposure " << this->Exposure
+    text << "ExposureFactor " << this->ExposureFactor
          << " is not a finite number > 0 (the image would be black or undefined)";
     return text.str();
   }
@@ -324,7 +324,7 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
   {
     return 0;
   }
-  vtkSolutionRenderer::ToImageData(image, this->Exposure, output);
+  vtkSolutionRenderer::ToImageData(image, this->ExposureFactor, output);
   this->UpdateProgress(1.0);
   return 1;
 }
@@ -343,7 +343,7 @@ void vtkRadianceImageFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Width: " << this->Width << "\n";
   os << indent << "Height: " << this->Height << "\n";
   os << indent << "SamplesPerPixel: " << this->SamplesPerPixel << "\n";
-  os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "ExposureFactor: " << this->ExposureFactor << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "MaximumSamples: " << this->MaximumSamples << "\n";
 }

@@ -42,8 +42,8 @@
  * Output (vtkImageData, Width x Height x 1, spacing 1, row 0 at the bottom), point data:
  * `Radiance` (float RGB, W m^-2 sr^-1, the mean over SamplesPerPixel stratified samples),
  * `Depth` (float, distance from the eye; -1 where nothing is seen), `SurfaceId` (int, -1 where
- * nothing is seen) and `RGB` (unsigned char, for display: Exposure * Radiance clamped to [0,1]
- * and encoded with the sRGB transfer function).
+ * nothing is seen) and `RGB` (unsigned char, for display: ExposureFactor * Radiance clamped to
+ * [0,1] and encoded with the sRGB transfer function).
  *
  * Pieces (vtkScenePieces.h): the whole solution is piece 0. Asked for a piece > 0 with an empty
  * input (the other ranks under `mpiexec -n K pvbatch --symmetric`, where rank 0 holds the
@@ -144,11 +144,13 @@ public:
 
   ///@{
   /**
-   * Scale applied to the radiance before the display mapping of `RGB`: radiance 1 / Exposure
-   * shows as white. A finite number > 0 (0 would render black: the request fails). Default is 1.
+   * Exposure as a factor: the radiance is multiplied by it before the display mapping of `RGB`,
+   * so radiance 1 / ExposureFactor shows as white (vtkIlluminationField's ExposureStops is the
+   * same tone map in stops: ExposureFactor = 2^ExposureStops). A finite number > 0 (0 would
+   * render black: the request fails). Default is 1.
    */
-  vtkSetClampMacro(Exposure, double, 0.0, VTK_DOUBLE_MAX);
-  vtkGetMacro(Exposure, double);
+  vtkSetClampMacro(ExposureFactor, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(ExposureFactor, double);
   ///@}
 
   ///@{
@@ -192,7 +194,7 @@ protected:
   int Width = 0;
   int Height = 0;
   int SamplesPerPixel = 4;
-  double Exposure = 1.0;
+  double ExposureFactor = 1.0;
   double MemoryLimit = 1024.0;
   double MaximumSamples = 1073741824.0;
   vtkStringArray* CameraNames;

@@ -91,7 +91,7 @@ unsigned char vtkSolutionRenderer::EncodeSRGB(double linear)
 }
 
 void vtkSolutionRenderer::ToImageData(const sphcover::RenderedImage& image,
-  double exposure,
+  double exposureFactor,
   vtkImageData* output)
 {
   const vtkIdType pixels = static_cast<vtkIdType>(image.Width) * image.Height;
@@ -119,7 +119,7 @@ void vtkSolutionRenderer::ToImageData(const sphcover::RenderedImage& image,
   unsigned char* bytes = rgb->GetPointer(0);
   for (size_t k = 0; k < image.Radiance.size(); ++k)
   {
-    bytes[k] = EncodeSRGB(exposure * image.Radiance[k]);
+    bytes[k] = EncodeSRGB(exposureFactor * image.Radiance[k]);
   }
   output->GetPointData()->AddArray(radiance);
   output->GetPointData()->AddArray(depth);

@@ -46,10 +46,10 @@ public:
   /**
    * The image as the pipeline's vtkImageData (Width x Height x 1, spacing 1, row 0 at the
    * bottom), point data `Radiance` (float RGB), `Depth`, `SurfaceId` and, as its scalars, `RGB`:
-   * the bytes of Exposure x Radiance clamped to [0, 1] and sRGB-encoded (IEC 61966-2-1).
+   * the bytes of exposureFactor x Radiance clamped to [0, 1] and sRGB-encoded (IEC 61966-2-1).
    */
   static void ToImageData(const sphcover::RenderedImage& image,
-    double exposure,
+    double exposureFactor,
     vtkImageData* output);
 
   /// The sRGB transfer function (IEC 61966-2-1) of a linear value clamped to [0, 1], as a byte:

@@ -57,7 +57,7 @@ struct vtkViewDependentRadiance::FieldState
   /// The eye-independent terms of each view-dependent vertex (same order).
   std::vector<sphcover::RadianceRenderer::TowardTerms> Terms;
   double Eye[3] = { 0.0, 0.0, 0.0 };
-  double Exposure = 0.0;
+  double ExposureStops = 0.0;
 
   void ForgetField() { this->Field = nullptr; }
 };
@@ -186,7 +186,7 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
   double x,
   double y,
   double z,
-  double exposure)
+  double exposureStops)
 {
   const auto start = std::chrono::steady_clock::now();
   this->LastEvaluatedVertices = 0;
@@ -210,7 +210,7 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
     Unchanged(field->GetPoints(), state.Points, state.Prepared) &&
     Unchanged(surfaces, state.Surfaces, state.Prepared) && Unchanged(uv, state.UV, state.Prepared);
   const bool sameEye = sameField && state.Eye[0] == x && state.Eye[1] == y && state.Eye[2] == z;
-  const bool sameExposure = sameField && state.Exposure == exposure;
+  const bool sameExposure = sameField && state.ExposureStops == exposureStops;
   if (sameEye && sameExposure)
   {
     this->LastUpdateSeconds =
@@ -219,7 +219,7 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
   }
 
   const glm::dvec3 eye(x, y, z);
-  const double scale = std::exp2(exposure);
+  const double scale = std::exp2(exposureStops);
   const sphcover::RadianceRenderer& renderer = *this->Renderer;
   // The vertex's radiance toward the eye from its tabulated terms, and its bytes as the field's
   // DisplayRGB: the float radiance, exposed and encoded.
@@ -320,7 +320,7 @@ bool vtkViewDependentRadiance::Update(vtkPolyData* field,
   state.Eye[0] = x;
   state.Eye[1] = y;
   state.Eye[2] = z;
-  state.Exposure = exposure;
+  state.ExposureStops = exposureStops;
   field->GetPointData()->SetActiveScalars(names::DisplayRGB);
   radiance->Modified();
   rgb->Modified();

@@ -11,7 +11,7 @@
  * and `UV`), the radiance of the front side toward the eye (RadianceRenderer::
  * SurfaceRadianceToward: the emission and diffuse part plus, on a non-diffuse surface, the BRDF
  * toward the eye applied to the incident radiance E of the stencil's characteristic points),
- * writes it to the point array `ViewRadiance` and its display bytes (times 2^Exposure,
+ * writes it to the point array `ViewRadiance` and its display bytes (times 2^ExposureStops,
  * sRGB-encoded, as the field's) to `DisplayRGB`, and marks both modified, so that a mapper
  * showing `DisplayRGB` shows the new view at its next render. On diffuse surfaces the value
  * is the field's `Radiance` itself (the same interpolation), whatever the eye.
@@ -77,11 +77,11 @@ public:
 
   /**
    * Writes `ViewRadiance` and `DisplayRGB` of `field` (vtkIlluminationField's output) for an
-   * eye at (x, y, z), exposure in stops as vtkIlluminationField's Exposure. False, with the
-   * error reported and the field unchanged, without a solution or when the field lacks
+   * eye at (x, y, z), the exposure in stops as vtkIlluminationField's ExposureStops. False,
+   * with the error reported and the field unchanged, without a solution or when the field lacks
    * `SurfaceId` or `UV`.
    */
-  bool Update(vtkPolyData* field, double x, double y, double z, double exposure);
+  bool Update(vtkPolyData* field, double x, double y, double z, double exposureStops);
 
   /**
    * Whether `field` has what Update needs: `SurfaceId` and a 2-component `UV` point array. False

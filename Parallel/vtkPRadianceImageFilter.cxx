@@ -163,7 +163,7 @@ int vtkPRadianceImageFilter::RequestData(vtkInformation* request,
   }
   if (first)
   {
-    vtkSolutionRenderer::ToImageData(image, this->Exposure, output);
+    vtkSolutionRenderer::ToImageData(image, this->ExposureFactor, output);
   }
   this->UpdateProgress(1.0);
   return 1;

@@ -52,7 +52,7 @@ void vtkViewDependentRadianceMapper::Render(vtkRenderer* renderer, vtkActor* act
       auto* field = vtkPolyData::SafeDownCast(leaf);
       if (field && vtkViewDependentRadiance::CanEvaluate(field, problem))
       {
-        this->Evaluator->Update(field, eye[0], eye[1], eye[2], this->Exposure);
+        this->Evaluator->Update(field, eye[0], eye[1], eye[2], this->ExposureStops);
       }
     };
     if (auto* composite = vtkCompositeDataSet::SafeDownCast(input))
@@ -76,5 +76,5 @@ void vtkViewDependentRadianceMapper::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "Evaluator: " << this->Evaluator.GetPointer() << "\n";
-  os << indent << "Exposure: " << this->Exposure << "\n";
+  os << indent << "ExposureStops: " << this->ExposureStops << "\n";
 }

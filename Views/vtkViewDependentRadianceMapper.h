@@ -42,9 +42,9 @@ public:
   vtkViewDependentRadiance* GetEvaluator() const { return this->Evaluator; }
 
   ///@{
-  /** Exposure of the colours in stops, as vtkIlluminationField's Exposure. Default is 0. */
-  vtkSetMacro(Exposure, double);
-  vtkGetMacro(Exposure, double);
+  /** Exposure of the colours in stops, as vtkIlluminationField's ExposureStops. Default is 0. */
+  vtkSetMacro(ExposureStops, double);
+  vtkGetMacro(ExposureStops, double);
   ///@}
 
   /// Updates the input's colours for the renderer's camera, then draws.
@@ -64,7 +64,7 @@ protected:
   ~vtkViewDependentRadianceMapper() override;
 
   vtkSmartPointer<vtkViewDependentRadiance> Evaluator;
-  double Exposure = 0.0;
+  double ExposureStops = 0.0;
 
 private:
   vtkViewDependentRadianceMapper(const vtkViewDependentRadianceMapper&) = delete;

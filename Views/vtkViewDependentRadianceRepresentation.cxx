@@ -41,18 +41,18 @@ vtkViewDependentRadianceRepresentation::vtkViewDependentRadianceRepresentation()
 
 vtkViewDependentRadianceRepresentation::~vtkViewDependentRadianceRepresentation() = default;
 
-void vtkViewDependentRadianceRepresentation::SetExposure(double exposure)
+void vtkViewDependentRadianceRepresentation::SetExposureStops(double stops)
 {
   auto* mapper = static_cast<vtkViewDependentRadianceMapper*>(this->Mapper);
-  const double clamped = std::clamp(exposure, -20.0, 20.0);
+  const double clamped = std::clamp(stops, -20.0, 20.0);
   // The mapper's alone: the next render re-encodes the colours (no pipeline execution, which
   // would give the mapper a new field to evaluate in full).
-  mapper->SetExposure(clamped);
+  mapper->SetExposureStops(clamped);
 }
 
-double vtkViewDependentRadianceRepresentation::GetExposure() const
+double vtkViewDependentRadianceRepresentation::GetExposureStops() const
 {
-  return static_cast<vtkViewDependentRadianceMapper*>(this->Mapper)->GetExposure();
+  return static_cast<vtkViewDependentRadianceMapper*>(this->Mapper)->GetExposureStops();
 }
 
 void vtkViewDependentRadianceRepresentation::SetSuppressLOD(bool)
@@ -185,7 +185,7 @@ int vtkViewDependentRadianceRepresentation::RequestData(vtkInformation* request,
 void vtkViewDependentRadianceRepresentation::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "Exposure: " << this->GetExposure() << "\n";
+  os << indent << "ExposureStops: " << this->GetExposureStops() << "\n";
   os << indent << "Evaluator:\n";
   this->Evaluator->PrintSelf(os, indent.GetNextIndent());
 }

@@ -12,9 +12,9 @@
  * was made from (vtkViewDependentRadiance::SetSolutionFrom: the field's illumination and
  * patches); the mapper then evaluates, before each render, the radiance toward the camera's
  * position at the field's vertices (paper §5.3.1, interpolated as §5.3.2) and draws it as
- * `DisplayRGB` with the field's tone map (2^Exposure, clamped, sRGB), lighting off, whatever the
- * colouring and lighting properties say. On diffuse surfaces the colours are the Illumination
- * Field's own `DisplayRGB` for the same Exposure.
+ * `DisplayRGB` with the field's tone map (2^ExposureStops, clamped, sRGB), lighting off, whatever
+ * the colouring and lighting properties say. On diffuse surfaces the colours are the Illumination
+ * Field's own `DisplayRGB` for the same ExposureStops.
  *
  * Unusable input (not an Illumination Field output, or no solution upstream): one error per
  * pipeline update, and the data drawn as the Surface representation would with `DisplayRGB`.
@@ -44,11 +44,11 @@ public:
 
   ///@{
   /**
-   * Exposure in stops, as vtkIlluminationField's Exposure: the radiance is scaled by 2^Exposure
-   * before the sRGB encoding. -20 to 20. Default is 0.
+   * Exposure in photographic stops, as vtkIlluminationField's ExposureStops: the radiance is
+   * scaled by 2^ExposureStops before the sRGB encoding. -20 to 20. Default is 0.
    */
-  void SetExposure(double exposure);
-  double GetExposure() const;
+  void SetExposureStops(double stops);
+  double GetExposureStops() const;
   ///@}
 
   /// LOD stays suppressed (see the class comment); the argument is ignored.

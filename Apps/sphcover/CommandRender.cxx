@@ -74,10 +74,10 @@ RenderOutputs ChooseOutputs(const Options& options)
     outputs.Written.push_back(outputs.Exr);
   }
   // A zero, negative or non-finite exposure maps every radiance to black (or NaN).
-  if (!(options.Exposure > 0.0 && std::isfinite(options.Exposure)))
+  if (!(options.ExposureFactor > 0.0 && std::isfinite(options.ExposureFactor)))
   {
     std::ostringstream text;
-    text << "--exposure " << options.Exposure << ": must be a finite number > 0";
+    text << "--exposure " << options.ExposureFactor << ": must be a finite number > 0";
     throw std::runtime_error(text.str());
   }
   return outputs;
@@ -147,7 +147,7 @@ void SetUpRender(vtkRadianceImageFilter* render,
   render->SetWidth(width);
   render->SetHeight(height);
   render->SetSamplesPerPixel(options.SamplesPerPixel);
-  render->SetExposure(options.Exposure);
+  render->SetExposureFactor(options.ExposureFactor);
   render->SetMemoryLimit(options.MemoryLimit);
   render->SetMaximumSamples(options.MaxSamples);
 }
@@ -299,7 +299,7 @@ bool RenderOnRanks(const Options& options,
   }
   result.CpuSeconds = ProcessorSeconds() - cpuStart;
   ranks.Finish();
-  vtkSolutionRenderer::ToImageData(rendered, options.Exposure, result.Image);
+  vtkSolutionRenderer::ToImageData(rendered, options.ExposureFactor, result.Image);
   return true;
 }
 }

@@ -170,10 +170,10 @@ int RunWalk(const Options& options)
       {
         throw std::runtime_error("give the cameras: either --path PATH.json or --orbit N");
       }
-      if (!(options.Exposure > 0.0 && std::isfinite(options.Exposure)))
+      if (!(options.ExposureFactor > 0.0 && std::isfinite(options.ExposureFactor)))
       {
         std::ostringstream text;
-        text << "--exposure " << options.Exposure << ": must be a finite number > 0";
+        text << "--exposure " << options.ExposureFactor << ": must be a finite number > 0";
         throw std::runtime_error(text.str());
       }
       CheckFrameFolder(options.Output);
@@ -288,7 +288,7 @@ int RunWalk(const Options& options)
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       renderSeconds.push_back(seconds);
       vtkNew<vtkImageData> frame;
-      vtkSolutionRenderer::ToImageData(image, options.Exposure, frame);
+      vtkSolutionRenderer::ToImageData(image, options.ExposureFactor, frame);
       const std::string stem = (fs::path(options.Output) / FrameStem(k, cameras.size())).string();
       WritePngAtomically(frame, stem + ".png");
       written.push_back(stem + ".png");

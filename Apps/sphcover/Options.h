@@ -36,7 +36,8 @@ struct Options
   int Orbit = 0;
   bool Exr = false;
   int SamplesPerPixel = 4;
-  double Exposure = 1.0;
+  /// --exposure: a factor, as vtkRadianceImageFilter::ExposureFactor (not stops).
+  double ExposureFactor = 1.0;
   int Threads = 0;
   bool Quiet = false;
   /// The budgets (see the options' help): what a stage may take before it refuses.

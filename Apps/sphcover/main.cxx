@@ -67,8 +67,9 @@ void AddImageOptions(CLI::App* command,
 {
   command->add_option("--spp", options.SamplesPerPixel, "Samples per pixel (default 4)")
     ->check(CLI::Range(1, 4096));
-  command->add_option(
-    "--exposure", options.Exposure, "Radiance scale before tone mapping, > 0 (default 1)");
+  command->add_option("--exposure",
+    options.ExposureFactor,
+    "Factor (not stops) the radiance is multiplied by before tone mapping, > 0 (default 1)");
   command->add_option("--max-samples", options.MaxSamples, budgetHelp)
     ->check(CLI::Range(1.0, 1e18));
 }

@@ -7,7 +7,7 @@
 //   axis along its normal, so every pixel covers the same wall area) has a mean Radiance equal
 //   to the area-weighted mean exitant radiance of its characteristic points (what the solve
 //   report gives) within 1%;
-// - the output arrays and the image size; RGB is the sRGB encoding of Exposure * Radiance;
+// - the output arrays and the image size; RGB is the sRGB encoding of ExposureFactor * Radiance;
 // - without camera properties, the scene's first camera at its size; a property set wins;
 // - bad input: raw surfaces without illumination, an unknown camera, bad camera properties,
 //   an image beyond the memory limit, non-diffuse points without IncidentRadiance, corrupt
@@ -158,8 +158,8 @@ void CornellBackWall()
     Check(std::fabs(mean[b] / expected[b] - 1.0) < 0.01,
       "Cornell: the back wall's mean pixel radiance is its mean exitant radiance within 1%");
   }
-  // RGB is sRGB(Exposure * Radiance), clamped.
-  pipeline.Render->SetExposure(2.0);
+  // RGB is sRGB(ExposureFactor * Radiance), clamped.
+  pipeline.Render->SetExposureFactor(2.0);
   pipeline.Render->Update();
   auto* rgb = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetArray("RGB"));
   radiance = image->GetPointData()->GetArray("Radiance");
@@ -174,7 +174,7 @@ void CornellBackWall()
       const double c = std::min(1.0, 2.0 * radiance->GetComponent(p, b));
       const double encoded = c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
       Check(std::fabs(rgb->GetComponent(p, b) - 255.0 * encoded) <= 0.5 + 1e-9,
-        "RGB: sRGB encoding of Exposure * Radiance");
+        "RGB: sRGB encoding of ExposureFactor * Radiance");
     }
   }
   BadDirectIrradiance(pipeline);

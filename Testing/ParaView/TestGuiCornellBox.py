@@ -13,7 +13,7 @@ Defaults: the scene opened as File > Open does, the filters applied as the Filte
 (Patches left empty: ParaView would not ask for them) lists the scene's cameras in its
 CameraName domain, starts at the first ("main") and renders at its size (512 x 512) without any
 property set, shown in a render view as a Slice coloured by RGB; the Illumination Field carries
-DisplayRGB (bytes, the active scalars) whose Exposure of +1 stop doubles the linear value; the
+DisplayRGB (bytes, the active scalars) whose ExposureStops of +1 doubles the linear value; the
 patches coloured by SplitReason get a categorical map with the criteria's names.
 
 usage: pvbatch TestGuiCornellBox.py PLUGIN DATA_DIR OUTPUT_DIR"""
@@ -181,7 +181,7 @@ if rgb is None or rgb.GetName() != "DisplayRGB" or rgb.GetDataTypeAsString() != 
                     "not DisplayRGB bytes per point")
 else:
     before = vtk_to_numpy(rgb).astype(int)
-    field.Exposure = 1.0
+    field.ExposureStops = 1.0
     after = vtk_to_numpy(servermanager.Fetch(field).GetPointData().GetScalars()).astype(int)
     # Unsaturated, not too dark values: +1 stop doubles the linear value (bytes round).
     ratios = [srgb_to_linear(a) / srgb_to_linear(b)

@@ -146,7 +146,7 @@ render = globals()["RadianceImage"](Input=OutputPort(propagation, 0),
                                     Patches=OutputPort(subdivision, 0))
 native_render = vtkRadianceImageFilter()
 check_properties(render, native_render, ["ViewAngle", "Width", "Height", "SamplesPerPixel",
-                 "Exposure", "MemoryLimit"])
+                 "ExposureFactor", "MemoryLimit"])
 for name in ["Position", "FocalPoint", "ViewUp"]:
     prop = render.SMProxy.GetProperty(name)
     xml_default = [prop.GetElement(k) for k in range(prop.GetNumberOfElements())]

@@ -12,7 +12,7 @@ white wall (diffuse), the mirror wall and the glossy cube:
   that camera's eye, within 1 byte: the representation follows the camera;
 - back at the first camera the image is the first one again (the evaluation's caches hold values,
   not a history);
-- Exposure -1 instead of 0 halves the white wall's radiance: its bytes are the sRGB encoding of
+- ExposureStops -1 instead of 0 halves the white wall's radiance: its bytes are the sRGB encoding of
   half the decoded ones (within 2 bytes; quantisation);
 - a dataset that is not an Illumination Field gives one error, naming what is missing, and is
   drawn (no crash).
@@ -96,9 +96,9 @@ for k, camera in enumerate(CAMERAS):
                         f"({(difference[mirror] > 1).sum()} on the mirror) differ from the "
                         "evaluation toward this camera by hand")
 
-# Exposure: one stop less halves the radiance shown (camera 0, the white wall, pixels neither
+# ExposureStops: one stop less halves the radiance shown (camera 0, the white wall, pixels neither
 # black nor white).
-display.Exposure = -1.0
+display.ExposureStops = -1.0
 look(view, CAMERAS[0])
 Render(view)
 darker = shot("exposure", view)
@@ -109,14 +109,14 @@ error = np.abs(darker[white][usable] - encode(0.5 * decode(before[usable])))
 ratio = np.median(decode(darker[white][usable]) / decode(before[usable]))
 # A pixel's bytes are interpolated between vertices in sRGB, so halving the radiance is not
 # exactly halving a pixel's decoded value: a few bytes of slack, and the median ratio.
-print(f"Exposure -1: {usable.sum()} white-wall pixels, largest error against half the radiance "
-      f"{error.max() if usable.any() else '-'} bytes, median ratio {ratio:.4f}")
+print(f"ExposureStops -1: {usable.sum()} white-wall pixels, largest error against half the "
+      f"radiance {error.max() if usable.any() else '-'} bytes, median ratio {ratio:.4f}")
 if usable.sum() < 0.01 * WIDTH * HEIGHT:
     failures.append("too few white-wall pixels between black and white; the test is wrong")
 elif error.max() > 3 or abs(ratio - 0.5) > 0.01:
-    failures.append(f"Exposure -1: {(error > 3).any(axis=1).sum()} white-wall pixels are not half "
-                    f"the radiance (median ratio {ratio})")
-display.Exposure = 0.0
+    failures.append(f"ExposureStops -1: {(error > 3).any(axis=1).sum()} white-wall pixels are "
+                    f"not half the radiance (median ratio {ratio})")
+display.ExposureStops = 0.0
 Hide(field, view)
 
 # Data that is not an Illumination Field: one clear error, drawn all the same.
