@@ -15,10 +15,10 @@
 
 #include "SphericalCoverCommonModule.h" // for export macro
 
-#include "cover/HemisphereGrid.h"                   // for the frames
-#include "render/CharacteristicPointInterpolator.h" // for the interpolator
-#include "render/RadianceRenderer.h"                // for DirectionalIllumination
-#include "scene/Material.h"                         // for the materials
+#include "cover/HemisphereGrid.h"                        // for the frames
+#include "render/RadianceRenderer.h"                     // for DirectionalIllumination
+#include "scene/Material.h"                              // for the materials
+#include "subdivision/CharacteristicPointInterpolator.h" // for the interpolator
 
 #include <glm/vec3.hpp> // for the radiance
 

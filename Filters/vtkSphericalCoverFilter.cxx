@@ -611,6 +611,7 @@ bool RefineCover(vtkSphericalCoverFilter* self,
   {
     options.MeasuredSurfaces = lamps;
   }
+  options.Interpolation.Enabled = self->GetInterpolateHemispheres();
   // Built once: the ray fill's estimate and rows and the direct light cast at the same patches,
   // and a large scene's tessellation and BVH take a while to build.
   const bool lit = self->GetDirectIrradianceNodes() > 0 &&
@@ -775,6 +776,7 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BackFacesOcclude: " << this->BackFacesOcclude << "\n";
   os << indent << "GenerateStripTable: " << this->GenerateStripTable << "\n";
   os << indent << "MeasureLamps: " << this->MeasureLamps << "\n";
+  os << indent << "InterpolateHemispheres: " << this->InterpolateHemispheres << "\n";
   os << indent << "DirectIrradianceNodes: " << this->DirectIrradianceNodes << "\n";
   os << indent << "DirectBounceRays: " << this->DirectBounceRays << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";

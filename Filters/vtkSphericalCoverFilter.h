@@ -121,6 +121,19 @@ public:
 
   ///@{
   /**
+   * Interpolate the hemispheres of the points that lie between two neighbours on a flat
+   * surface from theirs, row by row, casting rays only where the neighbours' interpolations
+   * disagree (paper §3.4 and §4.3 note 5; Core's HemisphereInterpolation.h; ray casting only).
+   * Off (the default): every hemisphere is computed (Documentation/notes/
+   * interpolated-hemispheres.md says why it is not the default yet).
+   */
+  vtkSetMacro(InterpolateHemispheres, bool);
+  vtkGetMacro(InterpolateHemispheres, bool);
+  vtkBooleanMacro(InterpolateHemispheres, bool);
+  ///@}
+
+  ///@{
+  /**
    * Nodes along each side of every patch at which the lamps' direct irradiance (and its first
    * bounce, DirectBounceRays) is computed
    * (Core's DirectIrradiance.h: the output's point array DirectIrradiance): the render and the
@@ -233,6 +246,7 @@ protected:
   bool BackFacesOcclude = true;
   bool GenerateStripTable = true;
   bool MeasureLamps = true;
+  bool InterpolateHemispheres = false;
   int DirectIrradianceNodes = 3;
   int DirectBounceRays = 32;
   double MemoryLimit = 8192.0;

@@ -21,6 +21,7 @@ struct Options
   std::string Fill = "raycasting";
   /// The cover's measure of the lamps' regions: "measured" (on the lamp) or "cells".
   std::string Lamps = "measured";
+  std::string Hemispheres = "computed";
   /// vtkSphericalCoverFilter::DirectIrradianceNodes (0: none).
   int DirectNodes = 3;
   /// vtkSphericalCoverFilter::DirectBounceRays (0: the direct light only).

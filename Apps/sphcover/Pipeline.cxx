@@ -142,6 +142,7 @@ void Solution::Solve(const Options& options, bool gather)
     this->Cover->SetFillMethodToProjection();
   }
   this->Cover->SetMeasureLamps(options.Lamps == "measured");
+  this->Cover->SetInterpolateHemispheres(options.Hemispheres == "interpolated");
   this->Cover->SetDirectIrradianceNodes(options.DirectNodes);
   this->Cover->SetDirectBounceRays(options.BounceRays);
   {

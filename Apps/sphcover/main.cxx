@@ -8,7 +8,8 @@
  *   sphcover info SCENE
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
- *                  [--lamps measured|cells] [--direct-nodes N] [--bounce-rays N]
+ *                  [--lamps measured|cells] [--hemispheres interpolated|computed]
+ *                  [--direct-nodes N] [--bounce-rays N]
  *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH]
  *                   [--spp N] [--exposure E] [--solution solution.vtm] [--report report.json]
  *                   [--set k=v]
@@ -85,6 +86,13 @@ void AddCoverOptions(CLI::App* command, sphcover_cli::Options& options)
       "How the cover measures a lamp's regions: measured (default: integrated over the lamp "
       "with shadow rays, ray fill only) or cells (the paper's: counted in cells)")
     ->check(CLI::IsMember({ "cells", "measured" }));
+  command
+    ->add_option("--hemispheres",
+      options.Hemispheres,
+      "computed (default: every hemisphere cast) or interpolated (a point between two "
+      "neighbours on a flat surface gets its hemisphere from theirs, paper 3.4, rays only where "
+      "they disagree)")
+    ->check(CLI::IsMember({ "interpolated", "computed" }));
   command
     ->add_option("--direct-nodes",
       options.DirectNodes,

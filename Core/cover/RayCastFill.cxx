@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "cover/RayCastFill.h"
 
+#include "cover/HemisphereInterpolation.h"
+
 #include "geometry/RayPatchIntersection.h"
 #include "subdivision/Patch.h"
 
@@ -24,7 +26,17 @@ struct HitScratch
   std::vector<float> T;
   /// Adaptive sampling: per cell, the group shown by its centre sample (-1: empty).
   std::vector<int32_t> CellKey;
+  /// FillFromDonors: per cell the patch the donors agree on (NoSource: nothing), or Unknown,
+  /// and its depth; per donor cell whether it lies inside a region of one surface.
+  std::vector<int32_t> PredictedSource;
+  std::vector<float> PredictedDepth;
+  /// FillFromDonors: per pair of donors its interpolated cells' sources and R.
+  std::vector<int32_t> DonorSources;
+  std::vector<float> DonorDepths;
 };
+
+/// A cell FillFromDonors leaves to the rays.
+constexpr int32_t Unknown = -2;
 
 HitScratch& ThreadScratch()
 {
@@ -248,7 +260,8 @@ void RayCastFiller::StoreHit(const SampleCast& cast,
 
 std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   const HemisphereFrame& frame,
-  RBuffer& buffer) const
+  RBuffer& buffer,
+  const Prediction* prediction) const
 {
   const HemisphereGrid& grid = this->Grid;
   const ReceiverFilter receiverFilter =
@@ -290,11 +303,28 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   std::vector<int32_t>& key = scratch.CellKey;
   key.resize(static_cast<size_t>(grid.CellCount()));
   PendingRays pending;
+  // A predicted cell (FillFromDonors) gets its centre sample from the donors, without a ray.
+  auto predicted = [prediction](int cell)
+  { return prediction ? prediction->Source[static_cast<size_t>(cell)] : Unknown; };
+  std::size_t castCount = 0;
   for (int row = 0; row < rows; ++row)
   {
     for (int column = 0; column < columns; ++column)
     {
-      this->Queue(cast, pending, row * samplesTheta + centreA, column * samplesPhi + centreB);
+      const int32_t source = predicted(grid.CellIndex(row, column));
+      if (source == Unknown)
+      {
+        this->Queue(cast, pending, row * samplesTheta + centreA, column * samplesPhi + centreB);
+        ++castCount;
+      }
+      else if (source != RBuffer::NoSource)
+      {
+        buffer.SetSample(
+          grid.SampleIndex(row * samplesTheta + centreA, column * samplesPhi + centreB),
+          source,
+          prediction->Depth[static_cast<size_t>(grid.CellIndex(row, column))],
+          false);
+      }
     }
   }
   this->Flush(cast, pending);
@@ -310,15 +340,19 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   }
   // Then, cell by cell in row-major order, the other samples: copied from the centre where the
   // cell and its 8 neighbours (phi wraps around; rows 0 and last have no row beyond) agree,
-  // cast where they do not.
-  std::size_t castCount = static_cast<size_t>(grid.CellCount());
+  // cast where they do not. A predicted cell is copied from its centre; so is every cell of a
+  // prediction that does not sample its boundary cells.
+  const bool sampleBoundaries = !prediction || prediction->SampleBoundaryCells;
   for (int row = 0; row < rows; ++row)
   {
     for (int column = 0; column < columns; ++column)
     {
       const int32_t own = key[static_cast<size_t>(grid.CellIndex(row, column))];
+      const bool known = predicted(grid.CellIndex(row, column)) != Unknown;
+      const bool decided = known || !sampleBoundaries;
       bool uniform = true;
-      for (int r = std::max(0, row - 1); uniform && r <= std::min(rows - 1, row + 1); ++r)
+      for (int r = std::max(0, row - 1); !decided && uniform && r <= std::min(rows - 1, row + 1);
+           ++r)
       {
         for (int dc = -1; dc <= 1; ++dc)
         {
@@ -355,14 +389,14 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
           }
           // The centre's source and grazing flag; R unknown (NaN), to be refined on demand from
           // the centre's hit as a first guess (never needed: a uniform cell's representative is
-          // its centre sample).
+          // its centre sample; a predicted centre has its R).
           const std::size_t sample = grid.SampleIndex(sampleRow, sampleColumn);
           scratch.U[sample] = scratch.U[centreSample];
           scratch.V[sample] = scratch.V[centreSample];
           scratch.T[sample] = scratch.T[centreSample];
           buffer.SetSample(sample,
             centreSource,
-            std::numeric_limits<float>::quiet_NaN(),
+            known ? buffer.SampleDepth(centreSample) : std::numeric_limits<float>::quiet_NaN(),
             buffer.SampleGrazing(centreSample));
         }
       }
@@ -414,11 +448,110 @@ void RayCastFiller::Flush(const SampleCast& cast, PendingRays& pending) const
 
 void RayCastFiller::Fill(std::size_t receiver, RBuffer& buffer, CullingStatistics*) const
 {
+  const HemisphereFrame frame = HemisphereFrame::OfPatch(this->Patches[receiver]);
+  buffer.Reset(receiver);
+  const std::size_t rays = this->CastSamples(receiver, frame, buffer, nullptr);
+  this->RayCount.fetch_add(rays, std::memory_order_relaxed);
+  this->ClassifyCells(frame, buffer);
+}
+
+void RayCastFiller::FillFromDonors(std::size_t receiver,
+  const std::vector<DonorPair>& pairs,
+  double maxDifference,
+  bool sampleBoundaryCells,
+  RBuffer& buffer) const
+{
   const HemisphereGrid& grid = this->Grid;
   const HemisphereFrame frame = HemisphereFrame::OfPatch(this->Patches[receiver]);
   buffer.Reset(receiver);
-  const std::size_t rays = this->CastSamples(receiver, frame, buffer);
+  HitScratch& scratch = ThreadScratch();
+  const size_t cells = static_cast<size_t>(grid.CellCount());
+  // The pairs whose hemispheres lie on the receiver's grid (the same frame but for the origin;
+  // paper §3.4 interpolates in one (theta, phi) space).
+  auto sameFrame = [&frame](const HemisphereFrame& f)
+  {
+    return glm::length(f.Normal - frame.Normal) < 1e-6 &&
+      glm::length(f.Tangent - frame.Tangent) < 1e-6;
+  };
+  // And whose donors are alike: the measure of the cells where they show different surfaces
+  // (or one of them nothing) at most maxDifference of the hemisphere's (paper §3.4: "the
+  // neighbours of H_i are likely to be very similar"; where they are not, e.g. one donor under
+  // a block and the other beside it, their interpolation means nothing).
+  auto groupOf = [this](int32_t source)
+  { return source < 0 ? -1 : this->SurfaceOfPatch[static_cast<size_t>(source)]; };
+  std::vector<const DonorPair*> usable;
+  for (const DonorPair& pair : pairs)
+  {
+    if (!sameFrame(HemisphereFrame::OfPatch(this->Patches[pair.A.Patch])) ||
+      !sameFrame(HemisphereFrame::OfPatch(this->Patches[pair.B.Patch])))
+    {
+      continue;
+    }
+    double different = 0.0;
+    for (int cell = 0; cell < grid.CellCount(); ++cell)
+    {
+      if (groupOf(pair.A.CellSources[cell]) != groupOf(pair.B.CellSources[cell]))
+      {
+        different += grid.CellMeasureOfCell(cell);
+      }
+    }
+    if (different <= maxDifference * grid.TotalMeasure())
+    {
+      usable.push_back(&pair);
+    }
+  }
+  if (usable.empty())
+  {
+    this->Fill(receiver, buffer, nullptr);
+    return;
+  }
+  std::vector<int32_t>& interpolated = scratch.DonorSources;
+  std::vector<float>& interpolatedDepth = scratch.DonorDepths;
+  interpolated.resize(cells * usable.size());
+  interpolatedDepth.resize(cells * usable.size());
+  for (size_t k = 0; k < usable.size(); ++k)
+  {
+    const DonorPair& pair = *usable[k];
+    InterpolateHemispheres(grid.ThetaBins(),
+      grid.PhiBins(),
+      pair.A.CellSources,
+      pair.A.CellDepths,
+      pair.B.CellSources,
+      pair.B.CellDepths,
+      pair.T,
+      interpolated.data() + k * cells,
+      interpolatedDepth.data() + k * cells);
+  }
+  // A cell is known where the pairs agree (or there is one pair); the receiver never sees its
+  // own patch through its donors' eyes.
+  Prediction prediction{ scratch.PredictedSource, scratch.PredictedDepth, sampleBoundaryCells };
+  prediction.Source.assign(cells, Unknown);
+  prediction.Depth.assign(cells, 0.0f);
+  for (size_t c = 0; c < cells; ++c)
+  {
+    const int32_t source = interpolated[c];
+    double depth = interpolatedDepth[c];
+    bool agreed = source != static_cast<int32_t>(receiver);
+    for (size_t k = 1; agreed && k < usable.size(); ++k)
+    {
+      const int32_t other = interpolated[k * cells + c];
+      agreed = other == source;
+      depth += interpolatedDepth[k * cells + c];
+    }
+    if (agreed)
+    {
+      prediction.Source[c] = source;
+      prediction.Depth[c] = static_cast<float>(depth / static_cast<double>(usable.size()));
+    }
+  }
+  const std::size_t rays = this->CastSamples(receiver, frame, buffer, &prediction);
   this->RayCount.fetch_add(rays, std::memory_order_relaxed);
+  this->ClassifyCells(frame, buffer);
+}
+
+void RayCastFiller::ClassifyCells(const HemisphereFrame& frame, RBuffer& buffer) const
+{
+  const HemisphereGrid& grid = this->Grid;
   const HitScratch& scratch = ThreadScratch();
   buffer.Classify(
     [&](std::size_t sample, int32_t source) -> float

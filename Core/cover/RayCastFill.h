@@ -154,6 +154,43 @@ public:
     int layer,
     RBuffer& behind) const;
 
+  /// A computed hemisphere lent to FillFromDonors: its patch and, per cell, its source
+  /// (RBuffer::NoSource where none) and R.
+  struct Donor
+  {
+    std::size_t Patch;
+    const int32_t* CellSources;
+    const float* CellDepths;
+  };
+  /// Two donors that bracket a receiver, at `T` in [0, 1] from A to B (the receiver's share of
+  /// the way: |P_i - P_A| / (|P_i - P_A| + |P_i - P_B|)).
+  struct DonorPair
+  {
+    Donor A;
+    Donor B;
+    double T;
+  };
+  /**
+   * Fills `buffer` for `receiver` from its donors' hemispheres (paper §3.4; the plan is
+   * HemisphereInterpolation.h), casting rays only where they do not tell. A pair is used when
+   * its donors' frames are the receiver's (but for the origin: a flat surface) and the cells
+   * where its two donors show different surfaces (or one nothing) measure at most
+   * `maxDifference` of the hemisphere (projected solid angle). Each such pair is interpolated row
+   * by row (InterpolateHemispheres); a cell where the pairs agree (every cell when there is one
+   * pair), and which is not the receiver's own patch, takes that source and the pairs' mean R
+   * without a ray. The other cells are cast as Fill casts them (their centres, then, with
+   * `sampleBoundaryCells`, every sample of the cells at a change of surface; without, their
+   * centres decide alone); no usable pair: Fill. Then Classify, as Fill. What this misses that
+   * Fill sees: what both pairs (or the one pair) interpolate alike and wrongly, i.e. a source
+   * that appears between the donors and is in neither. Needs AdaptiveSampling (without it
+   * every sample is cast). Safe to call from several threads.
+   */
+  void FillFromDonors(std::size_t receiver,
+    const std::vector<DonorPair>& pairs,
+    double maxDifference,
+    bool sampleBoundaryCells,
+    RBuffer& buffer) const;
+
   /// Sample rays cast by all Fill() calls so far (a statistic: with AdaptiveSampling fewer
   /// than Fill() calls x SampleCount(); the same for any number of threads).
   std::uint64_t RaysCast() const;
@@ -170,12 +207,24 @@ private:
     float* T;
   };
 
+  /// What FillFromDonors knows before the rays: per cell a source (NoSource: nothing; -2:
+  /// unknown, to be cast) and its R.
+  struct Prediction
+  {
+    std::vector<int32_t>& Source;
+    std::vector<float>& Depth;
+    bool SampleBoundaryCells;
+  };
   /// Casts the samples of `receiver`'s hemisphere into `buffer` (sources, grazing flags, the
   /// tessellation's depths), all of them or adaptively, and keeps the hits' (u, v, t) for the
-  /// refinement in Classify. Returns the number of rays cast.
+  /// refinement in Classify; the cells `prediction` (may be null) knows are not cast. Returns
+  /// the number of rays cast.
   std::size_t CastSamples(std::size_t receiver,
     const HemisphereFrame& frame,
-    RBuffer& buffer) const;
+    RBuffer& buffer,
+    const Prediction* prediction) const;
+  /// Classify with the exact R of the representative samples (RefineHits).
+  void ClassifyCells(const HemisphereFrame& frame, RBuffer& buffer) const;
   /// Samples waiting to be cast as one packet (RayPackets).
   struct PendingRays
   {

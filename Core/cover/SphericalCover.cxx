@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "cover/SphericalCover.h"
 
+#include "cover/HemisphereInterpolation.h"
 #include "cover/RayCastFill.h"
 #include "math/Constants.h"
 #include "math/IntervalVector.h"
 
 #include "subdivision/Patch.h"
+
+#include <glm/geometric.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -392,6 +395,71 @@ void SphericalCover::AppendRow(Row& row)
   this->CullingCounts += row.Culling;
 }
 
+namespace
+{
+/// Paints the cells of strips [first, last) of source `source` with it and their strips' R.
+void PaintStrips(const HemisphereGrid& grid,
+  uint32_t source,
+  const SphericalCover::Strip* first,
+  const SphericalCover::Strip* last,
+  const float* depths,
+  int32_t* cellSources,
+  float* cellDepths)
+{
+  for (const SphericalCover::Strip* strip = first; strip != last; ++strip, ++depths)
+  {
+    for (int column = strip->PhiBegin; column < strip->PhiEnd; ++column)
+    {
+      const size_t cell = static_cast<size_t>(grid.CellIndex(strip->Row, column));
+      cellSources[cell] = static_cast<int32_t>(source);
+      cellDepths[cell] = *depths;
+    }
+  }
+}
+}
+
+void SphericalCover::PaintRowCells(const HemisphereGrid& grid,
+  const Row& row,
+  int32_t* cellSources,
+  float* cellDepths)
+{
+  size_t strip = 0;
+  for (size_t e = 0; e < row.Sources.size(); ++e)
+  {
+    const size_t end = strip + row.StripCounts[e];
+    if (row.Layers[e] == 0)
+    {
+      PaintStrips(grid,
+        row.Sources[e],
+        row.Strips.data() + strip,
+        row.Strips.data() + end,
+        row.Depths.data() + strip,
+        cellSources,
+        cellDepths);
+    }
+    strip = end;
+  }
+}
+
+void SphericalCover::PaintCoverRowCells(std::size_t row,
+  int32_t* cellSources,
+  float* cellDepths) const
+{
+  for (size_t e = this->EntryBegin(row); e < this->EntryEnd(row); ++e)
+  {
+    if (this->Layer(e) == 0)
+    {
+      PaintStrips(*this->GridPointer,
+        this->Entries[e].Source,
+        this->Strips.data() + this->StripBegin(e),
+        this->Strips.data() + this->StripEnd(e),
+        this->StripDepths.data() + this->StripBegin(e),
+        cellSources,
+        cellDepths);
+    }
+  }
+}
+
 bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   const SphericalCoverOptions& options,
   const std::vector<std::size_t>& receivers,
@@ -473,7 +541,141 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   {
     this->Areas[i] = patches[receivers[i]].Area;
   }
+  // Interpolated hemispheres (HemisphereInterpolation.h, ray fill with adaptive sampling): the
+  // donors' rows are computed first, then every row in receiver order, the interpolated ones
+  // from their donors. A donor outside `receivers` (another rank's row) is computed here too,
+  // so a share's rows are the whole cover's bit for bit.
+  const RayCastFiller* caster = dynamic_cast<const RayCastFiller*>(filler.get());
+  const HemisphereInterpolationPlan plan = caster && options.FillOptions.AdaptiveSampling
+    ? HemisphereInterpolationPlan(patches, options.Interpolation)
+    : HemisphereInterpolationPlan();
+  auto interpolated = [&plan](size_t patch)
+  { return plan.PointCount() > 0 && plan.IsInterpolated(patch); };
+  std::vector<size_t> donorsFirst;
+  if (plan.InterpolatedCount() > 0)
+  {
+    std::vector<char> needed(patches.size(), 0);
+    for (const size_t receiver : receivers)
+    {
+      for (const uint32_t* d = plan.DonorsBegin(receiver); d != plan.DonorsEnd(receiver); ++d)
+      {
+        needed[*d] = 1;
+      }
+    }
+    for (size_t p = 0; p < patches.size(); ++p)
+    {
+      if (needed[p])
+      {
+        donorsFirst.push_back(p);
+      }
+    }
+  }
+  // Rows computed ahead and not yet appended, by patch; once appended a donor's cells are read
+  // from the cover (rowOfPatch).
+  std::vector<std::unique_ptr<Row>> ahead(donorsFirst.empty() ? 0 : patches.size());
+  std::vector<std::ptrdiff_t> rowOfPatch(donorsFirst.empty() ? 0 : patches.size(), -1);
+  const bool sampleBoundaries = options.Interpolation.SampleBoundaryCells;
+  auto buildRow = [&](size_t receiver, Row& row, RBuffer& buffer, RBuffer* behind)
+  {
+    if (interpolated(receiver))
+    {
+      thread_local std::vector<int32_t> donorSources;
+      thread_local std::vector<float> donorDepths;
+      const size_t cells = static_cast<size_t>(grid.CellCount());
+      const size_t donorCount =
+        static_cast<size_t>(plan.DonorsEnd(receiver) - plan.DonorsBegin(receiver));
+      donorSources.assign(cells * donorCount, RBuffer::NoSource);
+      donorDepths.assign(cells * donorCount, 0.0f);
+      std::vector<RayCastFiller::Donor> donors;
+      for (size_t k = 0; k < donorCount; ++k)
+      {
+        const size_t donor = plan.DonorsBegin(receiver)[k];
+        int32_t* sources = donorSources.data() + k * cells;
+        float* depths = donorDepths.data() + k * cells;
+        if (ahead[donor])
+        {
+          PaintRowCells(grid, *ahead[donor], sources, depths);
+        }
+        else
+        {
+          this->PaintCoverRowCells(static_cast<size_t>(rowOfPatch[donor]), sources, depths);
+        }
+        donors.push_back({ donor, sources, depths });
+      }
+      auto donorOf = [&](uint32_t patch)
+      {
+        return *std::find_if(donors.begin(),
+          donors.end(),
+          [patch](const RayCastFiller::Donor& d) { return d.Patch == patch; });
+      };
+      std::vector<RayCastFiller::DonorPair> pairs;
+      for (int axis = 0; axis < 2; ++axis)
+      {
+        const uint32_t a = plan.PairDonor(receiver, axis, 0);
+        const uint32_t b = plan.PairDonor(receiver, axis, 1);
+        if (a != HemisphereInterpolationPlan::None && b != HemisphereInterpolationPlan::None)
+        {
+          const double toA = glm::length(patches[receiver].Point - patches[a].Point);
+          const double toB = glm::length(patches[receiver].Point - patches[b].Point);
+          pairs.push_back({ donorOf(a), donorOf(b), toA / (toA + toB) });
+        }
+      }
+      caster->FillFromDonors(
+        receiver, pairs, options.Interpolation.MaxDifference, sampleBoundaries, buffer);
+    }
+    else
+    {
+      filler->Fill(receiver, buffer, &row.Culling);
+    }
+    ExtractRow(buffer, row);
+    if (paneFiller)
+    {
+      this->ExtractLayersBehindPanes(*paneFiller, transmittanceOfPatch, buffer, *behind, row);
+    }
+    if (rayFiller)
+    {
+      this->MeasureRow(receiver, *rayFiller, patches, measuredPieces, row);
+    }
+  };
+  for (const size_t donor : donorsFirst)
+  {
+    ahead[donor] = std::make_unique<Row>();
+  }
+  auto isAhead = [&ahead](size_t patch) { return !ahead.empty() && ahead[patch] != nullptr; };
+  // Progress counts a computed row as one and an interpolated one as a quarter (about what it
+  // costs, Documentation/notes/interpolated-hemispheres.md).
+  auto work = [&](size_t receiver) { return interpolated(receiver) ? 0.25 : 1.0; };
+  double totalWork = static_cast<double>(donorsFirst.size());
+  for (const size_t receiver : receivers)
+  {
+    totalWork += isAhead(receiver) ? 0.0 : work(receiver);
+  }
+  double doneWork = 0.0;
   const size_t batchSize = options.BatchSize > 0 ? options.BatchSize : DefaultBatchSize;
+  // Pass 1: the donors' rows.
+  for (size_t batchBegin = 0; batchBegin < donorsFirst.size(); batchBegin += batchSize)
+  {
+    const size_t batchCount = std::min(batchSize, donorsFirst.size() - batchBegin);
+    run(batchCount,
+      [&](size_t begin, size_t end)
+      {
+        RBuffer buffer(grid);
+        const std::unique_ptr<RBuffer> behind =
+          paneFiller ? std::make_unique<RBuffer>(grid) : nullptr;
+        for (size_t k = begin; k < end; ++k)
+        {
+          const size_t receiver = donorsFirst[batchBegin + k];
+          buildRow(receiver, *ahead[receiver], buffer, behind.get());
+        }
+      });
+    doneWork += static_cast<double>(batchCount);
+    if (progress && !progress(doneWork / totalWork))
+    {
+      this->Clear();
+      return false;
+    }
+  }
+  // Pass 2: every row in receiver order.
   std::vector<Row> rows;
   for (size_t batchBegin = 0; batchBegin < count; batchBegin += batchSize)
   {
@@ -488,24 +690,31 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
         for (size_t k = begin; k < end; ++k)
         {
           const size_t receiver = receivers[batchBegin + k];
-          filler->Fill(receiver, buffer, &rows[k].Culling);
-          ExtractRow(buffer, rows[k]);
-          if (paneFiller)
+          if (!isAhead(receiver))
           {
-            this->ExtractLayersBehindPanes(
-              *paneFiller, transmittanceOfPatch, buffer, *behind, rows[k]);
-          }
-          if (rayFiller)
-          {
-            this->MeasureRow(receiver, *rayFiller, patches, measuredPieces, rows[k]);
+            buildRow(receiver, rows[k], buffer, behind.get());
           }
         }
       });
-    for (Row& row : rows)
+    for (size_t k = 0; k < batchCount; ++k)
     {
-      this->AppendRow(row);
+      const size_t receiver = receivers[batchBegin + k];
+      if (isAhead(receiver))
+      {
+        this->AppendRow(*ahead[receiver]);
+        ahead[receiver].reset();
+      }
+      else
+      {
+        this->AppendRow(rows[k]);
+        doneWork += work(receiver);
+      }
+      if (!rowOfPatch.empty())
+      {
+        rowOfPatch[receiver] = static_cast<std::ptrdiff_t>(batchBegin + k);
+      }
     }
-    if (progress && !progress(static_cast<double>(batchBegin + batchCount) / count))
+    if (progress && !progress(doneWork / totalWork))
     {
       this->Clear();
       return false;

@@ -64,6 +64,7 @@
 
 #include "cover/CandidateCulling.h"
 #include "cover/HemisphereGrid.h"
+#include "cover/HemisphereInterpolation.h"
 #include "cover/RBuffer.h"
 #include "math/ParallelFor.h"
 
@@ -108,6 +109,9 @@ struct SphericalCoverOptions
   std::vector<glm::vec3> SurfaceTransmittance;
   /// Most panes a region is seen through (the layers after the first); 0: panes are opaque.
   int MaxPaneDepth = 4;
+  /// Hemispheres interpolated from their neighbours' instead of computed (paper §3.4, §4.3
+  /// note 5; ray fill with AdaptiveSampling only): HemisphereInterpolation.h.
+  HemisphereInterpolationOptions Interpolation;
 };
 
 /**
@@ -387,6 +391,13 @@ private:
     const std::vector<std::vector<uint32_t>>& piecesOfSurface,
     Row& row) const;
   void AppendRow(Row& row);
+  /// The layer-0 cells of a row (a row being built, or row `row` of this cover) painted with
+  /// their sources and their strips' R; cells of no entry are left as they are.
+  static void PaintRowCells(const HemisphereGrid& grid,
+    const Row& row,
+    int32_t* cellSources,
+    float* cellDepths);
+  void PaintCoverRowCells(std::size_t row, int32_t* cellSources, float* cellDepths) const;
   /// The sum of the measures of entry e's cells.
   double CellsMeasure(std::size_t entry) const;
   /// Derives the columns (which rows contain each source) from the rows.

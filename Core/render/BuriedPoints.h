@@ -21,7 +21,7 @@
 #ifndef SPHCOVER_BURIEDPOINTS_H
 #define SPHCOVER_BURIEDPOINTS_H
 
-#include "render/CharacteristicPointInterpolator.h"
+#include "subdivision/CharacteristicPointInterpolator.h"
 
 #include <vector>
 

@@ -41,9 +41,9 @@
 #include "cover/SphericalCover.h"
 #include "math/ParallelFor.h"
 #include "reflectance/DirectionalReflection.h"
-#include "render/CharacteristicPointInterpolator.h"
 #include "scene/Camera.h"
 #include "scene/Material.h"
+#include "subdivision/CharacteristicPointInterpolator.h"
 #include "subdivision/Patch.h"
 
 #include <glm/vec3.hpp>

@@ -34,10 +34,10 @@
 #include "math/Constants.h"
 #include "math/ParallelFor.h"
 #include "propagation/LightPropagation.h"
-#include "render/CharacteristicPointInterpolator.h"
 #include "render/RadianceRenderer.h"
 #include "scene/CameraPath.h"
 #include "scene/SceneLoader.h"
+#include "subdivision/CharacteristicPointInterpolator.h"
 #include "subdivision/IntervalSubdivision.h"
 
 #include <embree3/rtcore.h>

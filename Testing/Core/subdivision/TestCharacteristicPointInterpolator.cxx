@@ -3,7 +3,7 @@
 // partition a bilinear field is reproduced exactly, inside and in the extrapolated margins
 // near the edges (Fig. 6); on adaptive ternary layouts a linear field is; a constant stays
 // constant everywhere; several surfaces do not mix; bad input is refused.
-#include "render/CharacteristicPointInterpolator.h"
+#include "subdivision/CharacteristicPointInterpolator.h"
 
 #include <gtest/gtest.h>
 

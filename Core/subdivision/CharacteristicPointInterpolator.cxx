@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: BSD-3-Clause
-#include "render/CharacteristicPointInterpolator.h"
+#include "subdivision/CharacteristicPointInterpolator.h"
 
 #include "subdivision/Patch.h"
 
