@@ -398,6 +398,8 @@ private:
     int32_t* cellSources,
     float* cellDepths);
   void PaintCoverRowCells(std::size_t row, int32_t* cellSources, float* cellDepths) const;
+  /// The sum of the cells' measures of the strips [first, last).
+  static double MeasureOfStrips(const HemisphereGrid& grid, const Strip* first, const Strip* last);
   /// The sum of the measures of entry e's cells.
   double CellsMeasure(std::size_t entry) const;
   /// Derives the columns (which rows contain each source) from the rows.
