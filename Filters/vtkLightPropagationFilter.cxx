@@ -23,6 +23,7 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -34,6 +35,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <limits>
@@ -159,19 +161,32 @@ std::string StoreFigures(const sphcover::CoverFigures& cover,
   auto area = vtkNamedArrays::Double(names::SurfaceArea, 1, surfaces);
   auto meanIrradiance = vtkNamedArrays::Double(names::SurfaceMeanIrradiance, 3, surfaces);
   auto meanRadiance = vtkNamedArrays::Double(names::SurfaceMeanExitantRadiance, 3, surfaces);
-  // One component per named surface (VTK keeps at least one, for a scene without surfaces).
-  auto factors =
-    vtkNamedArrays::Double(names::SurfaceFormFactors, static_cast<int>(surfaces), surfaces);
-  auto* surfaceNames =
-    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::SurfaceNames));
   for (vtkIdType a = 0; a < surfaces; ++a)
   {
     const sphcover::SurfaceFigures& surface = figures.Surfaces[static_cast<size_t>(a)];
     area->SetValue(a, surface.Area);
     meanIrradiance->SetTuple(a, &surface.MeanIrradiance[0]);
     meanRadiance->SetTuple(a, &surface.MeanExitantRadiance[0]);
-    factors->SetTuple(a, &figures.FormFactors[static_cast<size_t>(a * surfaces)]);
-    factors->SetComponentName(a, surfaceNames->GetValue(a).c_str());
+  }
+  // The pairs that see each other, by row (SurfaceFormFactorPairs): a dense matrix of
+  // one component per surface is n^2 (3.3 GB for 20,000 surfaces).
+  const sphcover::SurfaceFormFactors& formFactors = figures.FormFactors;
+  const vtkIdType pairs = static_cast<vtkIdType>(formFactors.PairCount());
+  auto factorPairs = vtkNamedArrays::Int(names::SurfaceFormFactorPairs, 2, pairs);
+  factorPairs->SetComponentName(0, "From");
+  factorPairs->SetComponentName(1, "To");
+  auto factorValues = vtkNamedArrays::Double(names::SurfaceFormFactorValues, 1, pairs);
+  for (vtkIdType a = 0; a < surfaces; ++a)
+  {
+    for (std::uint64_t k = formFactors.RowOffsets[static_cast<size_t>(a)];
+         k < formFactors.RowOffsets[static_cast<size_t>(a) + 1];
+         ++k)
+    {
+      const vtkIdType pair = static_cast<vtkIdType>(k);
+      factorPairs->SetTypedComponent(pair, 0, static_cast<int>(a));
+      factorPairs->SetTypedComponent(pair, 1, formFactors.Seen[k]);
+      factorValues->SetValue(pair, formFactors.Values[k]);
+    }
   }
   auto statistics = vtkNamedArrays::Double(names::SolutionStatistics, 3, 1);
   statistics->SetComponentName(0, "CharacteristicPoints");
@@ -184,7 +199,11 @@ std::string StoreFigures(const sphcover::CoverFigures& cover,
   fd->AddArray(area);
   fd->AddArray(meanIrradiance);
   fd->AddArray(meanRadiance);
-  fd->AddArray(factors);
+  // A solution saved before the form factors were sparse carries them as the dense matrix of
+  // one component per surface; the pairs supersede it.
+  fd->RemoveArray("SurfaceFormFactors");
+  fd->AddArray(factorPairs);
+  fd->AddArray(factorValues);
   fd->AddArray(statistics);
   return std::string();
 }

@@ -172,7 +172,7 @@ std::string JoinCoverFigures(const sphcover::RankShare& share,
   }
   try
   {
-    figures.FormFactors = sphcover::SphericalCover::FormFactorsOf(
+    figures.FormFactors = sphcover::SumSurfaceFormFactors(
       rowSums, surfaces.SurfaceOfPoint, surfaces.SurfaceCount, areas);
   }
   catch (const std::exception& e)

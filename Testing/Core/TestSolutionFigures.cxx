@@ -9,13 +9,42 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <stdexcept>
+#include <vector>
 
 using namespace sphcover;
 using namespace sphcover_test;
 
 namespace
 {
+/// The sparse form factors are the dense matrix's values bit for bit, a pair listed for every
+/// non-zero element, each row ascending.
+void ExpectTheDenseMatrix(const SurfaceFormFactors& sparse, const std::vector<double>& dense)
+{
+  const int n = sparse.SurfaceCount;
+  ASSERT_EQ(dense.size(), static_cast<size_t>(n) * static_cast<size_t>(n));
+  ASSERT_EQ(sparse.RowOffsets.size(), static_cast<size_t>(n) + 1);
+  size_t nonZero = 0;
+  for (int a = 0; a < n; ++a)
+  {
+    for (uint64_t k = sparse.RowOffsets[a]; k + 1 < sparse.RowOffsets[a + 1]; ++k)
+    {
+      EXPECT_LT(sparse.Seen[k], sparse.Seen[k + 1]);
+    }
+    for (int b = 0; b < n; ++b)
+    {
+      const double value = dense[static_cast<size_t>(a) * static_cast<size_t>(n) + b];
+      EXPECT_EQ(sparse.At(a, b), value) << a << " -> " << b;
+      nonZero += value != 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GE(sparse.PairCount(), nonZero);
+  EXPECT_EQ(sparse.MemoryBytes(),
+    (n + 1) * SurfaceFormFactors::BytesPerSurface +
+      sparse.PairCount() * SurfaceFormFactors::BytesPerPair);
+}
+
 /// The illumination of the Howell scene at equilibrium, per point its surface (name index).
 PointIllumination Solve(const CoveredScene& setup, LightPropagation& propagation)
 {
@@ -50,7 +79,7 @@ TEST(SolutionFigures, HowellParallelRectangles)
   ASSERT_EQ(figures.Surfaces.size(), 2u);
   EXPECT_EQ(figures.CharacteristicPoints, setup.Patches.size());
   EXPECT_EQ(figures.Strips, setup.Cover.StripCount());
-  EXPECT_EQ(figures.FormFactors,
+  ExpectTheDenseMatrix(figures.FormFactors,
     setup.Cover.FormFactors(illumination.SurfaceOfPoint, illumination.SurfaceCount));
   EXPECT_EQ(figures.RelativeImbalance, propagation.Energy().RelativeImbalance);
   EXPECT_EQ(figures.Emitted, propagation.Energy().Emitted);
@@ -71,7 +100,7 @@ TEST(SolutionFigures, HowellParallelRectangles)
   EXPECT_NEAR(figures.Surfaces[static_cast<size_t>(a)].Area, 2.0, 1e-12);
   EXPECT_NEAR(figures.Surfaces[static_cast<size_t>(b)].Area, 2.0, 1e-12);
   const glm::dvec3 le = setup.Environment.Materials[static_cast<size_t>(lamp)].Emission;
-  const double fBA = figures.FormFactors[static_cast<size_t>(b * 2 + a)];
+  const double fBA = figures.FormFactors.At(b, a);
   for (int band = 0; band < 3; ++band)
   {
     const double mean = figures.Surfaces[static_cast<size_t>(b)].MeanIrradiance[band];
