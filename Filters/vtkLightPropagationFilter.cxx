@@ -208,20 +208,34 @@ std::string StoreFigures(const sphcover::CoverFigures& cover,
   return std::string();
 }
 
-/// "" when the propagation of `rows` fits in `memoryLimit` MiB, else the problem.
+/// "" when the propagation of `rows` and the figures of its `surfaces` named surfaces (none:
+/// the points name none) fit in `memoryLimit` MiB, else the problem. Both are bounded from the
+/// sizes before any of it is allocated.
 std::string MemoryProblem(const sphcover::SphericalCover& rows,
   const std::vector<sphcover::Material>& materials,
+  int surfaces,
   double memoryLimit)
 {
-  const double needed =
-    static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)) /
-    (1024.0 * 1024.0);
-  if (needed > memoryLimit)
+  const double mib = 1024.0 * 1024.0;
+  const double propagation =
+    static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)) / mib;
+  const double figures = surfaces > 0
+    ? static_cast<double>(sphcover::FiguresBoundBytes(
+        rows.PatchCount(), rows.EntryCount(), static_cast<std::size_t>(surfaces))) /
+      mib
+    : 0.0;
+  if (propagation + figures > memoryLimit)
   {
     std::ostringstream text;
-    text << "it would need about " << static_cast<int>(needed) << " MiB (state of "
-         << rows.EntryCount() << " regions and weight tables of a " << rows.Options().ThetaBins
-         << " x " << rows.Options().PhiBins << " grid), more than MemoryLimit (" << memoryLimit
+    text << "it would need about " << static_cast<long long>(propagation + figures)
+         << " MiB (state of " << rows.EntryCount() << " regions and weight tables of a "
+         << rows.Options().ThetaBins << " x " << rows.Options().PhiBins << " grid";
+    if (surfaces > 0)
+    {
+      text << ", figures of " << surfaces << " named surfaces: up to "
+           << static_cast<long long>(std::ceil(figures)) << " MiB";
+    }
+    text << "), more than MemoryLimit (" << memoryLimit
          << " MiB); use a coarser grid or fewer patches.";
     return text.str();
   }
@@ -261,7 +275,8 @@ std::string ReadPropagationInput(vtkPolyData* input,
       return surfaceProblem;
     }
   }
-  return withCover ? MemoryProblem(cover, materials, memoryLimit) : std::string();
+  return withCover ? MemoryProblem(cover, materials, named ? surfaces.SurfaceCount : 0, memoryLimit)
+                   : std::string();
 }
 
 /// The exchange balance of `rows` (ExchangeBalance.h; the first 5% of the progress): its

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -151,6 +152,29 @@ SurfaceFormFactors SumSurfaceFormFactors(
     factors.RowOffsets[a + 1] = factors.Seen.size();
   }
   return factors;
+}
+
+std::size_t FiguresBoundBytes(std::size_t patches, std::size_t entries, std::size_t surfaces)
+{
+  // Per point: its row's vector, the receivers' index, its area (twice: the cover's copy and
+  // the illumination's), its surface, irradiance and exitant radiance (PointIllumination).
+  constexpr std::size_t perPoint = sizeof(std::vector<SphericalCover::GroupSum>) +
+    sizeof(std::size_t) + 2 * sizeof(double) + sizeof(int) + 2 * sizeof(glm::dvec3);
+  // Per pair: the factors' surface and value, and the field arrays' From, To and value.
+  constexpr std::size_t perPair =
+    2 * SurfaceFormFactors::BytesPerPair + 2 * sizeof(int) + sizeof(double);
+  // Per surface: the row offset, the receivers' offsets, its area, the scratch row (a double,
+  // a flag and an entry of the list seen), its figures and their field arrays (7 doubles).
+  constexpr std::size_t perSurface = SurfaceFormFactors::BytesPerSurface + sizeof(std::size_t) +
+    2 * sizeof(double) + 1 + sizeof(std::int32_t) + sizeof(SurfaceFigures) + 7 * sizeof(double);
+  const double pairs =
+    std::min(static_cast<double>(entries), static_cast<double>(surfaces) * surfaces);
+  const double bytes = static_cast<double>(patches) * perPoint +
+    2.0 * static_cast<double>(entries) * sizeof(SphericalCover::GroupSum) + pairs * perPair +
+    static_cast<double>(surfaces) * perSurface;
+  return bytes >= static_cast<double>(std::numeric_limits<std::size_t>::max())
+    ? std::numeric_limits<std::size_t>::max()
+    : static_cast<std::size_t>(bytes);
 }
 
 SurfaceFormFactors SurfaceFormFactorsOf(const SphericalCover& cover,

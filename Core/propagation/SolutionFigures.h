@@ -82,6 +82,18 @@ SurfaceFormFactors SurfaceFormFactorsOf(const SphericalCover& cover,
   const std::vector<int>& groupOfPatch,
   int groupCount);
 
+/**
+ * An upper bound of the bytes the figures of a cover of `patches` points and `entries` regions
+ * between `surfaces` named surfaces take while they are summed and stored: per point its row of
+ * sums (SphericalCover::FormFactorSums: at most one GroupSum per region) and its illumination,
+ * per pair that sees each other (at most the entries, at most surfaces^2) the sparse factors and
+ * their field arrays, per surface its figures, its field arrays and the summing scratch. Each
+ * vector counted at twice its size (the slack of growing by push_back). From sizes alone: a
+ * caller refuses before summing (vtkLightPropagationFilter's MemoryLimit, with the propagation's
+ * LightPropagation::EstimateBytes).
+ */
+std::size_t FiguresBoundBytes(std::size_t patches, std::size_t entries, std::size_t surfaces);
+
 /// One named surface of the solution.
 struct SurfaceFigures
 {

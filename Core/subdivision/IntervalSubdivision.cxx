@@ -234,6 +234,9 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
   // what the bounding-volume culling and the limits leave, to predict the next sweep's cost.
   // 1 before the first sweep (an upper bound: every pair).
   double testedShare = 1.0;
+  // The surfaces' own patches against the budget first: a scene of more patches than it allows
+  // is refused before the first sweep's pair tests, not after them.
+  this->CheckBudget({});
   while (true)
   {
     const size_t count = this->Leaves.size();
