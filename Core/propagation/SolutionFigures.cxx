@@ -160,9 +160,10 @@ std::size_t FiguresBoundBytes(std::size_t patches, std::size_t entries, std::siz
   // the illumination's), its surface, irradiance and exitant radiance (PointIllumination).
   constexpr std::size_t perPoint = sizeof(std::vector<SphericalCover::GroupSum>) +
     sizeof(std::size_t) + 2 * sizeof(double) + sizeof(int) + 2 * sizeof(glm::dvec3);
-  // Per pair: the factors' surface and value, and the field arrays' From, To and value.
+  // Per pair: the factors' surface and value (with their growth's slack, and the solution
+  // figures' copy), and the field arrays' From, To and value.
   constexpr std::size_t perPair =
-    2 * SurfaceFormFactors::BytesPerPair + 2 * sizeof(int) + sizeof(double);
+    3 * SurfaceFormFactors::BytesPerPair + 2 * sizeof(int) + sizeof(double);
   // Per surface: the row offset, the receivers' offsets, its area, the scratch row (a double,
   // a flag and an entry of the list seen), its figures and their field arrays (7 doubles).
   constexpr std::size_t perSurface = SurfaceFormFactors::BytesPerSurface + sizeof(std::size_t) +

@@ -87,8 +87,8 @@ SurfaceFormFactors SurfaceFormFactorsOf(const SphericalCover& cover,
  * between `surfaces` named surfaces take while they are summed and stored: per point its row of
  * sums (SphericalCover::FormFactorSums: at most one GroupSum per region) and its illumination,
  * per pair that sees each other (at most the entries, at most surfaces^2) the sparse factors and
- * their field arrays, per surface its figures, its field arrays and the summing scratch. Each
- * vector counted at twice its size (the slack of growing by push_back). From sizes alone: a
+ * their field arrays, per surface its figures, its field arrays and the summing scratch; the
+ * vectors grown by push_back at twice their size (their slack). From sizes alone: a
  * caller refuses before summing (vtkLightPropagationFilter's MemoryLimit, with the propagation's
  * LightPropagation::EstimateBytes).
  */
