@@ -139,12 +139,18 @@ constexpr const char* Seconds = "Seconds";
 /// Field data, named component: Shots (of the propagation).
 constexpr const char* PropagationStatistics = "PropagationStatistics";
 /// Field data, the figures of the solution (Core's SolutionFigures), one tuple per entry of
-/// SurfaceNames: area (m^2), area-weighted mean irradiance (3) and exitant radiance (3), and
-/// the form factors to every named surface (one component per name).
+/// SurfaceNames: area (in the scene unit's square), area-weighted mean irradiance (3) and
+/// exitant radiance (3).
 constexpr const char* SurfaceArea = "SurfaceArea";
 constexpr const char* SurfaceMeanIrradiance = "SurfaceMeanIrradiance";
 constexpr const char* SurfaceMeanExitantRadiance = "SurfaceMeanExitantRadiance";
-constexpr const char* SurfaceFormFactors = "SurfaceFormFactors";
+/// Field data, the form factors between the named surfaces that see each other (Core's
+/// SurfaceFormFactors), one tuple per pair, by the first surface then the second: the pair's
+/// indices of SurfaceNames (int, components From and To) and F from the first to the second
+/// (double). A pair not listed does not see each other (F = 0). Sparse, because the n x n
+/// matrix of a scene of thousands of named parts does not fit in memory.
+constexpr const char* SurfaceFormFactorPairs = "SurfaceFormFactorPairs";
+constexpr const char* SurfaceFormFactorValues = "SurfaceFormFactorValues";
 /// Field data, named components: CharacteristicPoints, Strips, RelativeImbalance.
 constexpr const char* SolutionStatistics = "SolutionStatistics";
 

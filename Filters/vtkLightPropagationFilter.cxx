@@ -23,6 +23,7 @@
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
@@ -34,6 +35,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <functional>
 #include <limits>
@@ -159,19 +161,32 @@ std::string StoreFigures(const sphcover::CoverFigures& cover,
   auto area = vtkNamedArrays::Double(names::SurfaceArea, 1, surfaces);
   auto meanIrradiance = vtkNamedArrays::Double(names::SurfaceMeanIrradiance, 3, surfaces);
   auto meanRadiance = vtkNamedArrays::Double(names::SurfaceMeanExitantRadiance, 3, surfaces);
-  // One component per named surface (VTK keeps at least one, for a scene without surfaces).
-  auto factors =
-    vtkNamedArrays::Double(names::SurfaceFormFactors, static_cast<int>(surfaces), surfaces);
-  auto* surfaceNames =
-    vtkStringArray::SafeDownCast(points->GetFieldData()->GetAbstractArray(names::SurfaceNames));
   for (vtkIdType a = 0; a < surfaces; ++a)
   {
     const sphcover::SurfaceFigures& surface = figures.Surfaces[static_cast<size_t>(a)];
     area->SetValue(a, surface.Area);
     meanIrradiance->SetTuple(a, &surface.MeanIrradiance[0]);
     meanRadiance->SetTuple(a, &surface.MeanExitantRadiance[0]);
-    factors->SetTuple(a, &figures.FormFactors[static_cast<size_t>(a * surfaces)]);
-    factors->SetComponentName(a, surfaceNames->GetValue(a).c_str());
+  }
+  // The pairs that see each other, by row (SurfaceFormFactorPairs): a dense matrix of
+  // one component per surface is n^2 (3.3 GB for 20,000 surfaces).
+  const sphcover::SurfaceFormFactors& formFactors = figures.FormFactors;
+  const vtkIdType pairs = static_cast<vtkIdType>(formFactors.PairCount());
+  auto factorPairs = vtkNamedArrays::Int(names::SurfaceFormFactorPairs, 2, pairs);
+  factorPairs->SetComponentName(0, "From");
+  factorPairs->SetComponentName(1, "To");
+  auto factorValues = vtkNamedArrays::Double(names::SurfaceFormFactorValues, 1, pairs);
+  for (vtkIdType a = 0; a < surfaces; ++a)
+  {
+    for (std::uint64_t k = formFactors.RowOffsets[static_cast<size_t>(a)];
+         k < formFactors.RowOffsets[static_cast<size_t>(a) + 1];
+         ++k)
+    {
+      const vtkIdType pair = static_cast<vtkIdType>(k);
+      factorPairs->SetTypedComponent(pair, 0, static_cast<int>(a));
+      factorPairs->SetTypedComponent(pair, 1, formFactors.Seen[k]);
+      factorValues->SetValue(pair, formFactors.Values[k]);
+    }
   }
   auto statistics = vtkNamedArrays::Double(names::SolutionStatistics, 3, 1);
   statistics->SetComponentName(0, "CharacteristicPoints");
@@ -184,25 +199,43 @@ std::string StoreFigures(const sphcover::CoverFigures& cover,
   fd->AddArray(area);
   fd->AddArray(meanIrradiance);
   fd->AddArray(meanRadiance);
-  fd->AddArray(factors);
+  // A solution saved before the form factors were sparse carries them as the dense matrix of
+  // one component per surface; the pairs supersede it.
+  fd->RemoveArray("SurfaceFormFactors");
+  fd->AddArray(factorPairs);
+  fd->AddArray(factorValues);
   fd->AddArray(statistics);
   return std::string();
 }
 
-/// "" when the propagation of `rows` fits in `memoryLimit` MiB, else the problem.
+/// "" when the propagation of `rows` and the figures of its `surfaces` named surfaces (none:
+/// the points name none) fit in `memoryLimit` MiB, else the problem. Both are bounded from the
+/// sizes before any of it is allocated.
 std::string MemoryProblem(const sphcover::SphericalCover& rows,
   const std::vector<sphcover::Material>& materials,
+  int surfaces,
   double memoryLimit)
 {
-  const double needed =
-    static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)) /
-    (1024.0 * 1024.0);
-  if (needed > memoryLimit)
+  const double mib = 1024.0 * 1024.0;
+  const double propagation =
+    static_cast<double>(sphcover::LightPropagation::EstimateBytes(rows, materials)) / mib;
+  const double figures = surfaces > 0
+    ? static_cast<double>(sphcover::FiguresBoundBytes(
+        rows.PatchCount(), rows.EntryCount(), static_cast<std::size_t>(surfaces))) /
+      mib
+    : 0.0;
+  if (propagation + figures > memoryLimit)
   {
     std::ostringstream text;
-    text << "it would need about " << static_cast<int>(needed) << " MiB (state of "
-         << rows.EntryCount() << " regions and weight tables of a " << rows.Options().ThetaBins
-         << " x " << rows.Options().PhiBins << " grid), more than MemoryLimit (" << memoryLimit
+    text << "it would need about " << static_cast<long long>(propagation + figures)
+         << " MiB (state of " << rows.EntryCount() << " regions and weight tables of a "
+         << rows.Options().ThetaBins << " x " << rows.Options().PhiBins << " grid";
+    if (surfaces > 0)
+    {
+      text << ", figures of " << surfaces << " named surfaces: up to "
+           << static_cast<long long>(std::ceil(figures)) << " MiB";
+    }
+    text << "), more than MemoryLimit (" << memoryLimit
          << " MiB); use a coarser grid or fewer patches.";
     return text.str();
   }
@@ -242,7 +275,8 @@ std::string ReadPropagationInput(vtkPolyData* input,
       return surfaceProblem;
     }
   }
-  return withCover ? MemoryProblem(cover, materials, memoryLimit) : std::string();
+  return withCover ? MemoryProblem(cover, materials, named ? surfaces.SurfaceCount : 0, memoryLimit)
+                   : std::string();
 }
 
 /// The exchange balance of `rows` (ExchangeBalance.h; the first 5% of the progress): its

@@ -29,7 +29,10 @@
  * SolutionFigures, what `sphcover solve --report` prints): `SolutionStatistics`
  * (CharacteristicPoints, Strips, RelativeImbalance) and, per entry of `SurfaceNames`,
  * `SurfaceArea`, `SurfaceMeanIrradiance` (3), `SurfaceMeanExitantRadiance` (3, of Radiosity)
- * and `SurfaceFormFactors` (one component per name: row a, from surface a). The figures need
+ * and the form factors of the surfaces that see each other (Core's SurfaceFormFactors, sparse:
+ * a scene of thousands of named parts has millions of pairs, few of which see each other), one
+ * tuple per pair by the first surface then the second: `SurfaceFormFactorPairs` (2 ints, From
+ * and To, indices of `SurfaceNames`) and `SurfaceFormFactorValues` (F). The figures need
  * the points' `SurfaceNameId` and the field array `SurfaceNames` (every reader's scene has
  * them); without them they are left out, and an id that is not an index of the names is an
  * error.

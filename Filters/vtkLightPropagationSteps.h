@@ -80,9 +80,11 @@ SPHERICALCOVERFILTERS_EXPORT std::string StoreFigures(const sphcover::CoverFigur
   sphcover::PointIllumination illumination,
   vtkPolyData* points);
 
-/// "" when the propagation of `rows` fits in `memoryLimit` MiB, else the problem.
+/// "" when the propagation of `rows` and the figures of `surfaces` named surfaces (0: none
+/// counted) fit in `memoryLimit` MiB, else the problem.
 SPHERICALCOVERFILTERS_EXPORT std::string MemoryProblem(const sphcover::SphericalCover& rows,
   const std::vector<sphcover::Material>& materials,
+  int surfaces,
   double memoryLimit);
 
 /// The cover (`withCover`: else only the points' own arrays), materials and (`named`, when the

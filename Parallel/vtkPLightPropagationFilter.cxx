@@ -172,7 +172,7 @@ std::string JoinCoverFigures(const sphcover::RankShare& share,
   }
   try
   {
-    figures.FormFactors = sphcover::SphericalCover::FormFactorsOf(
+    figures.FormFactors = sphcover::SumSurfaceFormFactors(
       rowSums, surfaces.SurfaceOfPoint, surfaces.SurfaceCount, areas);
   }
   catch (const std::exception& e)
@@ -535,8 +535,10 @@ int vtkPLightPropagationFilter::PropagateOnRanks(vtkMultiProcessController* cont
           : RowsOfRank(cover, controller->GetLocalProcessId(), controller->GetNumberOfProcesses());
       }
       cover = sphcover::SphericalCover();
+      // A rank's rows' state; the figures are rank 0's, summed before (the whole cover's) or
+      // joined after the propagation (shares), and not counted here.
       problem =
-        agree(problem.empty() ? MemoryProblem(rows, materials, this->MemoryLimit) : problem);
+        agree(problem.empty() ? MemoryProblem(rows, materials, 0, this->MemoryLimit) : problem);
       if (!problem.empty())
       {
         vtkErrorMacro(<< "Cannot propagate light: " << problem);

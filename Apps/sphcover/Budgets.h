@@ -18,6 +18,16 @@ struct Options;
 /// Refuses a cover grid whose R-buffers alone (one per thread) exceed --memory-limit.
 void CheckCoverGrid(const sphcover::SceneSettings& settings, const Options& options);
 
+/// What a solve of `patches` patches (the scene's, before any is split) of `surfaces` named
+/// surfaces holds at least, whatever the subdivision and the visibility: per patch its row of
+/// the cover, its material, its propagation state and its figures, per surface its figures.
+std::size_t LeastSolveBytes(std::size_t patches, std::size_t surfaces);
+
+/// Refuses a scene whose LeastSolveBytes exceed --memory-limit, before the subdivision: the
+/// stages' own checks come once their sizes are known (the subdivision's patches, the cover's
+/// sampled rows, the propagation's regions and figures), this one from the scene alone.
+void CheckSceneSize(std::size_t patches, std::size_t surfaces, const Options& options);
+
 /// The render's budgets from the options (--spp, --memory-limit, --max-samples).
 sphcover::RenderSettings RenderBudget(const Options& options);
 

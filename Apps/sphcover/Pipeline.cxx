@@ -11,6 +11,7 @@
 
 #include "scene/SettingsOverride.h"
 
+#include <vtkAbstractArray.h>
 #include <vtkAlgorithm.h>
 #include <vtkCommunicator.h>
 #include <vtkDataArray.h>
@@ -113,6 +114,13 @@ void Solution::Solve(const Options& options, bool gather)
 {
   const sphcover::SceneSettings settings = SettingsOf(this->Reader->GetOutput(), options.Settings);
   CheckCoverGrid(settings, options);
+  // The scene's own size against the limit, before any of the work: what its patches and
+  // named surfaces need whatever the subdivision makes of them.
+  vtkUnstructuredGrid* scene = this->Reader->GetOutput();
+  vtkAbstractArray* surfaceNames = scene->GetFieldData()->GetAbstractArray(names::SurfaceNames);
+  CheckSceneSize(static_cast<std::size_t>(scene->GetNumberOfCells()),
+    surfaceNames ? static_cast<std::size_t>(surfaceNames->GetNumberOfValues()) : 0,
+    options);
   // Every rank subdivides (so that all fail alike on a bad scene), but under mpiexec only rank 0
   // gives the cover the patches: the other ranks ask for empty pieces, as pvbatch's ranks do,
   // and get rank 0's scene from the cover filter. Each rank keeps the rows it builds (GatherRows

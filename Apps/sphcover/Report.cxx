@@ -11,7 +11,10 @@
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <cstddef>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace sphcover_cli
 {
@@ -24,7 +27,8 @@ nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
   vtkDataArray* area = fd->GetArray(names::SurfaceArea);
   vtkDataArray* irradiance = fd->GetArray(names::SurfaceMeanIrradiance);
   vtkDataArray* radiance = fd->GetArray(names::SurfaceMeanExitantRadiance);
-  vtkDataArray* factors = fd->GetArray(names::SurfaceFormFactors);
+  vtkDataArray* pairs = fd->GetArray(names::SurfaceFormFactorPairs);
+  vtkDataArray* factors = fd->GetArray(names::SurfaceFormFactorValues);
   vtkDataArray* balance = fd->GetArray(names::EnergyBalance);
   vtkDataArray* statistics = fd->GetArray(names::SolutionStatistics);
   const vtkIdType groups = surfaceNames ? surfaceNames->GetNumberOfValues() : 0;
@@ -34,11 +38,13 @@ nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
       array->GetNumberOfTuples() == tuples;
   };
   if (!surfaceNames || !holds(area, 1, groups) || !holds(irradiance, 3, groups) ||
-    !holds(radiance, 3, groups) || !holds(factors, groups > 0 ? int(groups) : 1, groups) ||
-    !holds(balance, 3, 2) || !holds(statistics, 3, 1))
+    !holds(radiance, 3, groups) || !pairs || !holds(pairs, 2, pairs->GetNumberOfTuples()) ||
+    !holds(factors, 1, pairs->GetNumberOfTuples()) || !holds(balance, 3, 2) ||
+    !holds(statistics, 3, 1))
   {
     throw std::runtime_error("the illumination lacks the solution's figures (SurfaceArea, "
-                             "SurfaceFormFactors, SolutionStatistics: vtkLightPropagationFilter)");
+                             "SurfaceFormFactorPairs, SolutionStatistics: "
+                             "vtkLightPropagationFilter)");
   }
   auto triple = [](vtkDataArray* array, vtkIdType tuple)
   {
@@ -50,7 +56,6 @@ nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
   nlohmann::json report;
   report["surfaces"] = nlohmann::json::array();
   report["form_factors"]["names"] = nlohmann::json::array();
-  report["form_factors"]["matrix"] = nlohmann::json::array();
   for (vtkIdType a = 0; a < groups; ++a)
   {
     report["surfaces"].push_back({ { "name", surfaceNames->GetValue(a) },
@@ -58,12 +63,40 @@ nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
       { "mean_irradiance", triple(irradiance, a) },
       { "mean_exitant_radiance", triple(radiance, a) } });
     report["form_factors"]["names"].push_back(surfaceNames->GetValue(a));
-    nlohmann::json row = nlohmann::json::array();
-    for (vtkIdType b = 0; b < groups; ++b)
+  }
+  // The pairs as the field data lists them, by row; the dense matrix from them for a scene of
+  // few surfaces (the pairs not listed are 0, as the matrix's were).
+  nlohmann::json& listed = report["form_factors"]["pairs"] = nlohmann::json::array();
+  const bool dense = groups <= MatrixSurfaces;
+  std::vector<double> matrix(dense ? static_cast<std::size_t>(groups * groups) : 0, 0.0);
+  for (vtkIdType k = 0; k < pairs->GetNumberOfTuples(); ++k)
+  {
+    const double from = pairs->GetComponent(k, 0);
+    const double to = pairs->GetComponent(k, 1);
+    if (!(from >= 0.0 && from < groups && to >= 0.0 && to < groups))
     {
-      row.push_back(factors->GetComponent(a, static_cast<int>(b)));
+      throw std::runtime_error("the illumination's SurfaceFormFactorPairs names surface " +
+        std::to_string(from < 0.0 || from >= groups ? from : to) + ", not one of the " +
+        std::to_string(groups) + " SurfaceNames");
     }
-    report["form_factors"]["matrix"].push_back(row);
+    const vtkIdType a = static_cast<vtkIdType>(from);
+    const vtkIdType b = static_cast<vtkIdType>(to);
+    const double value = factors->GetComponent(k, 0);
+    listed.push_back({ a, b, value });
+    if (dense)
+    {
+      matrix[static_cast<std::size_t>(a * groups + b)] = value;
+    }
+  }
+  if (dense)
+  {
+    report["form_factors"]["matrix"] = nlohmann::json::array();
+    for (vtkIdType a = 0; a < groups; ++a)
+    {
+      report["form_factors"]["matrix"].push_back(
+        std::vector<double>(matrix.begin() + static_cast<std::ptrdiff_t>(a * groups),
+          matrix.begin() + static_cast<std::ptrdiff_t>((a + 1) * groups)));
+    }
   }
   // The scene's length unit: areas are in its square, powers already in watts
   // (vtkLightPropagationFilter converts them with SceneUnitMetres).

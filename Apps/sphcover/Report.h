@@ -8,6 +8,11 @@
  * formats them, with the timings the commands measure (wall `timings_s` and processor
  * `timings_cpu_s` per stage; render adds its stage and `image`) and, for a solution computed in
  * the run, the bytes its cover and incident radiances hold (`memory_bytes`).
+ *
+ * The form factors are `form_factors.pairs`, one [from, to, F] per pair of surfaces that see each
+ * other (indices of `form_factors.names`), and, for a scene of at most MatrixSurfaces named
+ * surfaces, also the dense `form_factors.matrix` (row a: from surface a) that reports had before
+ * the pairs: its n^2 numbers would make the report of a scene of 20,000 named parts 5 GB.
  */
 #ifndef SPHCOVER_REPORT_H
 #define SPHCOVER_REPORT_H
@@ -28,6 +33,9 @@ struct ReportCounts
 };
 
 struct Solution;
+
+/// The most named surfaces whose form factors the report also gives as the dense matrix.
+constexpr long long MatrixSurfaces = 256;
 
 /// The report of the figures in `illumination`'s field data. Throws one line when it has none.
 nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts);

@@ -178,6 +178,11 @@ public:
   /// filter's output arrays.
   static constexpr std::size_t BytesPerEntry = 192;
   static constexpr std::size_t BytesPerPatch = 256;
+  /// Bytes per patch that the state holds whatever the materials and the cover: a diffuse
+  /// patch's reflectance, emission, unshot radiance, model and power (a floor, for refusing a
+  /// scene before the cover's entries are known).
+  static constexpr std::size_t LeastBytesPerPatch =
+    3 * sizeof(glm::dvec3) + sizeof(int) + sizeof(double);
   /// An estimate of the propagation's memory for the cover and one material per patch: the
   /// state above and the weight tables (PointReflectances::EstimateBytes), computed without
   /// allocating, so that a caller can refuse before constructing.

@@ -108,6 +108,8 @@ struct Scene
 
   /// Axis-aligned box of all control points (it encloses the surfaces: convex hull property).
   void Bounds(glm::dvec3& lower, glm::dvec3& upper) const;
+  /// The index of the material called `name`, or -1; a search of the list (the loader looks the
+  /// surfaces' materials up in a hash table of its own).
   int FindMaterial(const std::string& name) const;
 };
 

@@ -234,8 +234,20 @@ bool IntervalSubdivision::Run(const ProgressCallback& progress, const ParallelFo
   // what the bounding-volume culling and the limits leave, to predict the next sweep's cost.
   // 1 before the first sweep (an upper bound: every pair).
   double testedShare = 1.0;
+  // The surfaces' own patches against the budget first: a scene of more patches than it allows
+  // is refused before the first sweep's pair tests, not after them.
+  this->CheckBudget({});
   while (true)
   {
+    // No leaf below MaxLevel: no pair can split anything, and a sweep would only count them as
+    // limited, O(N^2) pair visits for nothing (20,000 tiles at max_level 0: 4 s).
+    if (std::all_of(this->Leaves.begin(),
+          this->Leaves.end(),
+          [this](int node)
+          { return this->Nodes[static_cast<size_t>(node)].Level >= this->Settings.MaxLevel; }))
+    {
+      break;
+    }
     const size_t count = this->Leaves.size();
     const double candidates = CandidatePairs(this->LeafIsNew);
     this->CheckCost(testedShare * candidates, "would make about");

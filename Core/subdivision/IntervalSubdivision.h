@@ -55,7 +55,7 @@ struct SubdivisionStatistics
 {
   /// Pairs (receiver point, source patch) whose criteria were evaluated by range estimates.
   std::size_t PairTests = 0;
-  /// Sweeps over the patch list until no split was needed.
+  /// Sweeps over the patch list until no split was needed (none when MaxLevel allows no split).
   int Sweeps = 0;
   /// Splits performed, by reason (indexed by SplitReason).
   std::array<std::size_t, 6> Splits{};

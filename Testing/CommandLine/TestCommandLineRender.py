@@ -208,10 +208,10 @@ def field(name):
 if os.path.exists(report_file):
     report = json.load(open(report_file))
     arrays = [field(n) for n in ["SurfaceArea", "SurfaceMeanIrradiance", "SurfaceMeanExitantRadiance",
-                                 "SurfaceFormFactors", "EnergyBalance", "SolutionStatistics",
-                                 "PropagationStatistics"]]
+                                 "SurfaceFormFactorPairs", "SurfaceFormFactorValues",
+                                 "EnergyBalance", "SolutionStatistics", "PropagationStatistics"]]
     if all(a is not None for a in arrays):
-        area, irradiance, radiance, factors, balance, statistics, shots = arrays
+        area, irradiance, radiance, pairs, factors, balance, statistics, shots = arrays
         names = fd.GetAbstractArray("SurfaceNames")
         mismatches = []
         for k, surface in enumerate(report["surfaces"]):
@@ -221,9 +221,18 @@ if os.path.exists(report_file):
                 if not (close(irradiance.GetComponent(k, band), surface["mean_irradiance"][band]) and
                         close(radiance.GetComponent(k, band), surface["mean_exitant_radiance"][band])):
                     mismatches.append(f"surface {k} band {band} means")
-            for j, value in enumerate(report["form_factors"]["matrix"][k]):
-                if not close(factors.GetComponent(k, j), value):
-                    mismatches.append(f"form factor {k} {j}")
+        # The form factors: the report's pairs are the field data's, and its matrix (a scene of
+        # few surfaces) holds them and zeros elsewhere.
+        listed = [[int(pairs.GetComponent(k, 0)), int(pairs.GetComponent(k, 1)),
+                   factors.GetValue(k)] for k in range(pairs.GetNumberOfTuples())]
+        if listed != report["form_factors"]["pairs"]:
+            mismatches.append("form factor pairs")
+        matrix = report["form_factors"]["matrix"]
+        seen = {(a, b): value for a, b, value in listed}
+        for i, row in enumerate(matrix):
+            for j, value in enumerate(row):
+                if value != seen.get((i, j), 0.0):
+                    mismatches.append(f"form factor {i} {j}")
         for band in range(3):
             if not (close(balance.GetComponent(0, band), report["energy"]["emitted_w"][band]) and
                     close(balance.GetComponent(1, band), report["energy"]["absorbed_w"][band])):

@@ -307,13 +307,13 @@ for label, source in [("kept rows", kept), ("gathered cover", cover)]:
     if values(fields.GetArray("IncidentRadiance")) != own_incident:
         failures.append(f"the solution of the {label} in pieces: rank {rank}'s IncidentRadiance "
                         "is not the serial radiance of its rows' regions")
-    figures = ("SurfaceFormFactors", "SurfaceMeanExitantRadiance", "SurfaceArea",
-               "SolutionStatistics")
+    figures = ("SurfaceFormFactorPairs", "SurfaceFormFactorValues", "SurfaceMeanExitantRadiance",
+               "SurfaceArea", "SolutionStatistics")
     if rank == 0 and any(values(fields.GetArray(name)) != values(
             reference.GetFieldData().GetArray(name)) for name in figures):
         failures.append(f"the solution of the {label} in pieces: rank 0's figures are not the "
                         "serial ones bit for bit")
-    if rank != 0 and fields.GetArray("SurfaceFormFactors") is not None:
+    if rank != 0 and fields.GetArray("SurfaceFormFactorValues") is not None:
         failures.append(f"the solution of the {label} in pieces: rank {rank} sums up figures")
 
 # The Radiance Image renders the pieces on the ranks that hold them (vtkPRadianceImageFilter):
