@@ -160,6 +160,8 @@ RayCastFiller::RayCastFiller(const std::vector<Patch>& patches,
   {
     this->SurfaceOfPatch.push_back(patch.SurfaceIndex);
     this->PlaneNormals.push_back(PlaneNormal(patch.Geometry));
+    this->PlaneOffsets.push_back(
+      glm::dot(this->PlaneNormals.back(), patch.Geometry.Evaluate(0.5, 0.5)));
     const std::size_t surface = static_cast<std::size_t>(patch.SurfaceIndex);
     this->PanePatch.push_back(surface < panes.size() && panes[surface] ? 1 : 0);
     anyPane = anyPane || this->PanePatch.back() != 0;
@@ -559,6 +561,20 @@ void RayCastFiller::ClassifyCells(const HemisphereFrame& frame, RBuffer& buffer)
       const int row = static_cast<int>(sample / static_cast<size_t>(grid.SampleColumns()));
       const int column = static_cast<int>(sample % static_cast<size_t>(grid.SampleColumns()));
       const glm::dvec3 direction = frame.ToWorld(grid.SampleDirection(row, column));
+      // A planar patch's exact distance is its plane's (the closed form of what Newton's
+      // method converges to, at a tenth of its cost: the refinement was a tenth of the rows).
+      const glm::dvec3& plane = this->PlaneNormals[static_cast<size_t>(source)];
+      const double facing = glm::dot(plane, direction);
+      if (plane != glm::dvec3(0.0) && std::fabs(facing) > 1e-12)
+      {
+        const double t =
+          (this->PlaneOffsets[static_cast<size_t>(source)] - glm::dot(plane, frame.Origin)) /
+          facing;
+        if (t > 0.0)
+        {
+          return static_cast<float>(t);
+        }
+      }
       double u = scratch.U[sample];
       double v = scratch.V[sample];
       double t = scratch.T[sample];

@@ -253,6 +253,8 @@ private:
   std::vector<int32_t> SurfaceOfPatch;
   /// Per patch: the unit normal of its plane when it is planar, else zero (IsGrazing).
   std::vector<glm::dvec3> PlaneNormals;
+  /// Per patch n . q of its plane (PlaneNormals; 0 for a patch that is not planar).
+  std::vector<double> PlaneOffsets;
   /// Per patch 1 when it is a pane's side; empty when no patch is.
   std::vector<char> PanePatch;
   /// Per patch 1 when the rays pass its back side, which is its reversed copy's front: a pane's
