@@ -185,8 +185,13 @@ TEST(SolutionFigures, TwentyThousandNamedSurfacesOfAClosedRoom)
     (tiles + 1) * SurfaceFormFactors::BytesPerSurface +
       f.PairCount() * SurfaceFormFactors::BytesPerPair);
   EXPECT_LE(f.MemoryBytes(), FiguresBoundBytes(tiles, cover.EntryCount(), tiles));
-  EXPECT_LT(static_cast<double>(FiguresBoundBytes(tiles, cover.EntryCount(), tiles)),
-    0.05 * sizeof(double) * static_cast<double>(tiles) * static_cast<double>(tiles));
+  // Far below the dense matrix at the full size (the bound grows as the tiles, the matrix as their
+  // square: at the sanitizers' 2,400 tiles the matrix is only 44 MiB and the bound a quarter).
+  if (!Sanitized)
+  {
+    EXPECT_LT(static_cast<double>(FiguresBoundBytes(tiles, cover.EntryCount(), tiles)),
+      0.05 * sizeof(double) * static_cast<double>(tiles) * static_cast<double>(tiles));
+  }
 
   // A closed room: every row sums to 1 (to the rounding of the cell measures and the sums).
   double worstRow = 0.0;
@@ -259,7 +264,9 @@ TEST(SolutionFigures, TwentyThousandNamedSurfacesOfAClosedRoom)
     worstRow,
     100.0 * worstReciprocity,
     100.0 * worstHowell);
-  EXPECT_LT(worstHowell, 0.05);
+  // One sample per cell of a 4 x 16 grid at every tile's centre: 5.8 % at the sanitizers' 20 x 20
+  // tiles per wall, 2.7 % at 58 x 58.
+  EXPECT_LT(worstHowell, Sanitized ? 0.07 : 0.05);
 }
 
 /// The Cornell box's form factors between its named surfaces, sparse, are the dense matrix's bit
