@@ -46,11 +46,11 @@
  * [0,1] and encoded with the sRGB transfer function).
  *
  * Pieces (vtkScenePieces.h): the whole solution is piece 0. Asked for a piece > 0 with an empty
- * input (the other ranks under `mpiexec -n K pvbatch --symmetric`, where rank 0 holds the
- * solution), the filter produces an empty image without a message; with a non-empty input
- * there, it refuses with an error. A piece of a solution kept in pieces (vtkPLightPropagation-
- * Filter's GatherSolution off) is refused, naming GatherSolution: its cover holds some rows only
- * (vtkPRadianceImageFilter renders such pieces on the ranks that hold them).
+ * input (a parallel pipeline's other pieces, the whole solution being piece 0), the filter
+ * produces an empty image without a message; with a non-empty input there, it refuses with an
+ * error. A piece of a solution kept in pieces (vtkPLightPropagationFilter's GatherSolution off)
+ * is refused, naming GatherSolution: its cover holds some rows only (vtkPRadianceImageFilter,
+ * Parallel/, renders such pieces).
  *
  * @warning Pixels are rendered in parallel (vtkSMPTools); the image does not depend on the
  * number of threads.

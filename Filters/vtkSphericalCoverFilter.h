@@ -46,7 +46,7 @@
  * One process: vtkPSphericalCoverFilter (Parallel/) builds the rows on several.
  *
  * Pieces (vtkScenePieces.h): the whole scene is piece 0. Asked for a piece > 0 with an empty
- * input (the readers' other pieces, as under `mpiexec -n N pvbatch --symmetric`), the filter
+ * input (the readers' other pieces in a parallel pipeline), the filter
  * produces empty outputs without a message; with a non-empty input there, it refuses with an
  * error (a piece of the scene would give a wrong illumination). An empty input on piece 0 is an
  * error, as in serial.

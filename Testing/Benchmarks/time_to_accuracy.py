@@ -47,6 +47,13 @@ Cycles' 1-pixel box filter, whose samples are random.
 
 `--scene teapot_room` (or any scene without a reference): times and memory only, no Cycles.
 
+`--suite`: the same for every scene of SUITE in one invocation (issue 38: rooms of different
+kinds, each at the filters' defaults, i.e. without its file's `settings` block, which is left out
+of a temporary copy of the scene), each against its own Cycles reference and Cycles at
+--cycles-spp in the same run, then one summary table: per scene and run, sphcover's processor
+seconds and errors beside Cycles-64's, and whether both errors and the time are at most
+Cycles-64's.
+
 `--scaling`: `sphcover solve` of the Cornell box at max_level 2, 3, 4, 5 on 1 and 2 threads; the
 cover's and the propagation's processor and wall seconds, the cover's bytes, the strips and the
 points (the report's counts, `timings_cpu_s`, `timings_s`, `memory_bytes`), the fitted exponent
@@ -77,6 +84,13 @@ sys.path.insert(0, os.path.join(DATA, "reference"))
 import compare_sphcover  # noqa: E402
 
 CORNELL = os.path.join(DATA, "scenes", "cornell_box.scene")
+# --suite: (scene, its Cycles reference in Data/reference, what kind of room it is).
+SUITE = (
+    ("cornell_box", "cornell_box_cycles.exr", "the Cornell box (mm, a small lamp, blocks)"),
+    ("metre_room", "metre_room_cycles.exr", "4 x 3 x 5 m, a large ceiling panel, a bicubic mound"),
+    ("gap_room", "gap_room_cycles.exr", "the viewed half lit only through a gap"),
+    ("window_room", "window_room_cycles.exr", "lit only through a window pane"),
+)
 RENDER_CYCLES = os.path.join(DATA, "reference", "render_cycles.py")
 # Rec. 709 luminance of linear RGB.
 LUMINANCE = np.array([0.2126, 0.7152, 0.0722])
@@ -234,8 +248,8 @@ def accuracy_mode(args, folder):
         if reference is not None:
             image = compare_sphcover.read_exr(run["at"]["256"]["exr"])
             run["at"]["256"]["errors"] = errors_against(image, reference)
-            if k == 0 or args.all_512:
-                size = (reference.shape[1], reference.shape[0])
+            size = (reference.shape[1], reference.shape[0])
+            if (k == 0 or args.all_512) and size != tuple(args.size):
                 run["at"]["512"] = sphcover_render(args, label, extra, size, folder)
                 image = compare_sphcover.read_exr(run["at"]["512"]["exr"])
                 run["at"]["512"]["errors"] = errors_against(image, reference)
@@ -317,6 +331,74 @@ def accuracy_table(results):
                          "fixed cost (time = t1 + (t - t1) (e / error)^2): " + ", ".join(fixed)
                          + "; add fewer --cycles-spp (e.g. 4) to bracket instead.")
     return "\n".join(lines) + "\n\n" + "\n".join(notes)
+
+
+def scene_without_settings(scene, folder):
+    """A copy of `scene` in `folder` without its `settings` block (the filters' defaults), its
+    relative file names made absolute so that they still resolve."""
+    with open(scene) as f:
+        data = json.load(f)
+    data.pop("settings", None)
+    base = os.path.dirname(os.path.abspath(scene))
+
+    def absolute(node):
+        if isinstance(node, dict):
+            return {k: (os.path.join(base, v) if k in ("file", "texture") and isinstance(v, str)
+                        and not os.path.isabs(v) else absolute(v)) for k, v in node.items()}
+        if isinstance(node, list):
+            return [absolute(v) for v in node]
+        return node
+
+    copy = os.path.join(folder, "defaults_" + os.path.basename(scene))
+    with open(copy, "w") as f:
+        json.dump(absolute(data), f, indent=1)
+    return copy
+
+
+def suite_mode(args, folder):
+    """accuracy_mode for every scene of SUITE at the defaults (the settings block left out)."""
+    results = []
+    for name, reference, kind in SUITE:
+        scene = os.path.join(DATA, "scenes", name + ".scene")
+        one = argparse.Namespace(**vars(args))
+        sub = os.path.join(folder, name)
+        os.makedirs(sub, exist_ok=True)
+        one.scene = scene_without_settings(scene, sub)
+        one.reference = os.path.join(DATA, "reference", reference)
+        print(f"# suite: {name} ({kind})", file=sys.stderr)
+        result = accuracy_mode(one, sub)
+        result["name"], result["kind"] = name, kind
+        results.append(result)
+    return results
+
+
+def suite_table(results):
+    lines = ["| scene | run | points | sphcover cpu s | error 16-px / 4-px | Cycles-64 cpu s "
+             "| its error 16-px / 4-px | at most Cycles-64's (time, 16-px, 4-px) "
+             "| time ratio at equal error (16-px / 4-px) |",
+             "|---|---|---|---|---|---|---|---|---|"]
+    for result in results:
+        c64 = next((p for p in result["cycles"] if p["samples"] == 64), None)
+        for run in result["runs"]:
+            at = run["at"]["256"]
+            e = at.get("errors", {})
+            ratio = ""
+            if run.get("equal_error"):
+                ratio = " / ".join(
+                    f"{x['ratio']:.2f}{'x' if x['how'] != 'interpolated' else ''}"
+                    for x in (run["equal_error"][g] for g in GRIDS))
+            c64_cells = "| |"
+            verdict = ""
+            if c64:
+                c64_cells = (f"| {c64['cpu_s']:.1f} | {percent(c64['errors'][16])} / "
+                             f"{percent(c64['errors'][64])} |")
+                verdict = ", ".join("yes" if ok else "no" for ok in (
+                    at["cpu_s"] <= c64["cpu_s"], e.get(16, 1) <= c64["errors"][16],
+                    e.get(64, 1) <= c64["errors"][64]))
+            lines.append(f"| {result['name']} | {run['label']} | {at['points']} | "
+                         f"{at['cpu_s']:.1f} | {percent(e.get(16))} / {percent(e.get(64))} "
+                         f"{c64_cells} {verdict} | {ratio} |")
+    return "\n".join(lines)
 
 
 def scaling_mode(args, folder):
@@ -433,6 +515,8 @@ def main():
                         help="Cycles seed (default 7; the reference used 0-3)")
     parser.add_argument("--no-cycles-startup", dest="cycles_startup", action="store_false",
                         help="do not measure Blender's fixed cost (a 1-spp render)")
+    parser.add_argument("--suite", action="store_true",
+                        help="every scene of SUITE at the defaults, each against its reference")
     parser.add_argument("--scaling", action="store_true",
                         help="cost against size: sphcover solve at --levels on 1 and 2 threads")
     parser.add_argument("--levels", type=parse_list, default=[2, 3, 4, 5],
@@ -469,7 +553,14 @@ def main():
     folder = args.keep or tempfile.mkdtemp(prefix="time_to_accuracy_")
     os.makedirs(folder, exist_ok=True)
     try:
-        if args.scaling:
+        if args.suite:
+            results = suite_mode(args, folder)
+            for result in results:
+                print(f"\n{result['name']}: {result['kind']}\n")
+                print(accuracy_table(result))
+            print("\nSummary\n")
+            print(suite_table(results))
+        elif args.scaling:
             results = scaling_mode(args, folder)
             print(scaling_table(results))
         else:

@@ -426,6 +426,70 @@ def textured_floor():
             "settings": settings}
 
 
+# --------------------------------------------------------------------------- benchmark rooms
+# Rooms of other kinds than the Cornell box for Testing/Benchmarks/time_to_accuracy.py (issue
+# 38), with no settings block: what a user's own scene gets.
+
+ROOM_MATERIALS = {
+    "wall": {"type": "diffuse", "reflectance": [0.72, 0.70, 0.66]},
+    "floor": {"type": "diffuse", "reflectance": [0.42, 0.33, 0.24]},
+    "ceiling": {"type": "diffuse", "reflectance": [0.80, 0.80, 0.80]},
+    "clay": {"type": "diffuse", "reflectance": [0.35, 0.55, 0.30]},
+    "box": {"type": "diffuse", "reflectance": [0.60, 0.25, 0.20]},
+    "panel": {"type": "diffuse", "reflectance": [0.0, 0.0, 0.0], "emission": [30.0, 28.0, 24.0]},
+}
+
+
+def room_shell(size, skip=()):
+    """The six inner faces of the room [0, size] (fronts inward), named by their place."""
+    names = {"x_min": "left_wall", "x_max": "right_wall", "y_min": "floor", "y_max": "ceiling",
+             "z_min": "back_wall", "z_max": "far_wall"}
+    materials = {"floor": "floor", "ceiling": "ceiling"}
+    faces = box_faces([0, 0, 0], size, inward=True)
+    return [bilinear_surface(names[k], v, materials.get(names[k], "wall"))
+            for k, v in faces.items() if names[k] not in skip]
+
+
+def metre_room():
+    """A 4 x 3 x 5 m room lit by a large ceiling panel (1.6 x 1.0 m), with a bicubic mound and a
+    box on the floor: metres, a large emitter, curved patches."""
+    surfaces = room_shell([4.0, 3.0, 5.0])
+    surfaces.append(bilinear_surface("panel", [[1.2, 2.99, 2.0], [2.8, 2.99, 2.0],
+                                               [2.8, 2.99, 3.0], [1.2, 2.99, 3.0]], "panel"))
+    # The mound: a bicubic patch over [0.6, 2.2] x [2.6, 4.2] (x, z), its border on the floor,
+    # its inner control points 0.9 m up; u along z and v along x, so its front faces up.
+    heights = [[0, 0, 0, 0], [0, 0.9, 0.9, 0], [0, 0.9, 0.6, 0], [0, 0, 0, 0]]
+    points = []
+    for j in range(4):
+        for i in range(4):
+            points.append(clean([0.6 + 1.6 * j / 3, heights[j][i], 2.6 + 1.6 * i / 3]))
+    surfaces.append({"name": "mound", "type": "bezier", "degree": [3, 3], "material": "clay",
+                     "points": points})
+    for k, v in box_faces([2.6, 0.0, 3.2], [3.4, 0.7, 4.0], inward=False).items():
+        if k != "y_min":
+            surfaces.append(bilinear_surface("box_" + k, v, "box"))
+    camera = {"name": "main", "position": [2.0, 1.6, 0.3], "focal_point": [2.0, 1.0, 5.0],
+              "view_up": [0, 1, 0], "view_angle": 60.0, "width": 256, "height": 256}
+    return {"version": 1, "unit": "m", "materials": ROOM_MATERIALS, "surfaces": surfaces,
+            "cameras": [camera]}
+
+
+def gap_room():
+    """A 4 x 2.5 x 6 m room halved by a partition 1.9 m high (0.6 m gap below the ceiling); an
+    upward panel on the far half's floor lights the far ceiling, and the viewed near half gets
+    only what comes through the gap: a region lit only indirectly."""
+    surfaces = room_shell([4.0, 2.5, 6.0])
+    for k, v in box_faces([0.0, 0.0, 2.95], [4.0, 1.9, 3.05], inward=False).items():
+        if k in ("y_max", "z_min", "z_max"):
+            surfaces.append(bilinear_surface("partition_" + k, v, "wall"))
+    surfaces.append(bilinear_surface("panel", [[1.4, 0.01, 4.0], [1.4, 0.01, 5.2],
+                                               [2.6, 0.01, 5.2], [2.6, 0.01, 4.0]], "panel"))
+    camera = {"name": "main", "position": [3.5, 1.5, 0.3], "focal_point": [1.2, 1.0, 3.0],
+              "view_up": [0, 1, 0], "view_angle": 65.0, "width": 256, "height": 256}
+    return {"version": 1, "unit": "m", "materials": ROOM_MATERIALS, "surfaces": surfaces,
+            "cameras": [camera]}
+
+
 ALL = {
     "cornell_box.scene": cornell_box,
     "cornell_box_closed.scene": cornell_box_closed,
@@ -440,6 +504,8 @@ ALL = {
     "howell_disks.scene": howell_disks,
     "textured_floor.scene": textured_floor,
     "cornell_box_textured.scene": cornell_box_textured,
+    "metre_room.scene": metre_room,
+    "gap_room.scene": gap_room,
 }
 
 
