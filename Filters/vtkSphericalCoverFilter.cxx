@@ -272,6 +272,7 @@ bool ComputeDirectIrradiance(vtkSphericalCoverFilter* self,
     direct.SelfExclusionFraction = options.FillOptions.SelfExclusionFraction;
     direct.BackFacesOcclude = options.FillOptions.BackFacesOcclude;
     direct.BounceRaysPerSide = self->GetDirectBounceRays();
+    direct.RefinementTolerance = self->GetDirectNodesTolerance();
     // Panes (paper §5.4): the lamps' light reaches the nodes through them.
     const std::vector<glm::vec3>& panes = options.SurfaceTransmittance;
     if (std::any_of(
@@ -779,6 +780,7 @@ void vtkSphericalCoverFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "InterpolateHemispheres: " << this->InterpolateHemispheres << "\n";
   os << indent << "DirectIrradianceNodes: " << this->DirectIrradianceNodes << "\n";
   os << indent << "DirectBounceRays: " << this->DirectBounceRays << "\n";
+  os << indent << "DirectNodesTolerance: " << this->DirectNodesTolerance << "\n";
   os << indent << "MemoryLimit: " << this->MemoryLimit << " MiB\n";
   os << indent << "Refinement: "
      << (this->Refinement == REFINEMENT_OFF

@@ -159,6 +159,18 @@ public:
 
   ///@{
   /**
+   * Where the nodes beyond a patch's 3 x 3 are computed (Core's DirectIrradianceOptions::
+   * RefinementTolerance): at patches whose 3 x 3 direct light departs from the bilinear
+   * interpolation of their corners by more than this fraction of the larger of the patch's
+   * brightest node and the scene's mean (a shadow's edge or a patch of light crosses them);
+   * elsewhere the finer nodes are interpolated. 0: at every patch. Default is 0.05.
+   */
+  vtkSetClampMacro(DirectNodesTolerance, double, 0.0, 1.0);
+  vtkGetMacro(DirectNodesTolerance, double);
+  ///@}
+
+  ///@{
+  /**
    * Back sides of surfaces hide what lies behind them (opaque surfaces). Off: the paper's
    * culling of back-facing patches, which makes them transparent. Default is on.
    */
@@ -249,6 +261,7 @@ protected:
   bool InterpolateHemispheres = false;
   int DirectIrradianceNodes = 3;
   int DirectBounceRays = 32;
+  double DirectNodesTolerance = 0.05;
   double MemoryLimit = 8192.0;
   int Refinement = REFINEMENT_ENCLOSURES;
   int RefinementLevels = 3;

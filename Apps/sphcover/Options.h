@@ -26,6 +26,8 @@ struct Options
   int DirectNodes = 3;
   /// vtkSphericalCoverFilter::DirectBounceRays (0: the direct light only).
   int BounceRays = 32;
+  /// vtkSphericalCoverFilter::DirectNodesTolerance (0: every patch's nodes computed).
+  double DirectTolerance = 0.05;
   std::vector<std::string> Settings;
   std::string Png;
   std::string Camera;

@@ -153,6 +153,7 @@ void Solution::Solve(const Options& options, bool gather)
   this->Cover->SetInterpolateHemispheres(options.Hemispheres == "interpolated");
   this->Cover->SetDirectIrradianceNodes(options.DirectNodes);
   this->Cover->SetDirectBounceRays(options.BounceRays);
+  this->Cover->SetDirectNodesTolerance(options.DirectTolerance);
   {
     ProgressBar bar(this->Cover, "cover", options.Quiet);
     const double cpuStart = ProcessorSeconds();

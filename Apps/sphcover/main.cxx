@@ -9,7 +9,7 @@
  *   sphcover subdivide SCENE -o patches.vtm [--range-method bernstein|natural] [--set k=v]...
  *   sphcover solve SCENE [-o solution.vtm] [--report report.json] [--fill projection|raycasting]
  *                  [--lamps measured|cells] [--hemispheres interpolated|computed]
- *                  [--direct-nodes N] [--bounce-rays N]
+ *                  [--direct-nodes N] [--bounce-rays N] [--direct-tolerance F]
  *   sphcover render SCENE [-o out.exr|out.png] [--png out.png] [--camera NAME] [--size WxH]
  *                   [--spp N] [--exposure E] [--solution solution.vtm] [--report report.json]
  *                   [--set k=v]
@@ -106,6 +106,13 @@ void AddCoverOptions(CLI::App* command, sphcover_cli::Options& options)
       "Rays per side (N x N) gathering the first bounce of the lamps' direct light at every "
       "node of --direct-nodes (0 to 256; default 32); 0: the direct light only")
     ->check(CLI::Range(0, 256));
+  command
+    ->add_option("--direct-tolerance",
+      options.DirectTolerance,
+      "Nodes beyond a patch's 3 x 3 are computed where its 3 x 3 direct light departs from "
+      "bilinear by more than this fraction of the brighter of the patch and the scene (a "
+      "shadow's edge crosses it), else interpolated (0 to 1; default 0.05); 0: at every patch")
+    ->check(CLI::Range(0.0, 1.0));
 }
 }
 

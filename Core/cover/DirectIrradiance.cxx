@@ -7,6 +7,7 @@
 #include "math/PatternShift.h"
 #include "subdivision/Patch.h"
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include <algorithm>
@@ -115,6 +116,68 @@ bool ForEachNode(const std::vector<std::size_t>& items,
     }
   }
   return true;
+}
+
+/// The brightest band of a value.
+double Brightest(const glm::dvec3& value)
+{
+  return std::max(value.x, std::max(value.y, value.z));
+}
+
+/**
+ * Per patch whether its nodes beyond the coarse 3 x 3 are computed (file comment of
+ * DirectIrradiance.h, DirectIrradianceOptions::RefinementTolerance): where some coarse node
+ * departs from the bilinear interpolation of the patch's four corners by more than `tolerance`
+ * times the larger of the patch's brightest coarse node and the scene's mean (the area-weighted
+ * mean of the patches' coarse nodes), so that a dark patch is held to the scene's scale and not
+ * to its own. `coarse(p, ci, cj)` is the value at patch p's coarse node (ci, cj) in {0, 1, 2}^2
+ * whose departure counts, `brightness(p, ci, cj)` the light there it is measured against.
+ */
+template<typename Coarse, typename Brightness>
+std::vector<char> RefineWhere(const std::vector<Patch>& patches,
+  const Coarse& coarse,
+  const Brightness& brightness,
+  double tolerance)
+{
+  double weighted = 0.0;
+  double area = 0.0;
+  for (std::size_t p = 0; p < patches.size(); ++p)
+  {
+    const double size = patches[p].Geometry.Size();
+    double mean = 0.0;
+    for (int cj = 0; cj < 3; ++cj)
+    {
+      for (int ci = 0; ci < 3; ++ci)
+      {
+        mean += Brightest(brightness(p, ci, cj)) / 9.0;
+      }
+    }
+    weighted += size * size * mean;
+    area += size * size;
+  }
+  const double scene = area > 0.0 ? weighted / area : 0.0;
+  std::vector<char> refine(patches.size(), 0);
+  for (std::size_t p = 0; p < patches.size(); ++p)
+  {
+    double brightest = 0.0;
+    double deviation = 0.0;
+    for (int cj = 0; cj < 3; ++cj)
+    {
+      for (int ci = 0; ci < 3; ++ci)
+      {
+        const double fx = 0.5 * ci;
+        const double fy = 0.5 * cj;
+        const glm::dvec3 bilinear =
+          (1.0 - fy) * ((1.0 - fx) * coarse(p, 0, 0) + fx * coarse(p, 2, 0)) +
+          fy * ((1.0 - fx) * coarse(p, 0, 2) + fx * coarse(p, 2, 2));
+        const glm::dvec3 value = coarse(p, ci, cj);
+        brightest = std::max(brightest, Brightest(brightness(p, ci, cj)));
+        deviation = std::max(deviation, Brightest(glm::abs(value - bilinear)));
+      }
+    }
+    refine[p] = tolerance <= 0.0 || deviation > tolerance * std::max(brightest, scene) ? 1 : 0;
+  }
+  return refine;
 }
 
 } // namespace
@@ -284,14 +347,12 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   };
 
   std::vector<glm::dvec3> irradianceOfNode(firstPatch.size(), glm::dvec3(0.0));
-  auto computeNode = [&](std::size_t node)
+  auto directAt = [&](std::size_t node)
   {
     const std::size_t p = firstPatch[node];
     const Patch& patch = patches[p];
     const NodeRays rays = raysOf(node);
     const RayFilter filter{ AcceptForNode, &rays.Filter };
-    const glm::dvec3& origin = rays.Origin;
-    const glm::dvec3& normal = rays.Normal;
     glm::dvec3 irradiance(0.0);
     for (const LampPiece& piece : pieces)
     {
@@ -301,43 +362,143 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       }
       irradiance += piece.Emission *
         VisibleProjectedSolidAngleThroughPanes(caster,
-          origin,
-          normal,
+          rays.Origin,
+          rays.Normal,
           filter,
           piece.Patch,
           patches[piece.Patch],
           piece.MinimumSide,
           panes);
     }
-    irradianceOfNode[node] = irradiance;
+    return irradiance;
+  };
+  // Computes the direct light of the distinct nodes `nodes` (ascending) into irradianceOfNode;
+  // the nodes are independent: under MPI each rank computes its share and the values are
+  // joined (RankShare.h), the same on every rank whatever K.
+  auto computeNodes = [&](const std::vector<std::size_t>& nodes, double from, double to)
+  {
+    std::vector<glm::dvec3> values(nodes.size(), glm::dvec3(0.0));
+    auto computeOne = [&](std::size_t k) { values[k] = directAt(nodes[k]); };
+    if (!ShareItems(share,
+          nodes.size(),
+          values,
+          [&](const std::vector<std::size_t>& items)
+          { return ForEachNode(items, computeOne, parallelFor, progress, from, to); }))
+    {
+      return false;
+    }
+    for (std::size_t k = 0; k < nodes.size(); ++k)
+    {
+      irradianceOfNode[nodes[k]] = values[k];
+    }
+    return true;
   };
 
-  const std::size_t count = firstPatch.size();
+  // The coarse nodes, 3 x 3 per patch at fine indices 0, h and n - 1 (h = (n - 1) / 2), are
+  // computed at every patch; a patch's other nodes only where its coarse nodes say the light
+  // is not bilinear across it (RefineWhere), else they are interpolated from the coarse ones.
+  // With n = 3 every node is coarse and nothing is refined.
+  const int h = (n - 1) / 2;
+  std::vector<char> computed(firstPatch.size(), 0);
+  std::vector<std::size_t> coarseNodes;
+  for (std::size_t p = 0; p < patches.size(); ++p)
+  {
+    for (int j = 0; j < n; j += h)
+    {
+      for (int i = 0; i < n; i += h)
+      {
+        const std::size_t node = nodeOf[p * nodesPerPatch + static_cast<std::size_t>(j * n + i)];
+        if (!computed[node])
+        {
+          computed[node] = 1;
+          coarseNodes.push_back(node);
+        }
+      }
+    }
+  }
+  std::sort(coarseNodes.begin(), coarseNodes.end());
   const double directShare = bounce ? 0.25 : 1.0;
-  // The nodes are independent: under MPI each rank computes its share and the values are
-  // joined (RankShare.h), the same on every rank whatever K.
-  if (!ShareItems(share,
-        count,
-        irradianceOfNode,
-        [&](const std::vector<std::size_t>& items)
-        { return ForEachNode(items, computeNode, parallelFor, progress, 0.0, directShare); }))
+  const double coarseShare = n == 3 ? directShare : 0.5 * directShare;
+  if (!computeNodes(coarseNodes, 0.0, coarseShare))
   {
     return false;
   }
+  // Patch p's coarse node (ci, cj) of per-node values.
+  auto coarseOf = [&](const std::vector<glm::dvec3>& ofNode)
+  {
+    const std::vector<glm::dvec3>* values = &ofNode; // not the reference: it ends here
+    return [values, &nodeOf, nodesPerPatch, n, h](std::size_t p, int ci, int cj) {
+      return (*values)[nodeOf[p * nodesPerPatch + static_cast<std::size_t>(cj * h * n + ci * h)]];
+    };
+  };
+  // The distinct nodes of the patches marked in `refine` that `done` does not hold yet, in
+  // ascending order; marks them in `done`.
+  auto nodesOfRefined = [&](const std::vector<char>& refine, std::vector<char>& done)
+  {
+    std::vector<std::size_t> nodes;
+    for (std::size_t p = 0; p < patches.size(); ++p)
+    {
+      for (std::size_t k = 0; refine[p] && k < nodesPerPatch; ++k)
+      {
+        const std::size_t node = nodeOf[p * nodesPerPatch + k];
+        if (!done[node])
+        {
+          done[node] = 1;
+          nodes.push_back(node);
+        }
+      }
+    }
+    std::sort(nodes.begin(), nodes.end());
+    return nodes;
+  };
+  std::vector<char> refined(patches.size(), 0);
+  if (n > 3)
+  {
+    refined = RefineWhere(
+      patches, coarseOf(irradianceOfNode), coarseOf(irradianceOfNode), options.RefinementTolerance);
+    if (!computeNodes(nodesOfRefined(refined, computed), coarseShare, directShare))
+    {
+      return false;
+    }
+  }
+
   DirectIrradianceNodes direct;
   direct.NodesPerSide = n;
   direct.Values.assign(patches.size() * nodesPerPatch * 3, 0.0f);
-  auto store = [&](const std::vector<glm::dvec3>& ofNode, std::vector<float>& values)
+  // Patch p's value at fine node (i, j): the node's own where it was computed (by this patch or
+  // a refined neighbour that shares it, so that the two agree along their edge), else the
+  // bilinear interpolation of p's coarse nodes.
+  auto store = [&](const std::vector<glm::dvec3>& ofNode,
+                 const std::vector<char>& own,
+                 std::vector<float>& values)
   {
-    for (std::size_t k = 0; k < nodeOf.size(); ++k)
+    const auto coarseNode = coarseOf(ofNode);
+    for (std::size_t p = 0; p < patches.size(); ++p)
     {
-      const glm::dvec3& irradiance = ofNode[nodeOf[k]];
-      values[3 * k + 0] = static_cast<float>(irradiance.x);
-      values[3 * k + 1] = static_cast<float>(irradiance.y);
-      values[3 * k + 2] = static_cast<float>(irradiance.z);
+      auto coarse = [&](int ci, int cj) { return coarseNode(p, ci, cj); };
+      for (int j = 0; j < n; ++j)
+      {
+        for (int i = 0; i < n; ++i)
+        {
+          const std::size_t k = p * nodesPerPatch + static_cast<std::size_t>(j * n + i);
+          glm::dvec3 irradiance = ofNode[nodeOf[k]];
+          if (!own[nodeOf[k]])
+          {
+            const int ci = std::min(i / h, 1);
+            const int cj = std::min(j / h, 1);
+            const double fx = static_cast<double>(i - ci * h) / h;
+            const double fy = static_cast<double>(j - cj * h) / h;
+            irradiance = (1.0 - fy) * ((1.0 - fx) * coarse(ci, cj) + fx * coarse(ci + 1, cj)) +
+              fy * ((1.0 - fx) * coarse(ci, cj + 1) + fx * coarse(ci + 1, cj + 1));
+          }
+          values[3 * k + 0] = static_cast<float>(irradiance.x);
+          values[3 * k + 1] = static_cast<float>(irradiance.y);
+          values[3 * k + 2] = static_cast<float>(irradiance.z);
+        }
+      }
     }
   };
-  store(irradianceOfNode, direct.Values);
+  store(irradianceOfNode, computed, direct.Values);
 
   if (bounce)
   {
@@ -350,7 +511,7 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     // index) gives. With one pattern for every node, neighbouring nodes err alike and the
     // errors make patch-sized blotches; shifted, they vary from node to node and average out
     // over an area.
-    auto strataOf = [g](std::size_t node, std::vector<glm::dvec3>& local)
+    auto strataOf = [](std::size_t node, int g, std::vector<glm::dvec3>& local)
     {
       double shiftTheta = 0.0;
       double shiftPhi = 0.0;
@@ -368,11 +529,13 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
         }
       }
     };
-    std::vector<glm::dvec3> bounced(count, glm::dvec3(0.0));
-    auto gatherNode = [&](std::size_t node)
+    // Gathered at the coarse nodes, and at the finer ones of the patches where it is not
+    // bilinear; elsewhere interpolated, as the direct light.
+    std::vector<glm::dvec3> bounced(firstPatch.size(), glm::dvec3(0.0));
+    auto gatherNode = [&](std::size_t node, int g)
     {
       thread_local std::vector<glm::dvec3> local;
-      strataOf(node, local);
+      strataOf(node, g, local);
       const NodeRays rays = raysOf(node);
       const RayFilter filter{ AcceptForNode, &rays.Filter };
       const glm::dvec3& origin = rays.Origin;
@@ -416,18 +579,57 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
           }
         }
       }
-      bounced[node] = sum / static_cast<double>(local.size());
+      return sum / static_cast<double>(local.size());
     };
-    if (!ShareItems(share,
-          count,
-          bounced,
-          [&](const std::vector<std::size_t>& items)
-          { return ForEachNode(items, gatherNode, parallelFor, progress, directShare, 1.0); }))
+    // Gathers the bounce at the distinct nodes `nodes` with g x g rays each into bounced.
+    auto gatherNodes = [&](const std::vector<std::size_t>& nodes, int g, double from, double to)
+    {
+      std::vector<glm::dvec3> gathered(nodes.size(), glm::dvec3(0.0));
+      auto gatherOne = [&](std::size_t k) { gathered[k] = gatherNode(nodes[k], g); };
+      if (!ShareItems(share,
+            nodes.size(),
+            gathered,
+            [&](const std::vector<std::size_t>& items)
+            { return ForEachNode(items, gatherOne, parallelFor, progress, from, to); }))
+      {
+        return false;
+      }
+      for (std::size_t k = 0; k < nodes.size(); ++k)
+      {
+        bounced[nodes[k]] = gathered[k];
+      }
+      return true;
+    };
+    const double coarseEnd = n == 3 ? 1.0 : 0.5 * (1.0 + directShare);
+    if (!gatherNodes(coarseNodes, g, directShare, coarseEnd))
     {
       return false;
     }
+    std::vector<char> gatheredAt(firstPatch.size(), 0);
+    for (const std::size_t node : coarseNodes)
+    {
+      gatheredAt[node] = 1;
+    }
+    if (n > 3)
+    {
+      // Where the bounce itself is not bilinear across a patch (beside a patch of light), its
+      // finer nodes gather it too, with g / h rays per side: a refined patch's fine nodes then
+      // cost about as many rays as its coarse ones, and their noise averages over the area.
+      std::vector<glm::dvec3> total(firstPatch.size());
+      for (std::size_t k = 0; k < total.size(); ++k)
+      {
+        total[k] = irradianceOfNode[k] + bounced[k];
+      }
+      const std::vector<char> refineBounce =
+        RefineWhere(patches, coarseOf(bounced), coarseOf(total), options.RefinementTolerance);
+      if (!gatherNodes(
+            nodesOfRefined(refineBounce, gatheredAt), std::max(4, g / h), coarseEnd, 1.0))
+      {
+        return false;
+      }
+    }
     std::vector<float> values(direct.Values.size());
-    store(bounced, values);
+    store(bounced, gatheredAt, values);
     for (std::size_t k = 0; k < values.size(); ++k)
     {
       direct.Values[k] += values[k];

@@ -23,23 +23,35 @@
  *  - E_direct: the sum over lamp pieces L of other surfaces of Emission(L) x the projected
  *    solid angle of L's visible front side from the node (VisibleProjectedSolidAngle: the
  *    midpoint rule over L's (u, v), one shadow ray per quadrature node);
- *  - E_bounce (BounceRaysPerSide g > 0): pi x the mean, over g x g cosine-weighted rays (one
- *    in each stratum of sin^2 theta and phi, all at the place within their strata that a
- *    shift hashed from the node's index gives, math/PatternShift.h), of the
- *    Lambertian radiance rho(y) / pi E_direct(y) of the front side y each ray meets, E_direct(y)
- *    interpolated from y's patch's nodes (rho: `diffuse`, the patches' diffuse reflectance; a
- *    mirror or the back of a two-sided surface sends nothing here, the propagation counts it).
- * The rest of the light (the lamp's own light reflected again, later bounces, what mirrors
- * send) is the propagation's. The propagation's points hold their own, coarser version of the
- * nodes' light (LightPropagation::LampIrradiance); a renderer takes that off the points'
- * values and adds the nodes', so that only the smooth rest is interpolated. A node on the border of
- * patches of one surface is computed once (by its (surface, u, v)) and shared by them.
+ *  - E_bounce (BounceRaysPerSide g > 0; fewer at finer nodes, see below): pi x the mean, over g x g
+ * cosine-weighted rays (one in each stratum of sin^2 theta and phi, all at the place within their
+ * strata that a shift hashed from the node's index gives, math/PatternShift.h), of the Lambertian
+ * radiance rho(y) / pi E_direct(y) of the front side y each ray meets, E_direct(y) interpolated
+ * from y's patch's nodes (rho: `diffuse`, the patches' diffuse reflectance; a mirror or the back of
+ * a two-sided surface sends nothing here, the propagation counts it). The rest of the light (the
+ * lamp's own light reflected again, later bounces, what mirrors send) is the propagation's. The
+ * propagation's points hold their own, coarser version of the nodes' light
+ * (LightPropagation::LampIrradiance); a renderer takes that off the points' values and adds the
+ * nodes', so that only the smooth rest is interpolated. A node on the border of patches of one
+ * surface is computed once (by its (surface, u, v)) and shared by them.
+ *
+ * Where the nodes go: the coarse 3 x 3 nodes of every patch are computed, and a patch's finer
+ * nodes only where the coarse ones show a shadow's edge or a patch of light crossing it
+ * (RefinementTolerance); elsewhere the finer nodes are the coarse ones' bilinear
+ * interpolation. The characteristic points need not be as dense as the direct light's
+ * features (paper §3.4: a point stands for its patch's smooth illumination), so the fine
+ * nodes, not deeper patches, carry them. E_bounce is gathered at the coarse nodes, then at the
+ * finer nodes of the patches where it is not bilinear by the same test (beside a patch of
+ * light), with max(4, g / h) rays per side there (h = (n - 1) / 2), and interpolated at the
+ * others. A refined patch's computed edge nodes
+ * are also used by a coarse neighbour that shares them, so the two agree along their edge.
  *
  * Rays start a hair inside the patch and off its front (RayOrigin in the source), so that at
  * an edge where surfaces meet a ray into the other surface's front meets it and a ray leaving
  * its plane does not; a hit on the node's own surface nearer than SelfExclusionFraction x the
  * patch's Size() is the node itself; a back side occludes when BackFacesOcclude (the cover's
- * semantics, RBuffer.h). Cost: distinct nodes x (the lamp's quadrature nodes + g^2) rays. The
+ * semantics, RBuffer.h). Cost: distinct coarse nodes x (the lamp's quadrature nodes + g^2) rays
+ * and the refined patches' other nodes x the lamp's quadrature nodes. The
  * result does not depend on the thread count.
  */
 #ifndef SPHCOVER_DIRECTIRRADIANCE_H
@@ -61,8 +73,19 @@ class RayCaster;
 
 struct DirectIrradianceOptions
 {
-  /// Nodes along each side of a patch, odd, 3 to 33.
+  /// Nodes along each side of a patch, odd, 3 to 33: the finest grid. Its coarse 3 x 3 (the
+  /// corners, the sides' midpoints and the centre) is computed at every patch, the rest only
+  /// where RefinementTolerance asks.
   int NodesPerSide = 3;
+  /**
+   * A patch's finer nodes are computed when one of its coarse nodes' direct light departs from
+   * the bilinear interpolation of its corners by more than this fraction of the larger of the
+   * patch's brightest coarse node and the scene's mean (a shadow's edge or a patch of light
+   * crosses it); elsewhere they are the coarse nodes' bilinear interpolation, the same
+   * function the render would draw from the coarse nodes alone. 0: every patch's nodes are
+   * computed. Without effect when NodesPerSide is 3.
+   */
+  double RefinementTolerance = 0.05;
   /// The quadrature of a whole lamp takes at least this many nodes per side (shared among its
   /// pieces, at least one each).
   int LampNodesPerSide = 8;

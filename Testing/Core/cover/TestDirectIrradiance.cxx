@@ -17,6 +17,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -511,4 +512,85 @@ TEST(DirectIrradiance, RendererReplacesTheCoversVersionOfTheNodesLightAtThePoint
                  floor.size(),
                  std::vector<glm::dvec3>(2, rho)),
     std::invalid_argument);
+}
+
+// The finer nodes go where the direct light is not bilinear across a patch (DirectIrradiance.h,
+// RefinementTolerance): on the floor of LampOverFloor split 9 x 9 under an occluder near it,
+// the refined patches are those the shadow's edge crosses, a minority; there the nodes are those of
+// computing every patch's nodes, bit for bit, elsewhere the coarse nodes' bilinear
+// interpolation; and the refinement removes most of what interpolating every patch's coarse
+// nodes misses of the fully computed light.
+TEST(DirectIrradiance, FinerNodesWhereTheShadowsEdgeCrosses)
+{
+  std::vector<Patch> patches;
+  AppendSplit(patches,
+    Parallelogram(glm::dvec3(0.0), glm::dvec3(1.0, 0.0, 0.0), glm::dvec3(0.0, 1.0, 0.0)),
+    0,
+    9,
+    9);
+  for (const Patch& patch : LampOverFloor(false))
+  {
+    if (patch.SurfaceIndex != 0)
+    {
+      patches.push_back(patch);
+    }
+  }
+  // An occluder near the floor casts a shadow with a narrow penumbra (under a patch wide).
+  AppendSplit(patches,
+    Parallelogram(glm::dvec3(0.3, 0.3, 0.05), glm::dvec3(0.0, 0.4, 0.0), glm::dvec3(0.4, 0.0, 0.0)),
+    3,
+    1,
+    1);
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  const std::vector<glm::dvec3> emission = EmissionOf(patches);
+  auto compute = [&](double tolerance)
+  {
+    DirectIrradianceOptions options;
+    options.NodesPerSide = 9;
+    options.BounceRaysPerSide = 0;
+    options.RefinementTolerance = tolerance;
+    DirectIrradianceNodes nodes;
+    EXPECT_TRUE(ComputeDirectIrradiance(
+      patches, caster, BrightEmitters(patches, emission), emission, {}, options, nodes));
+    return nodes;
+  };
+  const DirectIrradianceNodes every = compute(0.0);
+  const DirectIrradianceNodes adaptive = compute(0.05);
+  const DirectIrradianceNodes coarse = compute(1e9); // no patch refined
+  ASSERT_EQ(every.Values.size(), adaptive.Values.size());
+  const std::size_t perPatch = 81 * 3;
+  int refined = 0;
+  double missedByCoarse = 0.0;
+  double missedByAdaptive = 0.0;
+  for (std::size_t p = 0; p < 81; ++p) // the floor's patches
+  {
+    const auto first = adaptive.Values.begin() + static_cast<std::ptrdiff_t>(p * perPatch);
+    const bool same = std::equal(first,
+      first + static_cast<std::ptrdiff_t>(perPatch),
+      every.Values.begin() + static_cast<std::ptrdiff_t>(p * perPatch));
+    // Not refined: the coarse nodes' interpolation inside, and on its sides the nodes a
+    // refined neighbour computed where it has one (so the two agree along their edge).
+    bool interpolated = true;
+    for (std::size_t j = 1; j + 1 < 9; ++j)
+    {
+      for (std::size_t i = 1; i + 1 < 9; ++i)
+      {
+        const std::size_t k = p * perPatch + (j * 9 + i) * 3;
+        interpolated = interpolated && adaptive.Values[k + 2] == coarse.Values[k + 2];
+      }
+    }
+    EXPECT_TRUE(same || interpolated) << "patch " << p;
+    // A patch whose coarse nodes are all lit alike or all dark needs no refinement.
+    refined += interpolated ? 0 : 1;
+    for (std::size_t k = p * perPatch; k < (p + 1) * perPatch; k += 3)
+    {
+      missedByCoarse += std::pow(coarse.Values[k + 2] - every.Values[k + 2], 2.0);
+      missedByAdaptive += std::pow(adaptive.Values[k + 2] - every.Values[k + 2], 2.0);
+    }
+  }
+  EXPECT_GT(refined, 0);
+  EXPECT_LT(refined, 81 / 2);
+  ASSERT_GT(missedByCoarse, 0.0);
+  EXPECT_LT(std::sqrt(missedByAdaptive), 0.25 * std::sqrt(missedByCoarse))
+    << refined << " of 81 patches refined";
 }
