@@ -180,6 +180,38 @@ std::vector<char> RefineWhere(const std::vector<Patch>& patches,
   return refine;
 }
 
+/**
+ * Computes `valueOf(node)` for the distinct nodes `nodes` into `ofNode[node]`, progress from
+ * `from` to `to`; false when aborted. The nodes are independent: under MPI each rank computes
+ * its share and the values are joined (RankShare.h), the same on every rank whatever K.
+ */
+template<typename ValueOf>
+bool ComputeNodes(const std::vector<std::size_t>& nodes,
+  const ValueOf& valueOf,
+  std::vector<glm::dvec3>& ofNode,
+  const RankShare& share,
+  const ParallelFor& parallelFor,
+  const ProgressCallback& progress,
+  double from,
+  double to)
+{
+  std::vector<glm::dvec3> values(nodes.size(), glm::dvec3(0.0));
+  auto computeOne = [&](std::size_t k) { values[k] = valueOf(nodes[k]); };
+  if (!ShareItems(share,
+        nodes.size(),
+        values,
+        [&](const std::vector<std::size_t>& items)
+        { return ForEachNode(items, computeOne, parallelFor, progress, from, to); }))
+  {
+    return false;
+  }
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+  {
+    ofNode[nodes[k]] = values[k];
+  }
+  return true;
+}
+
 } // namespace
 
 glm::dvec3 DirectIrradianceNodes::At(std::size_t patch, double s, double t) const
@@ -372,26 +404,8 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     }
     return irradiance;
   };
-  // Computes the direct light of the distinct nodes `nodes` (ascending) into irradianceOfNode;
-  // the nodes are independent: under MPI each rank computes its share and the values are
-  // joined (RankShare.h), the same on every rank whatever K.
-  auto computeNodes = [&](const std::vector<std::size_t>& nodes, double from, double to)
-  {
-    std::vector<glm::dvec3> values(nodes.size(), glm::dvec3(0.0));
-    auto computeOne = [&](std::size_t k) { values[k] = directAt(nodes[k]); };
-    if (!ShareItems(share,
-          nodes.size(),
-          values,
-          [&](const std::vector<std::size_t>& items)
-          { return ForEachNode(items, computeOne, parallelFor, progress, from, to); }))
-    {
-      return false;
-    }
-    for (std::size_t k = 0; k < nodes.size(); ++k)
-    {
-      irradianceOfNode[nodes[k]] = values[k];
-    }
-    return true;
+  auto computeNodes = [&](const std::vector<std::size_t>& nodes, double from, double to) {
+    return ComputeNodes(nodes, directAt, irradianceOfNode, share, parallelFor, progress, from, to);
   };
 
   // The coarse nodes, 3 x 3 per patch at fine indices 0, h and n - 1 (h = (n - 1) / 2), are
@@ -584,21 +598,15 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     // Gathers the bounce at the distinct nodes `nodes` with g x g rays each into bounced.
     auto gatherNodes = [&](const std::vector<std::size_t>& nodes, int g, double from, double to)
     {
-      std::vector<glm::dvec3> gathered(nodes.size(), glm::dvec3(0.0));
-      auto gatherOne = [&](std::size_t k) { gathered[k] = gatherNode(nodes[k], g); };
-      if (!ShareItems(share,
-            nodes.size(),
-            gathered,
-            [&](const std::vector<std::size_t>& items)
-            { return ForEachNode(items, gatherOne, parallelFor, progress, from, to); }))
-      {
-        return false;
-      }
-      for (std::size_t k = 0; k < nodes.size(); ++k)
-      {
-        bounced[nodes[k]] = gathered[k];
-      }
-      return true;
+      return ComputeNodes(
+        nodes,
+        [&](std::size_t node) { return gatherNode(node, g); },
+        bounced,
+        share,
+        parallelFor,
+        progress,
+        from,
+        to);
     };
     const double coarseEnd = n == 3 ? 1.0 : 0.5 * (1.0 + directShare);
     if (!gatherNodes(coarseNodes, g, directShare, coarseEnd))
