@@ -118,6 +118,18 @@ bool ForEachNode(const std::vector<std::size_t>& items,
   return true;
 }
 
+/// The bilinear interpolation of the corner values a00 (0, 0), a10 (1, 0), a01 and a11 at
+/// (fx, fy) in [0, 1]^2.
+glm::dvec3 Bilinear(const glm::dvec3& a00,
+  const glm::dvec3& a10,
+  const glm::dvec3& a01,
+  const glm::dvec3& a11,
+  double fx,
+  double fy)
+{
+  return (1.0 - fy) * ((1.0 - fx) * a00 + fx * a10) + fy * ((1.0 - fx) * a01 + fx * a11);
+}
+
 /// The brightest band of a value.
 double Brightest(const glm::dvec3& value)
 {
@@ -168,8 +180,7 @@ std::vector<char> RefineWhere(const std::vector<Patch>& patches,
         const double fx = 0.5 * ci;
         const double fy = 0.5 * cj;
         const glm::dvec3 bilinear =
-          (1.0 - fy) * ((1.0 - fx) * coarse(p, 0, 0) + fx * coarse(p, 2, 0)) +
-          fy * ((1.0 - fx) * coarse(p, 0, 2) + fx * coarse(p, 2, 2));
+          Bilinear(coarse(p, 0, 0), coarse(p, 2, 0), coarse(p, 0, 2), coarse(p, 2, 2), fx, fy);
         const glm::dvec3 value = coarse(p, ci, cj);
         brightest = std::max(brightest, Brightest(brightness(p, ci, cj)));
         deviation = std::max(deviation, Brightest(glm::abs(value - bilinear)));
@@ -231,8 +242,7 @@ glm::dvec3 DirectIrradianceNodes::At(std::size_t patch, double s, double t) cons
       3];
     return glm::dvec3(value[0], value[1], value[2]);
   };
-  return (1.0 - fy) * ((1.0 - fx) * node(i, j) + fx * node(i + 1, j)) +
-    fy * ((1.0 - fx) * node(i, j + 1) + fx * node(i + 1, j + 1));
+  return Bilinear(node(i, j), node(i + 1, j), node(i, j + 1), node(i + 1, j + 1), fx, fy);
 }
 
 bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
@@ -264,6 +274,11 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   {
     throw std::invalid_argument("ComputeDirectIrradiance: NodesPerSide " + std::to_string(n) +
       " is not an odd number from 3 to 33");
+  }
+  if (!(options.RefinementTolerance >= 0.0)) // NaN too
+  {
+    throw std::invalid_argument("ComputeDirectIrradiance: RefinementTolerance " +
+      std::to_string(options.RefinementTolerance) + " is not a number >= 0");
   }
   result = DirectIrradianceNodes();
   if (!options.Transmittance.empty() && options.Transmittance.size() != patches.size())
@@ -465,10 +480,9 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     std::sort(nodes.begin(), nodes.end());
     return nodes;
   };
-  std::vector<char> refined(patches.size(), 0);
   if (n > 3)
   {
-    refined = RefineWhere(
+    const std::vector<char> refined = RefineWhere(
       patches, coarseOf(irradianceOfNode), coarseOf(irradianceOfNode), options.RefinementTolerance);
     if (!computeNodes(nodesOfRefined(refined, computed), coarseShare, directShare))
     {
@@ -502,8 +516,12 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
             const int cj = std::min(j / h, 1);
             const double fx = static_cast<double>(i - ci * h) / h;
             const double fy = static_cast<double>(j - cj * h) / h;
-            irradiance = (1.0 - fy) * ((1.0 - fx) * coarse(ci, cj) + fx * coarse(ci + 1, cj)) +
-              fy * ((1.0 - fx) * coarse(ci, cj + 1) + fx * coarse(ci + 1, cj + 1));
+            irradiance = Bilinear(coarse(ci, cj),
+              coarse(ci + 1, cj),
+              coarse(ci, cj + 1),
+              coarse(ci + 1, cj + 1),
+              fx,
+              fy);
           }
           values[3 * k + 0] = static_cast<float>(irradiance.x);
           values[3 * k + 1] = static_cast<float>(irradiance.y);

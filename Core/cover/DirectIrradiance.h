@@ -127,9 +127,10 @@ struct DirectIrradianceNodes
  * order. Empty
  * (NodesPerSide 0) when no patch belongs to a lamp. Returns false, the result incomplete,
  * when `progress` returned false. Throws std::invalid_argument for sizes that differ or
- * NodesPerSide or BounceRaysPerSide outside its range. Under MPI (`share`, RankShare.h) the
- * ranks compute the nodes in turn and every rank gets all of them, the serial values bit for
- * bit; collective then, and RankShare::PeerFailure when another rank failed.
+ * NodesPerSide or BounceRaysPerSide outside its range, or a RefinementTolerance that is
+ * negative or not a number. Under MPI (`share`, RankShare.h) the ranks compute the nodes in
+ * turn and every rank gets all of them, the serial values bit for bit; collective then, and
+ * RankShare::PeerFailure when another rank failed.
  */
 bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   const RayCaster& caster,

@@ -313,9 +313,10 @@ if os.path.exists(report_file):
 result = run("render", scene, "-o", bad_output, "--lamps", "exact", "--quiet")
 if result.returncode == 0 or "--lamps" not in result.stderr.splitlines()[0]:
     failures.append(f"--lamps exact: exit {result.returncode}, stderr {result.stderr!r}")
-# The nodes of the direct light: an even count (no centre node) or too many bounce rays are
-# CLI11's errors too.
-for option, value in (("--direct-nodes", "4"), ("--bounce-rays", "300"), ("--bounce-rays", "-1")):
+# The nodes of the direct light: an even count (no centre node), too many bounce rays or a
+# refinement tolerance outside [0, 1] are CLI11's errors too.
+for option, value in (("--direct-nodes", "4"), ("--bounce-rays", "300"), ("--bounce-rays", "-1"),
+                      ("--direct-tolerance", "-0.1"), ("--direct-tolerance", "2")):
     result = run("render", scene, "-o", bad_output, option, value, "--quiet")
     if result.returncode == 0 or option not in result.stderr.splitlines()[0]:
         failures.append(f"{option} {value}: exit {result.returncode}, stderr {result.stderr!r}")

@@ -390,6 +390,15 @@ TEST(DirectIrradiance, NoBrightEmitterNoNodesAndBadSizesRefused)
   even4.NodesPerSide = 4;
   EXPECT_THROW(ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, even4, nodes),
     std::invalid_argument);
+  for (const double tolerance : { -0.01, std::nan("") })
+  {
+    DirectIrradianceOptions badTolerance;
+    badTolerance.NodesPerSide = 9;
+    badTolerance.RefinementTolerance = tolerance;
+    EXPECT_THROW(
+      ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, badTolerance, nodes),
+      std::invalid_argument);
+  }
   DirectIrradianceOptions tooMany;
   tooMany.BounceRaysPerSide = 257;
   EXPECT_THROW(ComputeDirectIrradiance(patches, caster, lamps, emission, diffuse, tooMany, nodes),
