@@ -341,6 +341,39 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   {
     return true;
   }
+  // Per lamp surface whether it is planar (NearlyPlanar over its pieces' nets together): a plane
+  // cannot light itself, but a concave lamp (a bowl, the inside of a trough) lights its own
+  // inside, and the propagation's version of the nodes' light (LampIrradiance) counts that too.
+  std::vector<std::vector<glm::dvec3>> netOfSurface(lamps.size());
+  std::vector<glm::dvec3> normalOfSurface(lamps.size(), glm::dvec3(0.0));
+  for (const LampPiece& piece : pieces)
+  {
+    const BezierPatch& geometry = patches[piece.Patch].Geometry;
+    const std::size_t surface = static_cast<std::size_t>(patches[piece.Patch].SurfaceIndex);
+    std::vector<glm::dvec3>& net = netOfSurface[surface];
+    net.insert(net.end(), geometry.ControlPoints().begin(), geometry.ControlPoints().end());
+    if (normalOfSurface[surface] == glm::dvec3(0.0))
+    {
+      normalOfSurface[surface] = geometry.ControlNetNormal();
+    }
+  }
+  std::vector<char> planarLamp(lamps.size(), 0);
+  for (std::size_t surface = 0; surface < lamps.size(); ++surface)
+  {
+    const std::vector<glm::dvec3>& net = netOfSurface[surface];
+    if (!net.empty())
+    {
+      glm::dvec3 low = net.front();
+      glm::dvec3 high = net.front();
+      for (const glm::dvec3& point : net)
+      {
+        low = glm::min(low, point);
+        high = glm::max(high, point);
+      }
+      planarLamp[surface] =
+        NearlyPlanar(net, normalOfSurface[surface], glm::length(high - low)) ? 1 : 0;
+    }
+  }
 
   // A node on a border between patches of one surface belongs to each of them (3 x 3 nodes per
   // patch are about 4 distinct ones on a uniform layout): each distinct (surface, u, v) is
@@ -403,9 +436,10 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     glm::dvec3 irradiance(0.0);
     for (const LampPiece& piece : pieces)
     {
-      if (patches[piece.Patch].SurfaceIndex == patch.SurfaceIndex)
+      if (patches[piece.Patch].SurfaceIndex == patch.SurfaceIndex &&
+        planarLamp[static_cast<std::size_t>(patch.SurfaceIndex)])
       {
-        continue; // the lamp's own light is not direct light on it
+        continue; // a planar lamp does not see itself
       }
       irradiance += piece.Emission *
         VisibleProjectedSolidAngleThroughPanes(caster,

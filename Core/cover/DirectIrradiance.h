@@ -20,9 +20,11 @@
  * nodes and keeps the plain interpolation. For every patch, the nodes are (i, j) at the
  * patch's own parameters (i / (n - 1), j / (n - 1)), n = NodesPerSide (odd, so that the centre,
  * the characteristic point, is a node). A node's value is, per band, E_direct + E_bounce:
- *  - E_direct: the sum over lamp pieces L of other surfaces of Emission(L) x the projected
- *    solid angle of L's visible front side from the node (VisibleProjectedSolidAngle: the
- *    midpoint rule over L's (u, v), one shadow ray per quadrature node);
+ *  - E_direct: the sum over lamp pieces L of Emission(L) x the projected solid angle of L's
+ *    visible front side from the node (VisibleProjectedSolidAngle: the midpoint rule over L's
+ *    (u, v), one shadow ray per quadrature node); the pieces of the node's own surface count
+ *    unless that surface is planar (NearlyPlanar: a plane cannot see itself, a concave lamp
+ *    lights its own inside);
  *  - E_bounce (BounceRaysPerSide g > 0; fewer at finer nodes, see below): pi x the mean, over g x g
  * cosine-weighted rays (one in each stratum of sin^2 theta and phi, all at the place within their
  * strata that a shift hashed from the node's index gives, math/PatternShift.h), of the Lambertian

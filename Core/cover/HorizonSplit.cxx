@@ -16,9 +16,6 @@ namespace
 /// A source's tangent plane cuts a receiver's surface when points of it around the receiver
 /// lie farther than this fraction of the receiver's size to both sides.
 constexpr double HorizonTolerance = 0.02;
-/// A surface whose control points lie within this fraction of its size from one plane is
-/// planar (a horizon source).
-constexpr double PlanarTolerance = 0.01;
 }
 
 HorizonTest::HorizonTest(const Scene& scene,
@@ -28,29 +25,12 @@ HorizonTest::HorizonTest(const Scene& scene,
   , Extents(extents)
   , Settings(settings)
 {
-  // Which surfaces are planes (the only horizon sources): every control point within
-  // PlanarTolerance of the net's size from the plane through their centroid normal to the
-  // control net's normal (the Cornell red wall's 3.2 mm twist over 780 mm counts as planar).
+  // Which surfaces are planes (the only horizon sources): NearlyPlanar, every control point
+  // within 1% of the net's size from one plane.
   for (const Surface& surface : scene.Surfaces)
   {
     const BezierPatch& patch = surface.Patch;
-    const glm::dvec3 normal = patch.ControlNetNormal();
-    bool planar = glm::length(normal) > 0.0;
-    if (planar)
-    {
-      glm::dvec3 centroid(0.0);
-      for (const glm::dvec3& point : patch.ControlPoints())
-      {
-        centroid += point;
-      }
-      centroid /= static_cast<double>(patch.ControlPoints().size());
-      const glm::dvec3 unit = glm::normalize(normal);
-      for (const glm::dvec3& point : patch.ControlPoints())
-      {
-        planar =
-          planar && std::fabs(glm::dot(point - centroid, unit)) <= PlanarTolerance * patch.Size();
-      }
-    }
+    const bool planar = NearlyPlanar(patch.ControlPoints(), patch.ControlNetNormal(), patch.Size());
     this->PlanarSurfaces.push_back(planar ? 1 : 0);
   }
 }

@@ -316,4 +316,25 @@ BezierPatch BezierPatch::SubPatch(const UVRect& rect) const
   return this->SubPatch(rect.U0, rect.U1, rect.V0, rect.V1);
 }
 
+bool NearlyPlanar(const std::vector<glm::dvec3>& points, const glm::dvec3& normal, double size)
+{
+  if (!(glm::length(normal) > 0.0) || points.empty())
+  {
+    return false;
+  }
+  glm::dvec3 centroid(0.0);
+  for (const glm::dvec3& point : points)
+  {
+    centroid += point;
+  }
+  centroid /= static_cast<double>(points.size());
+  const glm::dvec3 unit = glm::normalize(normal);
+  bool planar = true;
+  for (const glm::dvec3& point : points)
+  {
+    planar = planar && std::fabs(glm::dot(point - centroid, unit)) <= NearlyPlanarFraction * size;
+  }
+  return planar;
+}
+
 } // namespace sphcover

@@ -136,6 +136,19 @@ private:
   glm::dvec3 NetNormal{ 0.0 };
 };
 
+/// The fraction of a net's size (its bounding box's diagonal) within which NearlyPlanar holds.
+constexpr double NearlyPlanarFraction = 0.01;
+
+/**
+ * Whether the control points `points` lie within NearlyPlanarFraction x `size` of the plane
+ * through their centroid normal to `normal` (false for a zero normal). `points` may be one
+ * patch's net (`size` its Size(), `normal` its ControlNetNormal()) or the nets of a surface's
+ * pieces together: the de Casteljau pieces of a plane keep their control points in it, those of
+ * a curved surface do not, however fine (the Cornell red wall's 3.2 mm twist over 780 mm counts
+ * as planar).
+ */
+bool NearlyPlanar(const std::vector<glm::dvec3>& points, const glm::dvec3& normal, double size);
+
 } // namespace sphcover
 
 #endif

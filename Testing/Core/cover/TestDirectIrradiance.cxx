@@ -167,6 +167,94 @@ TEST(DirectIrradiance, UnderTheLampItIsTheParallelRectanglesIrradiance)
   }
 }
 
+/// A bowl z = BowlDepth (x^2 + y^2) over [-1, 1]^2, its inside (+z) the front: the biquadratic
+/// patch with x = 2u - 1, y = 2v - 1 (x^2's Bernstein coefficients are 1, -1, 1).
+constexpr double BowlDepth = 0.5;
+BezierPatch Bowl()
+{
+  const double x[3] = { -1.0, 0.0, 1.0 };
+  const double x2[3] = { 1.0, -1.0, 1.0 };
+  std::vector<glm::dvec3> points;
+  for (int j = 0; j < 3; ++j)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      points.emplace_back(x[i], x[j], BowlDepth * (x2[i] + x2[j]));
+    }
+  }
+  return BezierPatch(2, 2, points);
+}
+
+/// The projected solid angle of the whole bowl from its point at (s, t), by the midpoint rule
+/// on a fine grid of the bowl's own parameters: the graph of a convex function sees all of
+/// itself from above (the chord between two of its points runs above it), so no visibility.
+double BowlSelfProjectedSolidAngle(const BezierPatch& bowl, double s, double t)
+{
+  const glm::dvec3 p = bowl.Evaluate(s, t);
+  const glm::dvec3 np = bowl.Normal(s, t);
+  const int n = 800;
+  double sum = 0.0;
+  for (int a = 0; a < n; ++a)
+  {
+    for (int b = 0; b < n; ++b)
+    {
+      const double u = (a + 0.5) / n;
+      const double v = (b + 0.5) / n;
+      const glm::dvec3 d = bowl.Evaluate(u, v) - p;
+      const double r2 = glm::dot(d, d);
+      const glm::dvec3 area = bowl.UnnormalizedNormal(u, v) / (static_cast<double>(n) * n);
+      if (r2 > 0.0)
+      {
+        sum += std::max(0.0, glm::dot(d, np)) * std::max(0.0, -glm::dot(d, area)) / (r2 * r2);
+      }
+    }
+  }
+  return sum;
+}
+
+TEST(DirectIrradiance, AConcaveLampLightsItsOwnInside)
+{
+  // A bowl that emits, alone (issue 39 item 6): every node of it sees the rest of its inside.
+  // The nodes left out the lamp's own surface, so its light on itself was in neither the
+  // nodes nor (the cover's version being taken off) the render; a planar lamp's own nodes stay
+  // dark (UnderTheLampItIsTheParallelRectanglesIrradiance).
+  const BezierPatch bowl = Bowl();
+  std::vector<Patch> patches;
+  AppendSplit(patches, bowl, 0, 3, 3);
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  const std::vector<glm::dvec3> emission(patches.size(), LampEmission);
+  DirectIrradianceOptions options;
+  options.BounceRaysPerSide = 0;
+  DirectIrradianceNodes nodes;
+  ASSERT_TRUE(ComputeDirectIrradiance(patches, caster, { true }, emission, {}, options, nodes));
+  ASSERT_EQ(nodes.NodesPerSide, 3);
+  // Every node of the centre patch and of a corner patch, against the independent integral.
+  double worst = 0.0;
+  for (const std::size_t p : { std::size_t(0), std::size_t(4) })
+  {
+    const UVRect& domain = patches[p].Domain;
+    for (int j = 0; j < 3; ++j)
+    {
+      for (int i = 0; i < 3; ++i)
+      {
+        const double s = domain.U0 + (domain.U1 - domain.U0) * i / 2.0;
+        const double t = domain.V0 + (domain.V1 - domain.V0) * j / 2.0;
+        const double exact = BowlSelfProjectedSolidAngle(bowl, s, t);
+        ASSERT_GT(exact, 0.1) << "patch " << p << " node " << i << ", " << j;
+        const glm::dvec3 value = nodes.At(p, i / 2.0, j / 2.0);
+        for (int band = 0; band < 3; ++band)
+        {
+          const double ratio = value[band] / (LampEmission[band] * exact);
+          worst = std::max(worst, std::fabs(ratio - 1.0));
+          EXPECT_NEAR(ratio, 1.0, 0.02)
+            << "patch " << p << " node " << i << ", " << j << " band " << band;
+        }
+      }
+    }
+  }
+  RecordProperty("WorstRelativeError", std::to_string(worst));
+}
+
 TEST(DirectIrradiance, ANodeWhereTheFloorMeetsAWallIsLit)
 {
   const std::vector<Patch> patches = LampOverFloor(false);
