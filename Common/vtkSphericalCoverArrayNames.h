@@ -92,6 +92,17 @@ constexpr const char* CoverMeasures = "CoverMeasures";
 constexpr const char* CoverLayers = "CoverLayers";
 constexpr const char* CoverFilters = "CoverFilters";
 constexpr const char* CoverTransmittances = "CoverTransmittances";
+/// Field data of the cover's output, 1 tuple x 3 (double): the light left out behind more panes
+/// than the layers keep (issue 39 item 6): the cells of the rows whose last layer is still a pane
+/// (SphericalCover::PaneLimit; MaxPaneDepth 4 behind the first), their share of the hemispheres'
+/// projected solid angle weighted by the panes' transmittance (of pi times the rows), and the
+/// direct light's shadow and bounce rays that met more than MaxPanesPerRay (8) panes. Zeros
+/// without panes.
+constexpr const char* CoverPaneLimit = "CoverPaneLimit";
+/// Field data of a radiance image, 1 tuple x 2 (double): the samples whose ray met more than
+/// RadianceRenderer::MaxPanesPerSample (8) panes (the light behind left out) and their share of
+/// the image's samples.
+constexpr const char* RenderPaneLimit = "RenderPaneLimit";
 /// Field data of a cover built on K > 1 ranks, K tuples x 3 (double): per rank the receivers
 /// whose rows it built, the wall seconds it took and the bytes of its row block.
 constexpr const char* CoverRankFigures = "CoverRankFigures";

@@ -325,6 +325,13 @@ int vtkRadianceImageFilter::RequestData(vtkInformation*,
     return 0;
   }
   vtkSolutionRenderer::ToImageData(image, this->ExposureFactor, output);
+  if (image.PaneLimitSamples > 0)
+  {
+    // Once per image, not per ray: the count is in the output's RenderPaneLimit.
+    vtkWarningMacro(<< image.PaneLimitSamples << " of " << image.SampleCount
+                    << " samples met more than " << sphcover::RadianceRenderer::MaxPanesPerSample
+                    << " panes; the light behind them is left out (RenderPaneLimit).");
+  }
   this->UpdateProgress(1.0);
   return 1;
 }

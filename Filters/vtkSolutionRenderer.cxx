@@ -8,6 +8,8 @@
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
 
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkIntArray.h>
@@ -125,4 +127,14 @@ void vtkSolutionRenderer::ToImageData(const sphcover::RenderedImage& image,
   output->GetPointData()->AddArray(depth);
   output->GetPointData()->AddArray(surface);
   output->GetPointData()->SetScalars(rgb);
+  // The samples that met more panes than the renderer follows (their light behind left out).
+  vtkNew<vtkDoubleArray> paneLimit;
+  paneLimit->SetName(vtkSphericalCoverArrayNames::RenderPaneLimit);
+  paneLimit->SetNumberOfComponents(2);
+  paneLimit->SetNumberOfTuples(1);
+  const double samples = static_cast<double>(image.SampleCount);
+  paneLimit->SetComponent(0, 0, static_cast<double>(image.PaneLimitSamples));
+  paneLimit->SetComponent(
+    0, 1, samples > 0.0 ? static_cast<double>(image.PaneLimitSamples) / samples : 0.0);
+  output->GetFieldData()->AddArray(paneLimit);
 }

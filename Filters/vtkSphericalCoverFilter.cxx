@@ -19,6 +19,7 @@
 #include "cover/RayCastFill.h"
 #include "cover/SphericalCover.h"
 #include "geometry/RayCaster.h"
+#include "math/Constants.h"
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
 
@@ -681,6 +682,27 @@ void WriteOutputs(vtkSphericalCoverFilter* self,
     auto bounce = vtkNamedArrays::New<vtkIntArray>(names::DirectBounceRays, 1, 1);
     bounce->SetValue(0, self->GetDirectBounceRays());
     pointsOut->GetFieldData()->AddArray(bounce);
+  }
+  // The light left out behind more panes than the layers and the nodes' rays follow.
+  const sphcover::PaneLimitDrops& drops = cover.PaneLimit();
+  const double hemispheres = sphcover::Pi * static_cast<double>(cover.PatchCount());
+  const double fraction = hemispheres > 0.0 ? drops.ProjectedSolidAngle / hemispheres : 0.0;
+  auto paneLimit = vtkNamedArrays::Double(names::CoverPaneLimit, 3, 1);
+  paneLimit->SetComponent(0, 0, static_cast<double>(drops.Cells));
+  paneLimit->SetComponent(0, 1, fraction);
+  paneLimit->SetComponent(0, 2, static_cast<double>(direct.PaneLimitRays));
+  pointsOut->GetFieldData()->AddArray(paneLimit);
+  if (drops.Cells > 0 || direct.PaneLimitRays > 0)
+  {
+    // Once per cover, not per ray: the counts are in the output's CoverPaneLimit.
+    vtkWarningWithObjectMacro(self,
+      << "Light behind more panes than are followed is left out: " << drops.Cells
+      << " hemisphere cells still show a pane as the last of their "
+      << cover.Options().MaxPaneDepth + 1 << " layers (" << 100.0 * fraction
+      << " % of their projected solid angle, weighted by the "
+      << "panes' transmittance) and " << direct.PaneLimitRays
+      << " of the direct light's rays behind more than " << sphcover::MaxPanesPerRay
+      << " (CoverPaneLimit).");
   }
   stripsOut->Initialize();
   if (self->GetGenerateStripTable())

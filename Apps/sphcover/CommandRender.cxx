@@ -430,6 +430,7 @@ int RunRender(const Options& options)
   if (!options.Report.empty())
   {
     report = RenderReport(options, solving, solution, saved, source, camera, width, height);
+    AddPaneLimit(report, nullptr, render->GetOutput()->GetFieldData());
   }
   WriteRender(options, outputs, render->GetOutput(), report, camera, renderSeconds);
   return 0;

@@ -2,7 +2,8 @@
 /**
  * @file ErrorCollector.h
  * @brief Catches the errors VTK algorithms report (ErrorEvent) so the command line can print
- * one clear line instead of VTK's multi-line "ERROR: In file, line" blocks.
+ * one clear line instead of VTK's multi-line "ERROR: In file, line" blocks, and their warnings
+ * (WarningEvent), which the command prints as one line each when it succeeds.
  */
 #ifndef SPHCOVER_ERRORCOLLECTOR_H
 #define SPHCOVER_ERRORCOLLECTOR_H
@@ -27,10 +28,16 @@ public:
   /// The first error an algorithm reported, without VTK's header and object address.
   std::string First() const;
 
+  /// The warnings every watched algorithm of the process reported, in order, stripped as the
+  /// errors (a light dropped behind too many panes: one per stage, not per ray).
+  static std::vector<std::string>& Warnings();
+
 private:
   static void OnError(vtkObject* caller, unsigned long, void* clientData, void* callData);
+  static void OnWarning(vtkObject* caller, unsigned long, void* clientData, void* callData);
 
   vtkSmartPointer<vtkCallbackCommand> Callback;
+  vtkSmartPointer<vtkCallbackCommand> WarningCallback;
   std::vector<std::string> Messages;
 };
 

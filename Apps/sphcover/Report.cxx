@@ -132,6 +132,23 @@ nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts)
   return report;
 }
 
+void AddPaneLimit(nlohmann::json& report, vtkFieldData* cover, vtkFieldData* image)
+{
+  vtkDataArray* drops = cover ? cover->GetArray(names::CoverPaneLimit) : nullptr;
+  if (drops && drops->GetNumberOfComponents() == 3 && drops->GetNumberOfTuples() == 1)
+  {
+    report["pane_limit"]["cover_cells"] = static_cast<long long>(drops->GetComponent(0, 0));
+    report["pane_limit"]["cover_projected_solid_angle_fraction"] = drops->GetComponent(0, 1);
+    report["pane_limit"]["direct_light_rays"] = static_cast<long long>(drops->GetComponent(0, 2));
+  }
+  vtkDataArray* samples = image ? image->GetArray(names::RenderPaneLimit) : nullptr;
+  if (samples && samples->GetNumberOfComponents() == 2 && samples->GetNumberOfTuples() == 1)
+  {
+    report["pane_limit"]["render_samples"] = static_cast<long long>(samples->GetComponent(0, 0));
+    report["pane_limit"]["render_sample_fraction"] = samples->GetComponent(0, 1);
+  }
+}
+
 nlohmann::json SolutionReport(Solution& solution)
 {
   ReportCounts counts;
@@ -152,6 +169,7 @@ nlohmann::json SolutionReport(Solution& solution)
   vtkDataArray* ranks =
     solution.Cover->GetOutput()->GetFieldData()->GetArray(names::CoverRankFigures);
   report["ranks"] = ranks && ranks->GetNumberOfComponents() == 3 ? ranks->GetNumberOfTuples() : 1;
+  AddPaneLimit(report, solution.Cover->GetOutput()->GetFieldData(), nullptr);
   if (ranks && ranks->GetNumberOfComponents() == 3)
   {
     report["cover_ranks"] = nlohmann::json::array();

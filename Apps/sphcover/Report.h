@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+class vtkFieldData;
 class vtkPolyData;
 
 namespace sphcover_cli
@@ -42,6 +43,15 @@ nlohmann::json Report(vtkPolyData* illumination, const ReportCounts& counts);
 
 /// The report of a solution computed in this run, with its timings.
 nlohmann::json SolutionReport(Solution& solution);
+
+/**
+ * Adds to `report`'s `pane_limit` the light left out behind more panes than are followed, from
+ * the cover's field data (CoverPaneLimit: `cover_cells`, `cover_projected_solid_angle_fraction`,
+ * `direct_light_rays`) and the image's (RenderPaneLimit: `render_samples`,
+ * `render_sample_fraction`); either may be null or lack its array (then its figures are left
+ * out).
+ */
+void AddPaneLimit(nlohmann::json& report, vtkFieldData* cover, vtkFieldData* image);
 }
 
 #endif

@@ -26,6 +26,7 @@
  * way it is a plain program and never touches MPI.
  */
 #include "Commands.h"
+#include "ErrorCollector.h"
 #include "Options.h"
 #include "OutputFiles.h"
 #include "SphcoverVersion.h"
@@ -316,6 +317,14 @@ int main(int argc, char** argv)
   if (status == 0 && !messages.empty() && options.Rank == 0)
   {
     std::cerr << messages << std::flush;
+  }
+  // The stages' own warnings, one line each (ErrorCollector).
+  for (const std::string& warning : ErrorCollector::Warnings())
+  {
+    if (status == 0 && options.Rank == 0)
+    {
+      std::cerr << "sphcover: warning: " << warning << std::endl;
+    }
   }
   vtkOutputWindow::SetInstance(nullptr);
   if (mpi)

@@ -11,6 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -427,8 +428,11 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
   };
 
   std::vector<glm::dvec3> irradianceOfNode(firstPatch.size(), glm::dvec3(0.0));
+  // Rays beyond the panes' limit, summed over the threads (an integer: the sum is exact).
+  std::atomic<uint64_t> paneLimitRays{ 0 };
   auto directAt = [&](std::size_t node)
   {
+    uint64_t nodePaneLimit = 0;
     const std::size_t p = firstPatch[node];
     const Patch& patch = patches[p];
     const NodeRays rays = raysOf(node);
@@ -449,8 +453,10 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
           piece.Patch,
           patches[piece.Patch],
           piece.MinimumSide,
-          panes);
+          panes,
+          &nodePaneLimit);
     }
+    paneLimitRays += nodePaneLimit;
     return irradiance;
   };
   auto computeNodes = [&](const std::vector<std::size_t>& nodes, double from, double to) {
@@ -642,6 +648,10 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
             throughput *= glm::dvec3(options.Transmittance[hit.Patch]);
             met = caster.Intersect(
               origin, directions[k], RayCaster::Beyond(hit.Distance), filter, false, hit);
+            if (pane == MaxPanesPerRay && met && hit.FrontSide)
+            {
+              ++paneLimitRays;
+            }
           }
         }
       }
@@ -695,6 +705,7 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       direct.Values[k] += values[k];
     }
   }
+  direct.PaneLimitRays = paneLimitRays.load();
   result = std::move(direct);
   return true;
 }

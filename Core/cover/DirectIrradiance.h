@@ -65,6 +65,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace sphcover
@@ -115,6 +116,9 @@ struct DirectIrradianceNodes
 {
   int NodesPerSide = 0;
   std::vector<float> Values;
+  /// The shadow and bounce rays (of the nodes this rank computed) that still met a pane after
+  /// MaxPanesPerRay of them: the light behind it is left out (issue 39 item 6).
+  uint64_t PaneLimitRays = 0;
 
   bool Empty() const { return this->Values.empty(); }
   /// The bilinear interpolation of patch p's nodes at its own (s, t) in [0,1]^2 (clamped).

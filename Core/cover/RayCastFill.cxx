@@ -703,7 +703,8 @@ glm::dvec3 VisibleProjectedSolidAngleThroughPanes(const RayCaster& caster,
   std::size_t source,
   const Patch& target,
   int minimumSide,
-  const std::vector<glm::vec3>* transmittanceOfPatch)
+  const std::vector<glm::vec3>* transmittanceOfPatch,
+  uint64_t* paneLimitRays)
 {
   const double distance = glm::length(target.Point - origin);
   const double size = target.Geometry.Size();
@@ -761,6 +762,10 @@ glm::dvec3 VisibleProjectedSolidAngleThroughPanes(const RayCaster& caster,
         }
         seen *= t;
         nearest = RayCaster::Beyond(hit.Distance);
+        if (pane == MaxPanesPerRay && paneLimitRays)
+        {
+          ++*paneLimitRays;
+        }
       }
       if (found)
       {

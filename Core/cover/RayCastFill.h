@@ -75,7 +75,9 @@ double VisibleProjectedSolidAngle(const RayCaster& caster,
  * the front side of a patch with a non-zero transmittanceOfPatch[p] (null: none) goes on behind
  * it (cast again beyond it, at most MaxPanesPerRay panes), the node counting with the product of
  * the transmittances passed. The filter must pass the panes' back sides (their reversed copies'
- * fronts). With no pane on the way, every band is VisibleProjectedSolidAngle.
+ * fronts). With no pane on the way, every band is VisibleProjectedSolidAngle. A ray that still
+ * meets a pane after MaxPanesPerRay of them does not count, and adds one to `*paneLimitRays`
+ * (when given).
  */
 glm::dvec3 VisibleProjectedSolidAngleThroughPanes(const RayCaster& caster,
   const glm::dvec3& origin,
@@ -84,8 +86,10 @@ glm::dvec3 VisibleProjectedSolidAngleThroughPanes(const RayCaster& caster,
   std::size_t source,
   const Patch& target,
   int minimumSide,
-  const std::vector<glm::vec3>* transmittanceOfPatch);
-/// Most panes a node's ray goes through (VisibleProjectedSolidAngleThroughPanes).
+  const std::vector<glm::vec3>* transmittanceOfPatch,
+  uint64_t* paneLimitRays = nullptr);
+/// Most panes a node's ray goes through (VisibleProjectedSolidAngleThroughPanes); a ray that
+/// meets more is counted in its `paneLimitRays`.
 constexpr int MaxPanesPerRay = 8;
 
 /// The caster's options among a fill's.

@@ -115,6 +115,26 @@ struct SphericalCoverOptions
 };
 
 /**
+ * What the layers behind panes leave out (see "Panes" in SphericalCover's file comment): the
+ * cells, over all rows, whose last kept layer (MaxPaneDepth behind the first) still shows a
+ * pane, so that the light from behind that pane is dropped, and their projected solid angle
+ * weighted by the transmittance through all of those panes (the mean of the bands), summed over
+ * the rows: over pi times the rows it is the fraction of the hemispheres' light lost at most.
+ */
+struct PaneLimitDrops
+{
+  uint64_t Cells = 0;
+  double ProjectedSolidAngle = 0.0;
+
+  PaneLimitDrops& operator+=(const PaneLimitDrops& other)
+  {
+    this->Cells += other.Cells;
+    this->ProjectedSolidAngle += other.ProjectedSolidAngle;
+    return *this;
+  }
+};
+
+/**
  * The order of a row's entries (see "Panes"): by source, then layer, then filter band by band;
  * -1, 0 or 1. A column lists each receiver's entries in this order too, which is what lets the
  * propagation match an entry with its transposed one in one merge.
@@ -305,6 +325,9 @@ public:
   // --- statistics and memory -------------------------------------------------------------------
   /// Candidate culling counts summed over all receivers (projection fill only).
   const CullingStatistics& Culling() const { return this->CullingCounts; }
+  /// The cells behind more panes than MaxPaneDepth, summed over the rows in receiver order (a
+  /// build's figure: a cover loaded from saved arrays has none).
+  const PaneLimitDrops& PaneLimit() const { return this->PaneLimitCounts; }
   /// Bytes held by the cover's arrays.
   std::size_t MemoryBytes() const;
   /// Bytes per strip, per entry and per patch (see the file comment).
@@ -320,8 +343,11 @@ public:
   static constexpr std::size_t EstimateSamples = 16;
   /**
    * An estimate of MemoryBytes() from a few rows actually built (sampleReceivers of them,
-   * spread evenly over the patches) scaled to all n rows; costs sampleReceivers / n of a
-   * build, and the ray fill's caster unless `rays` is given (as Build).
+   * spread evenly over the patches, with their layers behind panes and, when some surface is
+   * measured, a measure per entry) scaled to all n rows; costs sampleReceivers / n of a build,
+   * and the ray fill's caster unless `rays` is given (as Build). With every row sampled and
+   * without interpolated hemispheres, MemoryBytes() of the build itself or more (every entry
+   * counted measured when some surface is).
    */
   static std::size_t EstimateBytes(const std::vector<Patch>& patches,
     const SphericalCoverOptions& options,
@@ -376,13 +402,21 @@ private:
     Row& row,
     unsigned layer = 0,
     const std::vector<glm::vec3>* filterOfCell = nullptr);
-  /// Adds the layers behind panes to the row of `front`'s receiver (see "Panes"), then sorts
-  /// its entries by (source, layer, filter).
-  void ExtractLayersBehindPanes(const RayCastFiller& filler,
+  /// Per patch its pane's transmittance from options.SurfaceTransmittance (empty: no panes, or
+  /// MaxPaneDepth 0), and the fill's PaneSurfaces set in `fill` to match; throws
+  /// std::invalid_argument for panes without the ray fill.
+  static std::vector<glm::vec3> PaneTransmittances(const std::vector<Patch>& patches,
+    const SphericalCoverOptions& options,
+    RBufferFillOptions& fill);
+  /// Adds at most `maxDepth` layers behind panes to the row of `front`'s receiver (see
+  /// "Panes"), then sorts its entries by (source, layer, filter); what lies behind more panes
+  /// is counted in the row's PaneLimit.
+  static void ExtractLayersBehindPanes(const RayCastFiller& filler,
     const std::vector<glm::vec3>& transmittanceOfPatch,
+    int maxDepth,
     RBuffer& front,
     RBuffer& behind,
-    Row& row) const;
+    Row& row);
   /// Measures the row's regions of measured surfaces on their sources (see the file comment);
   /// piecesOfSurface[s] lists the patches of measured surface s, ascending.
   void MeasureRow(std::size_t receiver,
@@ -422,6 +456,7 @@ private:
   std::vector<float> Transmittances;
   bool UnoccludedKnown = false;
   CullingStatistics CullingCounts;
+  PaneLimitDrops PaneLimitCounts;
 };
 
 } // namespace sphcover

@@ -42,6 +42,7 @@ struct SphericalCover::Row
   std::vector<uint8_t> Layers;
   std::vector<glm::vec3> Filters;
   CullingStatistics Culling;
+  PaneLimitDrops PaneLimit;
 };
 
 SphericalCover::SphericalCover() = default;
@@ -66,6 +67,7 @@ void SphericalCover::Clear()
   this->Transmittances.clear();
   this->UnoccludedKnown = false;
   this->CullingCounts = CullingStatistics();
+  this->PaneLimitCounts = PaneLimitDrops();
 }
 
 void SphericalCover::ExtractRow(const RBuffer& buffer,
@@ -143,16 +145,53 @@ void SphericalCover::ExtractRow(const RBuffer& buffer,
   }
 }
 
+std::vector<glm::vec3> SphericalCover::PaneTransmittances(const std::vector<Patch>& patches,
+  const SphericalCoverOptions& options,
+  RBufferFillOptions& fill)
+{
+  std::vector<glm::vec3> transmittanceOfPatch;
+  if (options.MaxPaneDepth > 0)
+  {
+    std::vector<bool>& paneSurfaces = fill.PaneSurfaces;
+    paneSurfaces.assign(options.SurfaceTransmittance.size(), false);
+    for (size_t s = 0; s < options.SurfaceTransmittance.size(); ++s)
+    {
+      const glm::vec3& t = options.SurfaceTransmittance[s];
+      paneSurfaces[s] = t.x > 0.0f || t.y > 0.0f || t.z > 0.0f;
+    }
+    for (const Patch& patch : patches)
+    {
+      const size_t surface = static_cast<size_t>(patch.SurfaceIndex);
+      const bool pane = surface < paneSurfaces.size() && paneSurfaces[surface];
+      transmittanceOfPatch.push_back(
+        pane ? options.SurfaceTransmittance[surface] : glm::vec3(0.0f));
+    }
+    if (std::find(paneSurfaces.begin(), paneSurfaces.end(), true) == paneSurfaces.end())
+    {
+      paneSurfaces.clear();
+      transmittanceOfPatch.clear();
+    }
+    else if (options.Fill != RBufferFill::RayCasting)
+    {
+      throw std::invalid_argument(
+        "SphericalCover: a scene with panes (transmittance) needs the ray-casting fill");
+    }
+  }
+  return transmittanceOfPatch;
+}
+
 void SphericalCover::ExtractLayersBehindPanes(const RayCastFiller& filler,
   const std::vector<glm::vec3>& transmittanceOfPatch,
+  int maxDepth,
   RBuffer& front,
   RBuffer& behind,
-  Row& row) const
+  Row& row)
 {
   const HemisphereGrid& grid = front.Grid();
   // Per cell the product of the transmittances of the panes that won it in the layers so far.
   std::vector<glm::vec3> filter(static_cast<size_t>(grid.CellCount()), glm::vec3(1.0f));
-  for (int layer = 1; layer <= this->BuildOptions.MaxPaneDepth; ++layer)
+  bool reachedLimit = true;
+  for (int layer = 1; layer <= maxDepth; ++layer)
   {
     bool anyPane = false;
     for (int cell = 0; cell < grid.CellCount(); ++cell)
@@ -166,11 +205,25 @@ void SphericalCover::ExtractLayersBehindPanes(const RayCastFiller& filler,
     }
     if (!anyPane)
     {
+      reachedLimit = false;
       break;
     }
     filler.FillBehindPanes(front.Receiver(), front, layer, behind);
     ExtractRow(behind, row, static_cast<unsigned>(layer), &filter);
     std::swap(front, behind);
+  }
+  // The cells whose last layer is still a pane: what lies behind it is dropped, and counted.
+  for (int cell = 0; reachedLimit && cell < grid.CellCount(); ++cell)
+  {
+    const int32_t source = front.CellSource(cell);
+    if (source != RBuffer::NoSource && filler.IsPane(static_cast<size_t>(source)))
+    {
+      const glm::vec3 through =
+        filter[static_cast<size_t>(cell)] * transmittanceOfPatch[static_cast<size_t>(source)];
+      ++row.PaneLimit.Cells;
+      row.PaneLimit.ProjectedSolidAngle += grid.CellMeasureOfCell(cell) *
+        (static_cast<double>(through.x) + through.y + through.z) / 3.0;
+    }
   }
   // The layers were appended one after the other: the row's entries are sorted by (source,
   // layer, filter), as FindEntry and the propagation's matching of transposed entries expect.
@@ -195,6 +248,7 @@ void SphericalCover::ExtractLayersBehindPanes(const RayCastFiller& filler,
     });
   Row sorted;
   sorted.Culling = row.Culling;
+  sorted.PaneLimit = row.PaneLimit;
   for (const size_t e : order)
   {
     sorted.Sources.push_back(row.Sources[e]);
@@ -376,6 +430,7 @@ void SphericalCover::AppendRow(Row& row)
   }
   this->RowOffsets.push_back(this->Entries.size());
   this->CullingCounts += row.Culling;
+  this->PaneLimitCounts += row.PaneLimit;
 }
 
 namespace
@@ -458,34 +513,8 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
   this->BuildOptions = options;
   // Panes (see the file comment): the fill lets the rays through their back sides, the cover
   // keeps each patch's transmittance and the layers behind them.
-  std::vector<glm::vec3> transmittanceOfPatch;
-  if (options.MaxPaneDepth > 0)
-  {
-    std::vector<bool>& paneSurfaces = this->BuildOptions.FillOptions.PaneSurfaces;
-    paneSurfaces.assign(options.SurfaceTransmittance.size(), false);
-    for (size_t s = 0; s < options.SurfaceTransmittance.size(); ++s)
-    {
-      const glm::vec3& t = options.SurfaceTransmittance[s];
-      paneSurfaces[s] = t.x > 0.0f || t.y > 0.0f || t.z > 0.0f;
-    }
-    for (const Patch& patch : patches)
-    {
-      const size_t surface = static_cast<size_t>(patch.SurfaceIndex);
-      const bool pane = surface < paneSurfaces.size() && paneSurfaces[surface];
-      transmittanceOfPatch.push_back(
-        pane ? options.SurfaceTransmittance[surface] : glm::vec3(0.0f));
-    }
-    if (std::find(paneSurfaces.begin(), paneSurfaces.end(), true) == paneSurfaces.end())
-    {
-      paneSurfaces.clear();
-      transmittanceOfPatch.clear();
-    }
-    else if (options.Fill != RBufferFill::RayCasting)
-    {
-      throw std::invalid_argument(
-        "SphericalCover: a scene with panes (transmittance) needs the ray-casting fill");
-    }
-  }
+  const std::vector<glm::vec3> transmittanceOfPatch =
+    PaneTransmittances(patches, options, this->BuildOptions.FillOptions);
   for (const glm::vec3& t : transmittanceOfPatch)
   {
     this->Transmittances.insert(this->Transmittances.end(), { t.x, t.y, t.z });
@@ -613,7 +642,8 @@ bool SphericalCover::BuildRows(const std::vector<Patch>& patches,
     ExtractRow(buffer, row);
     if (paneFiller)
     {
-      this->ExtractLayersBehindPanes(*paneFiller, transmittanceOfPatch, buffer, *behind, row);
+      ExtractLayersBehindPanes(
+        *paneFiller, transmittanceOfPatch, options.MaxPaneDepth, buffer, *behind, row);
     }
     if (rayFiller)
     {
@@ -720,9 +750,15 @@ std::size_t SphericalCover::EstimateBytes(const std::vector<Patch>& patches,
   const std::size_t samples = std::max<std::size_t>(1, std::min(sampleReceivers, count));
   const HemisphereGrid grid(
     options.ThetaBins, options.PhiBins, options.SamplesTheta, options.SamplesPhi);
+  // The rows as Build makes them: through panes, with their layers behind them.
+  RBufferFillOptions fill = options.FillOptions;
+  const std::vector<glm::vec3> transmittanceOfPatch = PaneTransmittances(patches, options, fill);
   const std::unique_ptr<RBufferFiller> filler =
-    RBufferFiller::Create(options.Fill, patches, grid, options.FillOptions, std::move(rays));
+    RBufferFiller::Create(options.Fill, patches, grid, fill, std::move(rays));
+  const RayCastFiller* paneFiller =
+    transmittanceOfPatch.empty() ? nullptr : dynamic_cast<const RayCastFiller*>(filler.get());
   RBuffer buffer(grid);
+  const std::unique_ptr<RBuffer> behind = paneFiller ? std::make_unique<RBuffer>(grid) : nullptr;
   std::size_t strips = 0;
   std::size_t entries = 0;
   for (std::size_t k = 0; k < samples; ++k)
@@ -732,13 +768,26 @@ std::size_t SphericalCover::EstimateBytes(const std::vector<Patch>& patches,
     filler->Fill(receiver, buffer, nullptr);
     Row row;
     ExtractRow(buffer, row);
+    if (paneFiller)
+    {
+      ExtractLayersBehindPanes(
+        *paneFiller, transmittanceOfPatch, options.MaxPaneDepth, buffer, *behind, row);
+    }
     strips += row.Strips.size();
     entries += row.Sources.size();
   }
+  // Per entry its layer and filter with panes (and per patch the transmittance); a measure per
+  // entry once some surface is measured (the ray fill's, see "Measured regions").
+  const bool measured = options.Fill == RBufferFill::RayCasting &&
+    std::find(options.MeasuredSurfaces.begin(), options.MeasuredSurfaces.end(), true) !=
+      options.MeasuredSurfaces.end();
+  const std::size_t bytesPerEntry = BytesPerEntry + (measured ? sizeof(float) : 0) +
+    (paneFiller ? sizeof(uint8_t) + 3 * sizeof(float) : 0);
+  const std::size_t bytesPerPatch = BytesPerPatch + (paneFiller ? 3 * sizeof(float) : 0);
   const double scale = static_cast<double>(count) / samples;
   return static_cast<std::size_t>(
-           std::ceil(scale * (strips * BytesPerStrip + entries * BytesPerEntry))) +
-    count * BytesPerPatch + 2 * sizeof(uint64_t);
+           std::ceil(scale * (strips * BytesPerStrip + entries * bytesPerEntry))) +
+    count * bytesPerPatch + 2 * sizeof(uint64_t);
 }
 
 } // namespace sphcover

@@ -172,6 +172,7 @@ SphericalCover RowShares::RowsOf(const SphericalCover& cover,
   SphericalCover rows;
   rows.Adopt(std::move(kept), cover.BuildOptions);
   rows.CullingCounts = cover.CullingCounts;
+  rows.PaneLimitCounts = cover.PaneLimitCounts;
   return rows;
 }
 
@@ -313,6 +314,12 @@ std::string RowShares::JoinRows(SphericalCover& cover,
   }
   joined.Areas = covers.front().Areas;
   joined.Transmittances = covers.front().Transmittances;
+  // Each share counted what its own rows dropped behind panes.
+  PaneLimitDrops paneLimit;
+  for (const SphericalCover& share : covers)
+  {
+    paneLimit += share.PaneLimitCounts;
+  }
   covers.clear();
   const std::string problem = SphericalCover::CheckArrays(joined);
   if (!problem.empty())
@@ -321,6 +328,7 @@ std::string RowShares::JoinRows(SphericalCover& cover,
   }
   cover.Adopt(std::move(joined), options);
   cover.CullingCounts = culling;
+  cover.PaneLimitCounts = paneLimit;
   return std::string();
 }
 

@@ -658,6 +658,7 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
     {
       break;
     }
+    sample.PaneLimit = pane == MaxPanesPerSample;
     throughput *= this->Transmittance[static_cast<size_t>(this->Patches[hit.Patch].SurfaceIndex)];
     nearest = RayCaster::Beyond(static_cast<float>(hit.T));
   }
@@ -823,8 +824,10 @@ bool RadianceRenderer::RenderRows(const Camera& camera,
   SampleOffsets(samples, offsetX, offsetY);
 
   std::atomic<std::size_t> missing{ 0 };
+  std::atomic<uint64_t> paneLimit{ 0 };
   auto renderRow = [&](int j)
   {
+    uint64_t rowPaneLimit = 0;
     std::vector<SampleHit> hits;
     std::unique_ptr<DirectionalCache> cache =
       this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
@@ -856,6 +859,7 @@ bool RadianceRenderer::RenderRows(const Camera& camera,
           continue;
         }
         hits.push_back({ sample.Surface, sample.T });
+        rowPaneLimit += sample.PaneLimit ? 1 : 0;
         if (sample.Lit)
         {
           sum += sample.Radiance;
@@ -867,6 +871,7 @@ bool RadianceRenderer::RenderRows(const Camera& camera,
     {
       missing += cache->Missing;
     }
+    paneLimit += rowPaneLimit;
   };
 
   // Ten batches of rows, each run in parallel; progress and abort between batches.
@@ -887,6 +892,8 @@ bool RadianceRenderer::RenderRows(const Camera& camera,
       return false;
     }
   }
+  image.PaneLimitSamples = paneLimit.load();
+  image.SampleCount = static_cast<uint64_t>(pixels) * static_cast<uint64_t>(samples);
   if (missing > 0)
   {
     throw std::runtime_error("RadianceRenderer: the directional values given lack " +

@@ -119,6 +119,11 @@ struct RenderedImage
   std::vector<float> Depth;
   /// Index of the visible surface (-1: nothing visible).
   std::vector<int32_t> SurfaceId;
+  /// Samples whose ray still met a pane's front after RadianceRenderer::MaxPanesPerSample
+  /// panes: the light behind it is left out of their pixels (issue 39 item 6).
+  uint64_t PaneLimitSamples = 0;
+  /// The samples cast: Width x Height x RenderSettings::SamplesPerPixel.
+  uint64_t SampleCount = 0;
 
   /// Bytes per pixel of the arrays above plus an 8-bit RGB copy for display.
   static constexpr std::size_t BytesPerPixel =
@@ -292,7 +297,8 @@ public:
   /**
    * Per surface index the transmittance of a thin pane (paper §5.4; missing entries and zero:
    * opaque). A sample that meets a pane's front side shows the pane's own radiance plus T times
-   * what its ray meets behind it (cast again beyond the pane, at most MaxPanesPerSample panes);
+   * what its ray meets behind it (cast again beyond the pane, at most MaxPanesPerSample panes;
+   * the samples that meet more are counted in RenderedImage::PaneLimitSamples);
    * a pane's back side is its reversed copy's front (the loader makes a pane two surfaces) and
    * is passed. The sample's surface and depth are the first pane's.
    */
@@ -376,6 +382,8 @@ private:
     double T = 0.0;
     bool Lit = false;
     glm::dvec3 Radiance = glm::dvec3(0.0);
+    /// The ray still met a pane after MaxPanesPerSample of them (what lies behind is left out).
+    bool PaneLimit = false;
   };
   /// The radiance the hit shows toward the eye, and whether it sends any (a back side does not).
   bool ShadeHit(std::size_t patch,

@@ -7,8 +7,9 @@ saved by `sphcover solve -o` and rendered with --solution gives the identical im
 walk-through case: only the render runs, and its report has the same figures); the image does
 not depend on the thread count; the report's figures are those the light propagation filter
 puts in its output's field data, and the reader's scene fingerprint reaches it and the saved
-solution; bad input (a corrupted saved solution too) gives one line, a non-zero exit and no
-output file."""
+solution; light behind more panes than are followed (pane_stack.scene) is counted in the
+report's pane_limit and said in one warning line per stage; bad input (a corrupted saved solution
+too) gives one line, a non-zero exit and no output file."""
 import json
 import os
 import resource
@@ -88,6 +89,11 @@ else:
                         f"{strips} strips")
     if len(report.get("surfaces", [])) != 16:
         failures.append("the report lacks the 16 surfaces")
+    # No pane: nothing left out behind the panes' limit, and the report says so.
+    limit = report.get("pane_limit", {})
+    if limit.get("cover_cells") != 0 or limit.get("direct_light_rays") != 0 or \
+            limit.get("render_samples") != 0:
+        failures.append(f"the Cornell box's report has pane_limit {limit}, not zeros")
 
 # Reuse a saved solution: only the render runs, and the image is identical.
 solution = os.path.join(folder, "solution.vtm")
@@ -320,6 +326,27 @@ for option, value in (("--direct-nodes", "4"), ("--bounce-rays", "300"), ("--bou
     result = run("render", scene, "-o", bad_output, option, value, "--quiet")
     if result.returncode == 0 or option not in result.stderr.splitlines()[0]:
         failures.append(f"{option} {value}: exit {result.returncode}, stderr {result.stderr!r}")
+# Light behind more panes than are followed (issue 39 item 6): pane_stack.scene stacks ten panes
+# between a floor and a lamp, more than the cover's layers (5), the direct light's rays and the
+# render's samples (8) follow. What is left out is counted in the report and said once per stage
+# in one line, not per ray nor as VTK's multi-line block.
+stack_report = os.path.join(folder, "stack.json")
+result = run("render", f"{data}/scenes/pane_stack.scene", "-o", os.path.join(folder, "stack.exr"),
+             "--report", stack_report, "--quiet")
+if result.returncode != 0:
+    failures.append(f"pane_stack: exit {result.returncode}, stderr {result.stderr!r}")
+else:
+    limit = json.load(open(stack_report)).get("pane_limit", {})
+    for key in ("cover_cells", "cover_projected_solid_angle_fraction", "direct_light_rays",
+                "render_samples", "render_sample_fraction"):
+        if not limit.get(key, 0) > 0:
+            failures.append(f"pane_stack: the report's pane_limit.{key} is {limit.get(key)}")
+    if limit.get("render_samples") != 32 * 32 * 4 or limit.get("render_sample_fraction") != 1.0:
+        failures.append(f"pane_stack: every sample of the view down the stack drops, not {limit}")
+    warnings = [line for line in result.stderr.splitlines() if line.strip()]
+    if len(warnings) != 2 or not all(line.startswith("sphcover: warning: ") and "panes" in line
+                                     for line in warnings):
+        failures.append(f"pane_stack: not one warning line per stage: {result.stderr!r}")
 leftovers = [name for name in os.listdir(folder) if name.startswith("bad") or "partial" in name]
 if leftovers:
     failures.append(f"files left behind by failures: {leftovers}")

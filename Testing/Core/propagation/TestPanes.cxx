@@ -4,7 +4,11 @@
 // transmittance, so that a white furnace with panes stays uniform, a pane between a lamp and a
 // floor passes its transmittance of the light, and the filtered exchange is reciprocal.
 #include "CoverTestUtilities.h"
+#include "cover/BrightEmitters.h"
+#include "cover/DirectIrradiance.h"
+#include "cover/RayCastFill.h"
 #include "cover/SphericalCover.h"
+#include "geometry/RayCaster.h"
 #include "math/Constants.h"
 #include "propagation/ExchangeBalance.h"
 #include "propagation/LightPropagation.h"
@@ -327,4 +331,88 @@ TEST(Panes, ClosedSceneOfEveryReflectanceKindWithAPaneAbsorbsWhatItEmits)
     balance.RelativeImbalance,
     imbalanceWithout);
   EXPECT_LT(balance.RelativeImbalance, 2.0 * imbalanceWithout + 0.005);
+}
+
+TEST(Panes, LightBehindMorePanesThanTheLayersIsCounted)
+{
+  // pane_stack.scene: ten panes stacked between a floor and a lamp; the cover keeps
+  // MaxPaneDepth (4) layers behind the first, so what the floor sees behind the fifth pane is
+  // dropped (issue 39 item 6) and must be counted; with room for all ten nothing is.
+  const Scene scene = LoadSceneFile(ScenePath("pane_stack.scene"));
+  const std::vector<Patch> patches = SplitScene(scene, 2);
+  SphericalCoverOptions options = PaneOptions(scene, 8, 32);
+  SphericalCover cover;
+  ASSERT_TRUE(cover.Build(patches, options));
+  const PaneLimitDrops& drops = cover.PaneLimit();
+  std::printf("[ Panes    ] %zu rows: %llu cells dropped behind %d panes, projected solid angle "
+              "%.4f of %.4f\n",
+    patches.size(),
+    static_cast<unsigned long long>(drops.Cells),
+    options.MaxPaneDepth + 1,
+    drops.ProjectedSolidAngle,
+    Pi * static_cast<double>(patches.size()));
+  EXPECT_GT(drops.Cells, 0u);
+  // Behind five panes of T = 0.9 a cell keeps 0.9^5 of its light at most.
+  EXPECT_GT(drops.ProjectedSolidAngle, 0.0);
+  EXPECT_LE(drops.ProjectedSolidAngle,
+    std::pow(0.9, 5) * Pi * static_cast<double>(patches.size()) * (1.0 + 1e-6));
+  options.MaxPaneDepth = 12;
+  SphericalCover deep;
+  ASSERT_TRUE(deep.Build(patches, options));
+  EXPECT_EQ(deep.PaneLimit().Cells, 0u);
+  EXPECT_EQ(deep.PaneLimit().ProjectedSolidAngle, 0.0);
+  // The lamp's direct light on the floor's nodes: their shadow rays cross all ten panes, more
+  // than MaxPanesPerRay (8), and are counted.
+  std::vector<glm::dvec3> emission;
+  DirectIrradianceOptions direct;
+  direct.BounceRaysPerSide = 0;
+  for (const Patch& patch : patches)
+  {
+    const Material& material =
+      scene.Materials[static_cast<size_t>(scene.Surfaces[patch.SurfaceIndex].MaterialIndex)];
+    emission.push_back(material.Emission);
+    direct.Transmittance.push_back(glm::vec3(material.Transmittance));
+  }
+  const RayCaster caster(RayCastPatches(patches), RayCasterOptions());
+  DirectIrradianceNodes nodes;
+  ASSERT_TRUE(ComputeDirectIrradiance(
+    patches, caster, BrightEmitters(patches, emission), emission, {}, direct, nodes));
+  std::printf("[ Panes    ] direct light: %llu shadow rays dropped behind %d panes\n",
+    static_cast<unsigned long long>(nodes.PaneLimitRays),
+    MaxPanesPerRay + 1);
+  EXPECT_GT(nodes.PaneLimitRays, 0u);
+  // A scene within the limit drops nothing.
+  const PaneScene furnace(LoadSceneFile(ScenePath("furnace_pane.scene")), 2, 8, 32);
+  EXPECT_EQ(furnace.Cover.PaneLimit().Cells, 0u);
+}
+
+TEST(Panes, MemoryEstimateCountsTheLayersBehindPanes)
+{
+  // The layers behind panes are entries (and strips) of their own, with a layer and a filter
+  // each: with every row sampled the estimate is the bytes the cover holds, and it exceeds the
+  // estimate of the same scene with opaque panes.
+  const Scene scene = LoadSceneFile(ScenePath("pane_stack.scene"));
+  const std::vector<Patch> patches = SplitScene(scene, 2);
+  const SphericalCoverOptions options = PaneOptions(scene, 8, 32);
+  SphericalCover cover;
+  ASSERT_TRUE(cover.Build(patches, options));
+  ASSERT_TRUE(cover.HasPanes());
+  const std::size_t all = SphericalCover::EstimateBytes(patches, options, patches.size());
+  SphericalCoverOptions opaque = options;
+  opaque.SurfaceTransmittance.clear();
+  const std::size_t opaqueAll = SphericalCover::EstimateBytes(patches, opaque, patches.size());
+  const std::size_t sampled = SphericalCover::EstimateBytes(patches, options);
+  std::printf("[ Panes    ] pane_stack %zu patches: cover %zu bytes; estimate %zu (all rows), %zu "
+              "(%zu rows), opaque panes %zu\n",
+    patches.size(),
+    cover.MemoryBytes(),
+    all,
+    sampled,
+    SphericalCover::EstimateSamples,
+    opaqueAll);
+  EXPECT_GE(all, cover.MemoryBytes());
+  EXPECT_LT(all, cover.MemoryBytes() + cover.MemoryBytes() / 100);
+  EXPECT_GT(all, opaqueAll);
+  EXPECT_GT(sampled, cover.MemoryBytes() / 2);
+  EXPECT_LT(sampled, cover.MemoryBytes() * 2);
 }
