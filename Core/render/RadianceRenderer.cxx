@@ -422,7 +422,32 @@ void RadianceRenderer::SetDirectionalIllumination(DirectionalIllumination illumi
       std::to_string(illumination.Cover.EntryCount()) + " entries");
   }
   this->Reflectances = PointReflectances(illumination.Cover.Grid(), illumination.Materials);
+  // The ideal mirrors, whose view the render follows along the reflected ray (file comment).
+  this->MirrorSpecular.clear();
+  for (std::size_t p = 0; p < points; ++p)
+  {
+    const Material& material = illumination.Materials[p];
+    if (material.Type == MaterialType::Mirror)
+    {
+      const std::size_t surface = static_cast<std::size_t>(this->Interpolator.SurfaceOf(p));
+      if (this->MirrorSpecular.size() <= surface)
+      {
+        this->MirrorSpecular.resize(surface + 1, glm::dvec3(-1.0));
+      }
+      this->MirrorSpecular[surface] = material.Specular;
+    }
+  }
   this->Directional = std::make_unique<DirectionalIllumination>(std::move(illumination));
+}
+
+const glm::dvec3* RadianceRenderer::MirrorOf(int surface) const
+{
+  if (surface < 0 || static_cast<std::size_t>(surface) >= this->MirrorSpecular.size() ||
+    this->MirrorSpecular[static_cast<std::size_t>(surface)].x < 0.0)
+  {
+    return nullptr;
+  }
+  return &this->MirrorSpecular[static_cast<std::size_t>(surface)];
 }
 
 glm::dvec3 RadianceRenderer::SurfaceRadianceToward(int surface,
@@ -451,6 +476,23 @@ RadianceRenderer::TowardTerms RadianceRenderer::Terms(int surface, double u, dou
   {
     terms.Direct = this->Direct.At(this->Interpolator, surface, u, v);
   }
+  if (terms.HasStencil && this->MirrorOf(surface))
+  {
+    // A mirror's view follows its reflected ray from the exact point (file comment): the patch
+    // that holds (u, v) and its own parameters there.
+    for (std::size_t p = 0; p < this->Patches.size(); ++p)
+    {
+      const Patch& patch = this->Patches[p];
+      const UVRect& d = patch.Domain;
+      if (patch.SurfaceIndex == surface && u >= d.U0 && u <= d.U1 && v >= d.V0 && v <= d.V1)
+      {
+        terms.MirrorPatch = static_cast<std::ptrdiff_t>(p);
+        terms.PatchU = (u - d.U0) / (d.U1 - d.U0);
+        terms.PatchV = (v - d.V0) / (d.V1 - d.V0);
+        break;
+      }
+    }
+  }
   return terms;
 }
 
@@ -458,6 +500,20 @@ glm::dvec3 RadianceRenderer::RadianceToward(const TowardTerms& terms,
   const glm::dvec3& towardEye,
   DirectionalCache& cache) const
 {
+  if (terms.MirrorPatch >= 0)
+  {
+    // The mirror's point seen from the eye, shaded as the render's ray that meets it.
+    glm::dvec3 radiance(0.0);
+    this->ShadeHit(static_cast<std::size_t>(terms.MirrorPatch),
+      terms.PatchU,
+      terms.PatchV,
+      true,
+      -towardEye,
+      &cache,
+      0,
+      radiance);
+    return radiance;
+  }
   return this->TermsToward(terms, towardEye, &cache);
 }
 
@@ -531,6 +587,7 @@ glm::dvec3 RadianceRenderer::RadianceToward(int surface,
   const glm::dvec3& towardEye,
   DirectionalCache* cache) const
 {
+  // The stored value: Terms' mirror patch is not followed here (TermsToward).
   return this->TermsToward(this->Terms(surface, u, v), towardEye, cache);
 }
 
@@ -585,6 +642,7 @@ bool RadianceRenderer::ShadeHit(std::size_t patchIndex,
   bool frontSide,
   const glm::dvec3& direction,
   DirectionalCache* cache,
+  int bounces,
   glm::dvec3& radiance) const
 {
   const Patch& patch = this->Patches[patchIndex];
@@ -597,8 +655,45 @@ bool RadianceRenderer::ShadeHit(std::size_t patchIndex,
   }
   const double u = patch.Domain.U0 + patchU * (patch.Domain.U1 - patch.Domain.U0);
   const double v = patch.Domain.V0 + patchV * (patch.Domain.V1 - patch.Domain.V0);
-  // The front side toward the eye (paper §5.3.1).
-  radiance = this->RadianceToward(surface, u, v, -direction, cache);
+  const glm::dvec3* mirror = bounces < MaxMirrorBounces ? this->MirrorOf(surface) : nullptr;
+  if (!mirror)
+  {
+    // The front side toward the eye (paper §5.3.1).
+    radiance = this->RadianceToward(surface, u, v, -direction, cache);
+    return true;
+  }
+  // An ideal mirror (paper §3.5.1): I toward the eye is k_s times the radiance arriving at this
+  // very point from the mirror direction, what the reflected ray meets there, shaded as the
+  // eye's rays are; not the mirror cell of the characteristic points' E blended over the
+  // stencil (each holds what its own point sees: the file comment). Its Lambertian part (its
+  // emission, a diffuse part) is interpolated as on any surface.
+  radiance = this->SurfaceRadiance(surface, u, v);
+  // The normal turned toward the ray (the limit normal at a degenerate point, a sphere's pole,
+  // may face either way; the hit's side is the front).
+  glm::dvec3 normal = patch.Geometry.Normal(patchU, patchV);
+  if (glm::dot(direction, normal) > 0.0)
+  {
+    normal = -normal;
+  }
+  const glm::dvec3 reflected =
+    glm::normalize(direction - 2.0 * glm::dot(direction, normal) * normal);
+  // Off the front by a hair (as the direct light's rays, DirectIrradiance.h; the rays are single
+  // precision), so that the ray does not meet the mirror it leaves.
+  const glm::dvec3 origin =
+    patch.Geometry.Evaluate(patchU, patchV) + normal * (1e-4 * patch.Geometry.Size());
+  SampleResult seen;
+  if (this->TraceSample(origin, reflected, cache, seen, bounces + 1, patchIndex) && seen.Lit)
+  {
+    radiance += *mirror * seen.Radiance;
+  }
+  else
+  {
+    // Nothing lit along the reflected ray: it escaped, or met a back side, which inside a closed
+    // curved mirror is the tessellation's chord rather than the exact surface. The cover's own
+    // value (its R-buffer counts the same sides, RBuffer.h) then stands for it: the stored E of
+    // the mirror cell, blended over the stencil (0 where the cover sees nothing either).
+    radiance = this->RadianceToward(surface, u, v, -direction, cache);
+  }
   return true;
 }
 
@@ -610,28 +705,64 @@ bool PassPaneBacks(const void* context, std::size_t patch, float, bool front)
 {
   return front || !(*static_cast<const std::vector<char>*>(context))[patch];
 }
+
+/// A ray reflected by a mirror: it leaves the exact surface, which the tessellation only
+/// approximates (RayCasterOptions::TessellationTolerance), so on a concave mirror it may meet
+/// the back of its own surface's triangles at once.
+struct LeavingMirror
+{
+  const std::vector<Patch>* Patches;
+  /// PassPaneBacks' flags, or null.
+  const std::vector<char>* PassedBack;
+  int Surface;
+  float Within;
+};
+
+bool PassOwnBackNear(const void* context, std::size_t patch, float distance, bool front)
+{
+  const LeavingMirror& leaving = *static_cast<const LeavingMirror*>(context);
+  if (front)
+  {
+    return true;
+  }
+  if (distance < leaving.Within && (*leaving.Patches)[patch].SurfaceIndex == leaving.Surface)
+  {
+    return false;
+  }
+  return !leaving.PassedBack || !(*leaving.PassedBack)[patch];
+}
 }
 
 bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
   const glm::dvec3& direction,
   DirectionalCache* cache,
-  SampleResult& sample) const
+  SampleResult& sample,
+  int bounces,
+  std::ptrdiff_t leaving) const
 {
   RayCaster::RayHit hit;
+  LeavingMirror mirror{ &this->Patches,
+    this->PassedBack.empty() ? nullptr : &this->PassedBack,
+    leaving < 0 ? -1 : this->Patches[static_cast<std::size_t>(leaving)].SurfaceIndex,
+    leaving < 0 ? 0.0f
+                : static_cast<float>(
+                    0.05 * this->Patches[static_cast<std::size_t>(leaving)].Geometry.Size()) };
+  const RayFilter fromMirror{ PassOwnBackNear, &mirror };
   if (this->PassedBack.empty())
   {
-    if (!this->Caster->CastRay(eye, direction, hit))
+    if (!(leaving < 0 ? this->Caster->CastRay(eye, direction, hit)
+                      : this->Caster->CastRay(eye, direction, 0.0f, fromMirror, hit)))
     {
       return false;
     }
     sample.Surface = this->Patches[hit.Patch].SurfaceIndex;
     sample.T = hit.T;
-    sample.Lit =
-      this->ShadeHit(hit.Patch, hit.U, hit.V, hit.FrontSide, direction, cache, sample.Radiance);
+    sample.Lit = this->ShadeHit(
+      hit.Patch, hit.U, hit.V, hit.FrontSide, direction, cache, bounces, sample.Radiance);
     return true;
   }
   // Through panes (paper §5.4): the pane's own radiance, then T times what lies behind it.
-  const RayFilter filter{ PassPaneBacks, &this->PassedBack };
+  const RayFilter filter = leaving < 0 ? RayFilter{ PassPaneBacks, &this->PassedBack } : fromMirror;
   glm::dvec3 throughput(1.0);
   float nearest = 0.0f;
   for (int pane = 0; pane <= MaxPanesPerSample; ++pane)
@@ -642,7 +773,7 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
     }
     glm::dvec3 radiance(0.0);
     const bool lit =
-      this->ShadeHit(hit.Patch, hit.U, hit.V, hit.FrontSide, direction, cache, radiance);
+      this->ShadeHit(hit.Patch, hit.U, hit.V, hit.FrontSide, direction, cache, bounces, radiance);
     if (pane == 0)
     {
       sample.Surface = this->Patches[hit.Patch].SurfaceIndex;

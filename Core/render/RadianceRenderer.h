@@ -18,9 +18,24 @@
  * k, I_dir,k = DirectionalExitantRadiance of point k toward the eye in k's hemisphere frame
  * (the BRDF being linear in E, the same as the BRDF applied to the interpolated E), resolved
  * to the cells of the HemisphereGrid; a two-sided surface's back side shows its Lambertian
- * part only. The samples of a row of pixels share a cache per (point, eye cell). On a textured
- * surface (paper §5.4, SetSurfaceTextures) the texture at the visible point's (u, v) multiplies
- * the Lambertian part less the emission.
+ * part only. The samples of a row of pixels share a cache per (point, eye cell).
+ *
+ * Ideal mirrors (paper §3.5.1, "I(theta_r, phi_r) = k_specular e(theta_r, phi_r - pi)"): the
+ * radiance a mirror sends toward the eye is k_s times the radiance that arrives at the visible
+ * point itself from the mirror direction, that is the radiance of the surface the reflected ray
+ * meets toward the mirror point. Render follows that ray (cast from the exact visible point
+ * about the exact patch normal) and shades what it meets as it shades what the eye meets, up to
+ * MaxMirrorBounces mirrors deep; the mirror adds its own Lambertian part, if any. It does not
+ * take the mirror cell of the characteristic points' stored E blended over the stencil: each
+ * point's E holds what that point sees, so the blend superimposes the reflected scene as seen
+ * from the four points (shifted by their spacing) at the cells' resolution. Where the
+ * reflected ray meets nothing lit (it escapes, or meets a back side: inside a closed curved
+ * mirror the tessellation's chords), past MaxMirrorBounces, and in SurfaceRadianceToward (which
+ * has no patch to reflect the ray from), a mirror gives the stencil's stored value as the other
+ * non-diffuse surfaces do; RadianceToward(terms) (a walk-through's vertices) follows the ray as
+ * Render does. On a textured surface (paper §5.4,
+ * SetSurfaceTextures) the texture at the visible point's (u, v) multiplies the Lambertian part less
+ * the emission.
  *
  * Camera (Camera.h, VTK's conventions): vertical view angle, square pixels, row 0 at the
  * bottom. SamplesPerPixel stratified, deterministic positions per pixel (Hammersley: one per
@@ -304,6 +319,9 @@ public:
    */
   void SetSurfaceTransmittance(std::vector<glm::dvec3> transmittance);
   static constexpr int MaxPanesPerSample = 8;
+  /// Mirrors a sample's ray is reflected by (see the file comment); the next one met shows its
+  /// stored value.
+  static constexpr int MaxMirrorBounces = 8;
 
   /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
   /// §5.3.2); zero where the surface has no characteristic points. The Lambertian part only.
@@ -352,6 +370,12 @@ public:
     bool HasStencil = false;
     InterpolationStencil Stencil;
     glm::dvec3 Direct = glm::dvec3(0.0);
+    /// On an ideal mirror (with the directional illumination): the patch that holds (u, v) and
+    /// (u, v) in its own [0,1]^2, from which RadianceToward follows the reflected ray; -1
+    /// elsewhere.
+    std::ptrdiff_t MirrorPatch = -1;
+    double PatchU = 0.0;
+    double PatchV = 0.0;
   };
 
   /// The terms of (u, v) of the surface (see TowardTerms).
@@ -360,7 +384,8 @@ public:
   /**
    * SurfaceRadianceToward from tabulated terms and through `cache` (one per thread): the same
    * value (the cache holds exact values of the directional part per (point, eye cell)), each
-   * pair the cache keeps evaluated once.
+   * pair the cache keeps evaluated once; on a mirror (TowardTerms::MirrorPatch) the value of
+   * Render's ray from the eye that meets the point, its reflected ray followed (file comment).
    */
   glm::dvec3 RadianceToward(const TowardTerms& terms,
     const glm::dvec3& towardEye,
@@ -386,13 +411,18 @@ private:
     bool PaneLimit = false;
   };
   /// The radiance the hit shows toward the eye, and whether it sends any (a back side does not).
+  /// `bounces`: mirrors the ray was reflected by before (MaxMirrorBounces).
   bool ShadeHit(std::size_t patch,
     double patchU,
     double patchV,
     bool frontSide,
     const glm::dvec3& direction,
     DirectionalCache* cache,
+    int bounces,
     glm::dvec3& radiance) const;
+  /// k_s of the ideal mirror that `surface` is, or nullptr (set with the directional
+  /// illumination).
+  const glm::dvec3* MirrorOf(int surface) const;
   /// Render's work: the directional part through caches that evaluate it, or list the pairs
   /// (`needed`: one list per row of pixels), or read them from `given`.
   bool RenderRows(const Camera& camera,
@@ -402,11 +432,15 @@ private:
     const ProgressCallback& progress,
     const DirectionalValueTable* given,
     std::vector<std::vector<uint64_t>>* needed) const;
-  /// Casts one sample ray from the eye; false where it meets nothing.
+  /// Casts one sample ray from the eye (or, `bounces` > 0, reflected by that many mirrors, from
+  /// a point of patch `leaving`, which then passes the back of its surface's triangles close
+  /// by); false where it meets nothing.
   bool TraceSample(const glm::dvec3& eye,
     const glm::dvec3& direction,
     DirectionalCache* cache,
-    SampleResult& sample) const;
+    SampleResult& sample,
+    int bounces = 0,
+    std::ptrdiff_t leaving = -1) const;
   glm::dvec3 RadianceToward(int surface,
     double u,
     double v,
@@ -441,6 +475,9 @@ private:
   std::vector<char> PassedBack;
   std::unique_ptr<RayCaster> Caster;
   std::unique_ptr<DirectionalIllumination> Directional;
+  /// Per surface index k_s of an ideal mirror, (-1, -1, -1) for another surface; empty when no
+  /// surface is one (SetDirectionalIllumination).
+  std::vector<glm::dvec3> MirrorSpecular;
   DirectLight Direct;
   PointReflectances Reflectances;
 };

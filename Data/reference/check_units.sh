@@ -1,7 +1,7 @@
 #!/bin/sh
 # Unit checks of render_cycles.py (README.md, "Unit checks"): small Cycles renders whose pixel
 # values are known in closed form. Prints the numbers; exits non-zero if one is off.
-#   sh Data/reference/check_units.sh [WORKDIR]        (about a minute on 2 cores)
+#   sh Data/reference/check_units.sh [WORKDIR]        (a minute or two on 2 cores)
 set -e
 HERE=$(cd "$(dirname "$0")" && pwd)
 SCENES="$HERE/../scenes"
@@ -35,6 +35,15 @@ expect "$W/furnace.exr" --mean 1.4285714 2.5 5 --tol 1e-3 || status=1
 echo "== 6. the furnace with --bounces 0 (Cycles: direct light only): L = Le (1 + rho)"
 render --scene "$SCENES/furnace_box.scene" --out "$W/furnace_b0.exr" --samples 256 --width 64 --height 64 --bounces 0
 expect "$W/furnace_b0.exr" --mean 1.3 1.6 1.8 --tol 1e-3 || status=1
+
+echo "== 7. Cycles' Glossy BSDF (GGX, roughness 0.5, colour 0.8 0.6 0.4: the origin of"
+echo "      ../brdf/ggx_r050.brdf.csv) on the floor of a closed box of emitters (Le = 1, no reflection):"
+echo "      L = colour x the lobe's albedo at the view angle, from make_ggx_table.py's formula"
+for view in normal:0 at60:60; do
+    camera=${view%%:*}; angle=${view##*:}
+    render --scene "$HERE/checks/ggx_furnace.scene" --camera "$camera" --out "$W/ggx_$camera.exr" --samples 4096 --passes 2
+    expect "$W/ggx_$camera.exr" --mean $(python3 "$HERE/../brdf/tools/make_ggx_table.py" --albedo "$angle") --tol 5e-4 || status=1
+done
 
 [ $status -eq 0 ] && echo "all unit checks passed" || echo "SOME UNIT CHECKS FAILED"
 exit $status

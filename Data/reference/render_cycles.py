@@ -13,8 +13,16 @@ script sets up, and why (see README.md in this folder for the unit checks):
 - Geometry: every patch is a mesh whose faces keep the patch's front side (dP/du x dP/dv,
   FORMAT.md "Orientation"). A planar bilinear quad is one exact quad; twisted bilinear and
   Bezier patches are tessellated on a --tessellation x --tessellation grid in (u, v).
-- Materials: only `diffuse` (Lambertian, BRDF = reflectance / pi): Cycles' Diffuse BSDF with
-  roughness 0 (Lambert) and the reflectance as colour. A `texture` (paper §5.4) multiplies that
+- Materials: `diffuse` (Lambertian, BRDF = reflectance / pi): Cycles' Diffuse BSDF with
+  roughness 0 (Lambert) and the reflectance as colour. A `tabulated` material whose table names
+  the Cycles closure it was made from (a comment line `# origin: cycles-glossy-ggx
+  roughness=R color=R,G,B`, written by Data/brdf/tools/make_ggx_table.py) is rendered with that
+  closure itself, the Glossy BSDF (distribution GGX, the roughness and colour of the line), not
+  with the table: the table is checked to be that lobe first (every row within 1e-5), so the
+  two renderers are given the same BRDF, each in its own form. Any other type (mirror, phong,
+  a table without an origin) is refused: Cycles' sharp glossy as a mirror came out 14 % dark
+  in a lit room against the room unfolded across the mirror (issue 39), so mirror scenes are
+  compared with their unfolded, all-diffuse twin instead. A `texture` (paper §5.4) multiplies that
   colour: an Image Texture node (bilinear, "Linear"; edge texels extended, "EXTEND"; the PNG
   decoded to linear floats first, see linear_texture) read at the mesh's UV map, which
   holds every vertex's (u, v) in its patch (FORMAT.md: u across the image's columns from the
@@ -30,7 +38,7 @@ script sets up, and why (see README.md in this folder for the unit checks):
   width x height at 100 %, box pixel filter of --filter-width pixels (1 = the pixel's own
   area, nothing leaks into neighbours, so block means are area means of radiance).
 - Light transport: path tracing, no clamping, no denoising, no adaptive sampling, no light
-  threshold, no caustics filter, --bounces diffuse bounces (Russian roulette keeps it
+  threshold, no caustics filter, --bounces diffuse and glossy bounces (Russian roulette keeps it
   unbiased; 128 bounces of albedo <= 0.89 leave < 1e-6 of the light), black world.
 - Output: linear scene radiance, OpenEXR 32-bit float RGB (view transform Standard, look None,
   exposure 0, gamma 1; the EXR is written before any display transform), written to a
@@ -72,7 +80,8 @@ def parse_args():
                     help="render SAMPLES/PASSES spp PASSES times with seeds SEED, SEED+1, ... and "
                          "average (the spread of the passes measures the noise of the result)")
     ap.add_argument("--bounces", type=int, default=128,
-                    help="maximum diffuse bounces after the first hit (0: emission and direct light only)")
+                    help="maximum diffuse (and glossy) bounces after the first hit (0: emission and "
+                         "direct light only)")
     ap.add_argument("--width", type=int, help="override the camera width (pixels)")
     ap.add_argument("--height", type=int, help="override the camera height (pixels)")
     ap.add_argument("--filter-width", type=float, default=1.0,
@@ -173,10 +182,45 @@ def linear_texture(path, srgb):
     return image
 
 
+def cycles_origin(name, path):
+    """(roughness, colour) of a BRDF table that names its Cycles origin (see the docstring),
+    after checking every row against that lobe; fails for a table without an origin or one
+    that is not (or no longer) the lobe it names."""
+    sys.path.insert(0, os.path.join(os.path.dirname(HERE), "brdf", "tools"))
+    import make_ggx_table  # noqa: E402
+    origin, rows = None, 0
+    try:
+        with open(path) as table:
+            for number, line in enumerate(table, 1):
+                line = line.strip()
+                if line.startswith("#"):
+                    origin = make_ggx_table.parse_origin(line) or origin
+                    continue
+                if not line or line.replace(" ", "").startswith("theta_in,"):
+                    continue
+                if origin is None:
+                    fail("material '%s': %s names no Cycles origin (a '%s ...' comment before "
+                         "its rows), so Cycles cannot render it" % (name, path,
+                                                                    make_ggx_table.ORIGIN_PREFIX))
+                ti, to, dp, *rgb = (float(x) for x in line.split(","))
+                lobe = make_ggx_table.ggx(math.radians(ti), math.radians(to), math.radians(dp),
+                                          origin[0])
+                for value, c in zip(rgb, origin[1]):
+                    if abs(value - c * lobe) > 1e-5 * c * lobe + 1e-9:
+                        fail("material '%s': %s line %d: %g is not the GGX lobe of its origin "
+                             "(%g)" % (name, path, number, value, c * lobe))
+                rows += 1
+    except (OSError, ValueError) as e:
+        fail("material '%s': %s: %s" % (name, path, e))
+    if origin is None or rows == 0:
+        fail("material '%s': %s names no Cycles origin or has no rows" % (name, path))
+    return origin
+
+
 def make_material(name, mat, two_sided, folder):
-    if mat["type"] != "diffuse":
-        fail("material '%s': type '%s' is not supported by this reference script (diffuse only)"
-             % (name, mat["type"]))
+    if mat["type"] not in ("diffuse", "tabulated"):
+        fail("material '%s': type '%s' is not supported by this reference script (diffuse, and "
+             "tabulated tables that name their Cycles origin)" % (name, mat["type"]))
     two_sided = two_sided or any(t > 0 for t in mat.get("transmittance", [0, 0, 0]))
     m = bpy.data.materials.new(name + ("__two_sided" if two_sided else ""))
     m.use_nodes = True
@@ -185,9 +229,18 @@ def make_material(name, mat, two_sided, folder):
         nt.nodes.remove(n)
     out = nt.nodes.new("ShaderNodeOutputMaterial")
     out.target = "CYCLES"
-    diffuse = nt.nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (*mat["reflectance"], 1.0)
-    diffuse.inputs["Roughness"].default_value = 0.0  # Lambert, not Oren-Nayar
+    if mat["type"] == "tabulated":
+        path = mat["file"] if os.path.isabs(mat["file"]) else os.path.join(folder, mat["file"])
+        roughness, colour = cycles_origin(name, path)
+        # Cycles squares the node's Roughness (svm/closure.h), as make_ggx_table.ggx does.
+        bsdf = nt.nodes.new("ShaderNodeBsdfGlossy")
+        bsdf.distribution = "GGX"  # single scattering, not "MULTI_GGX"
+        bsdf.inputs["Color"].default_value = (*colour, 1.0)
+        bsdf.inputs["Roughness"].default_value = roughness
+    else:
+        bsdf = nt.nodes.new("ShaderNodeBsdfDiffuse")
+        bsdf.inputs["Color"].default_value = (*mat["reflectance"], 1.0)
+        bsdf.inputs["Roughness"].default_value = 0.0  # Lambert, not Oren-Nayar
     if "texture" in mat:
         path = mat["texture"] if os.path.isabs(mat["texture"]) else os.path.join(folder, mat["texture"])
         image = nt.nodes.new("ShaderNodeTexImage")
@@ -202,8 +255,8 @@ def make_material(name, mat, two_sided, folder):
         multiply.inputs["Fac"].default_value = 1.0
         multiply.inputs["Color1"].default_value = (*mat["reflectance"], 1.0)
         nt.links.new(image.outputs["Color"], multiply.inputs["Color2"])
-        nt.links.new(multiply.outputs["Color"], diffuse.inputs["Color"])
-    front = diffuse.outputs["BSDF"]
+        nt.links.new(multiply.outputs["Color"], bsdf.inputs["Color"])
+    front = bsdf.outputs["BSDF"]
     transmittance = mat.get("transmittance", [0.0, 0.0, 0.0])
     if any(t > 0 for t in transmittance):
         transparent = nt.nodes.new("ShaderNodeBsdfTransparent")
@@ -218,7 +271,7 @@ def make_material(name, mat, two_sided, folder):
         em.inputs["Color"].default_value = (*emission, 1.0)
         em.inputs["Strength"].default_value = 1.0
         add = nt.nodes.new("ShaderNodeAddShader")
-        nt.links.new(diffuse.outputs["BSDF"], add.inputs[0])
+        nt.links.new(front, add.inputs[0])
         nt.links.new(em.outputs["Emission"], add.inputs[1])
         front = add.outputs["Shader"]
         m.cycles.sample_as_light = True
@@ -361,7 +414,9 @@ def build(args):
     c.caustics_refractive = True
     c.max_bounces = args.bounces
     c.diffuse_bounces = args.bounces
-    c.glossy_bounces = 0
+    # Glossy bounces as many as diffuse ones (a glossy floor reflects the lit room, and the
+    # room the floor); a diffuse scene has no glossy closure, so its images do not change.
+    c.glossy_bounces = args.bounces
     c.transmission_bounces = 0
     c.volume_bounces = 0
     # Panes (Transparent BSDF): a path goes on through as many as SphericalCover's renderer

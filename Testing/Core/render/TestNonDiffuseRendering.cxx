@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: BSD-3-Clause
 // The final rendering of non-diffuse surfaces (paper §5.3.1 with the interpolation of §3.4):
 // white furnaces of mirror, phong and tabulated walls render uniform Le / (1 - a) in every
-// pixel, and a flat mirror shows what a camera at the mirrored position sees of the room.
+// pixel, and a flat mirror shows, pixel for pixel, what a camera at the mirrored position sees
+// of the room.
 #include "render/RadianceRenderer.h"
 
 #include "CoverTestUtilities.h"
@@ -136,13 +137,15 @@ TEST(NonDiffuseRendering, FlatMirrorShowsTheViewOfTheMirroredCamera)
   // mirror of k_s = 0.9. A camera inside looking at the mirror sees k_s times what the camera
   // mirrored through the plane z = 559.2 sees of the room (rendered with the mirror's patches
   // left out, so that it looks through the plane; its image is the first one flipped left to
-  // right). Paper §5.3.1 resolves the mirror's image to the cells of its points' hemispheres
-  // (E of the cell holding the mirror direction: 2.8 degrees at 32 x 128) and to the patches
-  // those cells see, and each characteristic point of the mirror sees the room from its own
-  // position, up to half a patch from the visible point (parallax): the two images agree in
-  // the mean and block by block up to that resolution. The mirror is split finer (12 x 12) than
-  // the rest (4 x 4) to keep the parallax small. Asserted (measured: 1.5% and 9.5%): the
-  // mean over the mirror within 3% per band, 8 x 8-pixel blocks within 15% RMS.
+  // right). Paper §3.5.1: a mirror's I toward the eye is k_s e(theta_r, phi_r - pi), the
+  // radiance arriving at the visible point from the mirror direction, which is the radiance
+  // toward it of the point its reflected ray meets: with one sample per pixel (its centre) the
+  // two cameras' rays are the same lines, so each pixel is k_s times its mirrored pixel up to
+  // the rays' single precision, the shading's edges (the blocks' outlines, the light's
+  // shadows) as sharp as in the direct view. Taking instead the mirror cell of the stencil's
+  // characteristic points' E (each seeing the room from its own position, up to half a patch
+  // away) blurs and doubles the image: 9.5 % RMS over 8 x 8-pixel blocks, 3 % off in the mean,
+  // at this 12 x 12 split of the mirror.
   Scene scene = LoadSceneFile(ScenePath("cornell_box.scene"));
   int back = -1;
   for (size_t s = 0; s < scene.Surfaces.size(); ++s)
@@ -202,65 +205,53 @@ TEST(NonDiffuseRendering, FlatMirrorShowsTheViewOfTheMirroredCamera)
   image.Position.z = 2.0 * 559.2 - camera.Position.z;
   image.FocalPoint.z = 2.0 * 559.2 - camera.FocalPoint.z;
   RenderSettings settings;
-  settings.SamplesPerPixel = 4;
+  settings.SamplesPerPixel = 1;
   RenderedImage seen;
   RenderedImage reference;
   ASSERT_TRUE(viewer.Render(camera, settings, seen));
   ASSERT_TRUE(mirrored.Render(image, settings, reference));
 
-  glm::dvec3 seenSum(0.0);
-  glm::dvec3 referenceSum(0.0);
-  const int block = 8;
-  double blockSquares = 0.0;
-  int blocks = 0;
-  for (int bj = 0; bj < camera.Height; bj += block)
+  // Per pixel; a pixel whose two rays part at an edge by rounding (one meets a block's side,
+  // the other the floor) may differ wholly, so a few are allowed.
+  int differing = 0;
+  double worstOther = 0.0;
+  double contrast = 0.0;
+  double darkest = 1e300;
+  for (int j = 0; j < camera.Height; ++j)
   {
-    for (int bi = 0; bi < camera.Width; bi += block)
+    for (int i = 0; i < camera.Width; ++i)
     {
-      glm::dvec3 a(0.0);
-      glm::dvec3 b(0.0);
-      for (int j = bj; j < bj + block; ++j)
+      const size_t p = static_cast<size_t>(j * camera.Width + i);
+      const size_t q = static_cast<size_t>(j * camera.Width + (camera.Width - 1 - i));
+      ASSERT_EQ(seen.SurfaceId[p], back) << "pixel " << i << ", " << j << " misses the mirror";
+      double worst = 0.0;
+      for (int c = 0; c < 3; ++c)
       {
-        for (int i = bi; i < bi + block; ++i)
-        {
-          const size_t p = static_cast<size_t>(j * camera.Width + i);
-          const size_t q = static_cast<size_t>(j * camera.Width + (camera.Width - 1 - i));
-          ASSERT_EQ(seen.SurfaceId[p], back) << "pixel " << i << ", " << j << " misses the mirror";
-          for (int c = 0; c < 3; ++c)
-          {
-            a[c] += seen.Radiance[3 * p + c];
-            b[c] += ks * reference.Radiance[3 * q + c];
-          }
-        }
+        const double expected = ks * reference.Radiance[3 * q + c];
+        worst = std::max(worst, std::fabs(seen.Radiance[3 * p + c] - expected) / expected);
+        contrast = std::max(contrast, expected);
+        darkest = std::min(darkest, expected);
       }
-      seenSum += a;
-      referenceSum += b;
-      const double sa = a.x + a.y + a.z;
-      const double sb = b.x + b.y + b.z;
-      blockSquares += (sa - sb) * (sa - sb) / (sb * sb);
-      ++blocks;
+      if (worst > 1e-4)
+      {
+        ++differing;
+      }
+      else
+      {
+        worstOther = std::max(worstOther, worst);
+      }
     }
   }
-  const double blockRms = std::sqrt(blockSquares / blocks);
-  double worstMean = 0.0;
-  for (int c = 0; c < 3; ++c)
-  {
-    worstMean = std::max(worstMean, std::fabs(seenSum[c] / referenceSum[c] - 1.0));
-  }
-  std::printf("[ Mirror   ] mean radiance seen %.4f %.4f %.4f, k_s x mirrored camera's %.4f %.4f "
-              "%.4f: largest band error %.2e; %dx%d-pixel block RMS relative error %.2e\n",
-    seenSum.x / (48 * 48),
-    seenSum.y / (48 * 48),
-    seenSum.z / (48 * 48),
-    referenceSum.x / (48 * 48),
-    referenceSum.y / (48 * 48),
-    referenceSum.z / (48 * 48),
-    worstMean,
-    block,
-    block,
-    blockRms);
-  EXPECT_LT(worstMean, 0.03);
-  EXPECT_LT(blockRms, 0.15);
+  std::printf("[ Mirror   ] %d of %d pixels differ from k_s x the mirrored camera's by more "
+              "than 1e-4 (largest of the others %.1e); the image spans %.3g to %.3g\n",
+    differing,
+    camera.Width * camera.Height,
+    worstOther,
+    darkest,
+    contrast);
+  // The image is not flat: sharp features are there to be blurred.
+  EXPECT_GT(contrast, 3.0 * darkest);
+  EXPECT_LE(differing, camera.Width * camera.Height / 100);
 }
 
 TEST(NonDiffuseRendering, DirectionalPartFromSharesOfTheCoverGivesTheWholeCoversImage)
