@@ -140,7 +140,8 @@ public:
    * illumination field then interpolate the sharp direct light from these nodes and only the
    * smooth rest between the characteristic points. Odd, 3 to 33; 0: none (every point's
    * light interpolated alike, the paper's §5.3.2). Scenes without a bright emitter get none.
-   * Default is 3 (a patch's corners, edge midpoints and centre).
+   * Default is 9, of which only the 3 x 3 (a patch's corners, edge midpoints and centre) are
+   * computed where the light is bilinear (DirectNodesTolerance).
    */
   vtkSetMacro(DirectIrradianceNodes, int);
   vtkGetMacro(DirectIrradianceNodes, int);
@@ -259,7 +260,7 @@ protected:
   bool GenerateStripTable = true;
   bool MeasureLamps = true;
   bool InterpolateHemispheres = false;
-  int DirectIrradianceNodes = 3;
+  int DirectIrradianceNodes = 9;
   int DirectBounceRays = 32;
   double DirectNodesTolerance = 0.05;
   double MemoryLimit = 8192.0;

@@ -23,7 +23,7 @@ struct Options
   std::string Lamps = "measured";
   std::string Hemispheres = "computed";
   /// vtkSphericalCoverFilter::DirectIrradianceNodes (0: none).
-  int DirectNodes = 3;
+  int DirectNodes = 9;
   /// vtkSphericalCoverFilter::DirectBounceRays (0: the direct light only).
   int BounceRays = 32;
   /// vtkSphericalCoverFilter::DirectNodesTolerance (0: every patch's nodes computed).

@@ -98,7 +98,7 @@ void AddCoverOptions(CLI::App* command, sphcover_cli::Options& options)
     ->add_option("--direct-nodes",
       options.DirectNodes,
       "Nodes per patch side at which the lamps' direct light is computed and interpolated "
-      "(odd, 3 to 33; default 3); 0: none, all light interpolated between the characteristic "
+      "(odd, 3 to 33; default 9); 0: none, all light interpolated between the characteristic "
       "points (the paper's)")
     ->check(CLI::IsMember({ 0, 3, 5, 7, 9, 11, 13, 15, 17, 19, 21, 23, 25, 27, 29, 31, 33 }));
   command

@@ -202,8 +202,9 @@ int TestHemisphereExtractor(int, char*[])
   // The Cornell box: every point.
   {
     HemisphereTestScenes::Pipeline pipeline(SPHCOVER_DATA_DIR "/scenes/cornell_box.scene", 2);
-    // Published before any data pass (the cover has not run yet): the scene's 16 x 64 grid.
-    if (!WholeExtentIs(pipeline.Extractor, 64, 16))
+    // Published before any data pass (the cover has not run yet): the default 32 x 128 grid
+    // (the scene has no settings block).
+    if (!WholeExtentIs(pipeline.Extractor, 128, 32))
     {
       failures += Fail("WHOLE_EXTENT before the first update");
     }

@@ -249,16 +249,17 @@ int TestPatchSceneReader(int, char*[])
     Check(boundsOk, file + ": bounds");
   }
 
-  // SceneSettings: the Cornell box's min_patch_size reads back; a file written before the
-  // setting (four components) reads with min_patch_size 0 and its other values.
+  // SceneSettings: the pane stack's settings block (min_patch_size included) reads back; a file
+  // written before the setting (four components) reads with min_patch_size 0 and its other
+  // values.
   {
     vtkNew<vtkPatchSceneReader> reader;
-    reader->SetFileName((scenes + "cornell_box.scene").c_str());
+    reader->SetFileName((scenes + "pane_stack.scene").c_str());
     reader->Update();
     const sphcover::SceneSettings current =
       vtkSceneSettingsArray::Read(reader->GetOutput()->GetFieldData());
-    Check(current.MinPatchSize == 0.05 && current.MaxLevel == 4 && current.ThetaBins == 16 &&
-        current.PhiBins == 64,
+    Check(current.MinPatchSize == 0.5 && current.MaxLevel == 1 && current.ThetaBins == 8 &&
+        current.PhiBins == 32 && current.Tolerance == 0.5,
       "min_patch_size reads back");
     vtkNew<vtkDoubleArray> older;
     older->SetName(vtkSphericalCoverArrayNames::SceneSettings);

@@ -187,8 +187,8 @@ void BadDirectIrradiance(RenderTestPipeline::Pipeline& pipeline)
 {
   vtkPolyData* lit = pipeline.Propagation->GetOutput();
   vtkDataArray* nodes = lit->GetPointData()->GetArray("DirectIrradiance");
-  Check(nodes && nodes->GetNumberOfComponents() == 27,
-    "Cornell: the cover's DirectIrradiance, 3 x 3 nodes of 3 bands");
+  Check(nodes && nodes->GetNumberOfComponents() == 243,
+    "Cornell: the cover's DirectIrradiance, the default 9 x 9 nodes of 3 bands");
   if (!nodes)
   {
     return;

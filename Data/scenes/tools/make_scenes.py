@@ -20,8 +20,6 @@ SCENES = os.path.dirname(HERE)
 MODELS = os.path.join(os.path.dirname(SCENES), "models")
 CBOX = os.path.join(MODELS, "cornell_box")
 
-DEFAULT_SETTINGS = {"theta_bins": 32, "phi_bins": 128, "max_level": 5, "tolerance": 0.02}
-
 # Mitsuba's RGB conversion of Cornell's measured spectra (bsdfs-rgb.xml / cbox-rgb.xml).
 CORNELL_MATERIALS = {
     "white": {"type": "diffuse", "reflectance": [0.885809, 0.698859, 0.666422]},
@@ -109,15 +107,10 @@ def cornell_box():
                 continue
             surfaces.append(bilinear_surface(block + "_" + label, q, "white"))
     # The Cornell data are in millimetres: reported powers are converted to watts with it.
-    # min_patch_size: the blocks' faces get points by their size, not as many as a wall
-    # (Documentation/notes/time-to-accuracy.md, 2026-12-02). A 16 x 64 grid and max_level 4:
-    # with the lamps' light and its first bounce on the nodes the picture is as good as at
-    # 32 x 128 and level 5 for a third of the time (same notes, 2026-12-03 session 11); the
-    # form factors want the finer cover (`--set theta_bins=32 --set phi_bins=128
-    # --set max_level=5`).
-    settings = dict(DEFAULT_SETTINGS, theta_bins=16, phi_bins=64, max_level=4, min_patch_size=0.05)
+    # No settings block: the Cornell box is solved at the defaults a user's own scene gets
+    # (issue 38; Documentation/notes/time-to-accuracy.md).
     return {"version": 1, "unit": "mm", "materials": CORNELL_MATERIALS, "surfaces": surfaces,
-            "cameras": [CORNELL_CAMERA], "settings": settings}
+            "cameras": [CORNELL_CAMERA]}
 
 
 def cornell_box_closed():
@@ -128,7 +121,6 @@ def cornell_box_closed():
     floor, ceiling = scene["surfaces"][0]["points"], scene["surfaces"][1]["points"]
     front = [floor[1], floor[0], ceiling[0], ceiling[3]]  # the four corners at z = 0
     scene["surfaces"].append(bilinear_surface("front_wall", front, "white"))
-    scene["settings"] = dict(DEFAULT_SETTINGS)
     scene["cameras"] = [{"name": "inside", "position": [278, 273, 20], "focal_point": [278, 273, 559.2],
                          "view_up": [0, 1, 0], "view_angle": 80.0, "width": 512, "height": 512}]
     return scene
@@ -150,7 +142,7 @@ def cornell_box_meshes():
         surfaces.append(s)
     # The Cornell data are in millimetres: reported powers are converted to watts with it.
     return {"version": 1, "unit": "mm", "materials": CORNELL_MATERIALS, "surfaces": surfaces,
-            "cameras": [CORNELL_CAMERA], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [CORNELL_CAMERA]}
 
 
 # --------------------------------------------------------------------------- boxes
@@ -185,7 +177,7 @@ def furnace_box():
     camera = {"name": "inside", "position": [0.5, 0.5, 0.05], "focal_point": [0.5, 0.5, 1.0],
               "view_up": [0, 1, 0], "view_angle": 90.0, "width": 256, "height": 256}
     return {"version": 1, "materials": FURNACE_MATERIAL, "surfaces": surfaces,
-            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [camera]}
 
 
 CLAY_FURNACE_MATERIAL = {"clay": {"type": "tabulated", "file": "../brdf/clay.brdf.csv",
@@ -210,7 +202,7 @@ def furnace_sphere():
     camera = {"name": "inside", "position": [0.0, 0.0, -0.5], "focal_point": [0.0, 0.0, 1.0],
               "view_up": [0, 1, 0], "view_angle": 90.0, "width": 256, "height": 256}
     return {"version": 1, "materials": FURNACE_MATERIAL, "surfaces": surfaces,
-            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [camera]}
 
 
 MIXED_MATERIALS = {
@@ -236,7 +228,7 @@ def mixed_box():
     camera = {"name": "inside", "position": [0.5, 0.5, 0.05], "focal_point": [0.5, 0.5, 1.0],
               "view_up": [0, 1, 0], "view_angle": 90.0, "width": 256, "height": 256}
     return {"version": 1, "materials": MIXED_MATERIALS, "surfaces": surfaces,
-            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [camera]}
 
 
 # --------------------------------------------------------------------------- teapot room
@@ -272,8 +264,7 @@ def teapot_room():
                      "transform": {"scale": 1.0, "rotate": [-90, 30, 0], "translate": [0, 0, 0]}})
     camera = {"name": "corner", "position": [4.5, 4.5, 5.0], "focal_point": [-0.6, 1.2, -1.0],
               "view_up": [0, 1, 0], "view_angle": 55.0, "width": 640, "height": 480}
-    return {"version": 1, "materials": materials, "surfaces": surfaces, "cameras": [camera],
-            "settings": dict(DEFAULT_SETTINGS)}
+    return {"version": 1, "materials": materials, "surfaces": surfaces, "cameras": [camera]}
 
 
 # --------------------------------------------------------------------------- Howell
@@ -295,7 +286,7 @@ def howell_parallel():
               "view_up": [0, 1, 0], "view_angle": 45.0, "width": 400, "height": 300}
     return {"version": 1, "materials": HOWELL_MATERIALS,
             "surfaces": [bilinear_surface("A", A, "lamp"), bilinear_surface("B", B, "white")],
-            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [camera]}
 
 
 def howell_perpendicular():
@@ -307,7 +298,7 @@ def howell_perpendicular():
               "view_up": [0, 1, 0], "view_angle": 45.0, "width": 400, "height": 300}
     return {"version": 1, "materials": HOWELL_MATERIALS,
             "surfaces": [bilinear_surface("A", A, "lamp"), bilinear_surface("B", B, "white")],
-            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [camera]}
 
 
 # The unit disk (radius 1, centre at the origin, in the plane z = 0, front side +z) as four
@@ -346,7 +337,7 @@ def howell_disks():
     camera = {"name": "side", "position": [2.6, 1.6, 2.6], "focal_point": [0.0, 0.4, 0.0],
               "view_up": [0, 1, 0], "view_angle": 45.0, "width": 400, "height": 300}
     return {"version": 1, "materials": HOWELL_MATERIALS, "surfaces": [A, B],
-            "cameras": [camera], "settings": dict(DEFAULT_SETTINGS)}
+            "cameras": [camera]}
 
 
 TEXTURES = os.path.join(SCENES, "textures")

@@ -43,31 +43,10 @@ import sys
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 
+from make_scenes import bilinear_surface as quad, box_faces  # noqa: E402
 from scenegeom import write_scene  # noqa: E402
 
 SCENES = os.path.dirname(HERE)
-
-
-def quad(name, points, material):
-    return {"name": name, "type": "bilinear", "material": material, "points": points}
-
-
-def box_faces(lo, hi, inward):
-    """The faces of the axis-aligned box [lo, hi] as P00 P10 P11 P01, keyed x_min ... z_max,
-    fronts into the box (inward) or out of it (the convention of make_scenes.py)."""
-    x0, y0, z0 = lo
-    x1, y1, z1 = hi
-    faces = {
-        "x_min": [[x0, y0, z0], [x0, y1, z0], [x0, y1, z1], [x0, y0, z1]],
-        "x_max": [[x1, y0, z0], [x1, y0, z1], [x1, y1, z1], [x1, y1, z0]],
-        "y_min": [[x0, y0, z0], [x0, y0, z1], [x1, y0, z1], [x1, y0, z0]],
-        "y_max": [[x0, y1, z0], [x1, y1, z0], [x1, y1, z1], [x0, y1, z1]],
-        "z_min": [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0]],
-        "z_max": [[x0, y0, z1], [x0, y1, z1], [x1, y1, z1], [x1, y0, z1]],
-    }
-    if not inward:
-        faces = {k: [q[0], q[3], q[2], q[1]] for k, q in faces.items()}
-    return faces
 
 
 def room(size, names, materials, lamp, block, block_material):

@@ -118,11 +118,12 @@ TEST(SceneLoader, BilinearPointOrderAndFrontSide)
   EXPECT_EQ(scene.Materials[0].Diffuse, glm::dvec3(0.5, 0.6, 0.7));
   EXPECT_EQ(scene.SurfaceNames[0], "quad");
   EXPECT_FALSE(scene.Surfaces[0].TwoSided);
-  // Defaults of the settings block.
+  // Defaults of the settings block, as Data/scenes/FORMAT.md's table states them.
   EXPECT_EQ(scene.Settings.ThetaBins, 32);
   EXPECT_EQ(scene.Settings.PhiBins, 128);
   EXPECT_EQ(scene.Settings.MaxLevel, 5);
   EXPECT_DOUBLE_EQ(scene.Settings.Tolerance, 0.02);
+  EXPECT_DOUBLE_EQ(scene.Settings.MinPatchSize, 0.0);
 }
 
 TEST(SceneLoader, FlipReversesTheFront)
