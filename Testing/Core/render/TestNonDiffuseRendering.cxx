@@ -100,7 +100,13 @@ TEST(NonDiffuseRendering, WhiteFurnacesOfMirrorPhongAndTabulatedWallsRenderUnifo
   for (const Case& c : cases)
   {
     const Scene scene = LoadSceneFile(ScenePath(c.Scene));
-    const std::vector<Patch> patches = SplitScene(scene, Sanitized ? 2 : 3);
+    // Level 3 for the mirrors even under the sanitizers (level 2 elsewhere, for time): at level
+    // 2 the mirror sphere renders 4.9 % off at grazing views, a known limit of following the
+    // reflected ray on a coarse curved mirror (its grazing rays meet the back of the sphere's own
+    // chords beyond PassOwnBackNear's reach and fall back to the stored value;
+    // Documentation/notes/reflectance.md, 2026-12-07).
+    const bool mirrorWalls = c.Walls.Type == MaterialType::Mirror;
+    const std::vector<Patch> patches = SplitScene(scene, Sanitized && !mirrorWalls ? 2 : 3);
     Solution solution = Propagate(patches, std::vector<Material>(patches.size(), c.Walls));
     RadianceRenderer renderer(
       patches, CharacteristicPointInterpolator::OfPatches(patches), solution.Exitant);
