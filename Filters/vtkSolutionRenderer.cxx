@@ -2,13 +2,13 @@
 #include "vtkSolutionRenderer.h"
 
 #include "vtkIlluminationAdapter.h"
+#include "vtkNamedArrays.h"
 #include "vtkSphericalCoverArrayNames.h"
 #include "vtkSurfaceGridAdapter.h"
 
 #include "scene/Scene.h"
 #include "subdivision/Patch.h"
 
-#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
@@ -128,10 +128,7 @@ void vtkSolutionRenderer::ToImageData(const sphcover::RenderedImage& image,
   output->GetPointData()->AddArray(surface);
   output->GetPointData()->SetScalars(rgb);
   // The samples that met more panes than the renderer follows (their light behind left out).
-  vtkNew<vtkDoubleArray> paneLimit;
-  paneLimit->SetName(vtkSphericalCoverArrayNames::RenderPaneLimit);
-  paneLimit->SetNumberOfComponents(2);
-  paneLimit->SetNumberOfTuples(1);
+  auto paneLimit = vtkNamedArrays::Double(vtkSphericalCoverArrayNames::RenderPaneLimit, 2, 1);
   const double samples = static_cast<double>(image.SampleCount);
   paneLimit->SetComponent(0, 0, static_cast<double>(image.PaneLimitSamples));
   paneLimit->SetComponent(

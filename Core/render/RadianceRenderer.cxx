@@ -437,6 +437,14 @@ void RadianceRenderer::SetDirectionalIllumination(DirectionalIllumination illumi
       this->MirrorSpecular[surface] = material.Specular;
     }
   }
+  this->MirrorPatches.assign(this->MirrorSpecular.size(), {});
+  for (std::size_t p = 0; p < this->Patches.size(); ++p)
+  {
+    if (this->MirrorOf(this->Patches[p].SurfaceIndex))
+    {
+      this->MirrorPatches[static_cast<std::size_t>(this->Patches[p].SurfaceIndex)].push_back(p);
+    }
+  }
   this->Directional = std::make_unique<DirectionalIllumination>(std::move(illumination));
 }
 
@@ -480,11 +488,10 @@ RadianceRenderer::TowardTerms RadianceRenderer::Terms(int surface, double u, dou
   {
     // A mirror's view follows its reflected ray from the exact point (file comment): the patch
     // that holds (u, v) and its own parameters there.
-    for (std::size_t p = 0; p < this->Patches.size(); ++p)
+    for (const std::size_t p : this->MirrorPatches[static_cast<std::size_t>(surface)])
     {
-      const Patch& patch = this->Patches[p];
-      const UVRect& d = patch.Domain;
-      if (patch.SurfaceIndex == surface && u >= d.U0 && u <= d.U1 && v >= d.V0 && v <= d.V1)
+      const UVRect& d = this->Patches[p].Domain;
+      if (u >= d.U0 && u <= d.U1 && v >= d.V0 && v <= d.V1)
       {
         terms.MirrorPatch = static_cast<std::ptrdiff_t>(p);
         terms.PatchU = (u - d.U0) / (d.U1 - d.U0);

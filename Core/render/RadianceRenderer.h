@@ -478,6 +478,9 @@ private:
   /// Per surface index k_s of an ideal mirror, (-1, -1, -1) for another surface; empty when no
   /// surface is one (SetDirectionalIllumination).
   std::vector<glm::dvec3> MirrorSpecular;
+  /// Per surface index in MirrorSpecular, the patches of a mirror surface (Terms looks up the
+  /// patch under (u, v) among them); empty lists for the other surfaces.
+  std::vector<std::vector<std::size_t>> MirrorPatches;
   DirectLight Direct;
   PointReflectances Reflectances;
 };
