@@ -63,10 +63,59 @@ void SecondDerivativeBounds(const BezierPatch& patch, double& uu, double& uv, do
   uv *= m * n;
 }
 
-/// The smallest even (n_u, n_v) whose linear interpolation error bound is within tolerance:
-/// over a cell h_u x h_v it is (h_u^2 M_uu + 2 h_u h_v M_uv + h_v^2 M_vv) / 8.
+/// Whether the patch is exactly a convex planar quadrilateral: its corners lie in one plane,
+/// make a convex quadrilateral, and every control point is the bilinear interpolation of the
+/// corners at its Greville parameters (i / m, j / n), i.e. the patch is a bilinear one,
+/// degree-elevated or not. Its two triangles are then the patch itself, not an approximation.
+bool IsConvexPlanarQuad(const BezierPatch& patch)
+{
+  const int m = patch.DegreeU();
+  const int n = patch.DegreeV();
+  const glm::dvec3 a = patch.ControlPoint(0, 0);
+  const glm::dvec3 b = patch.ControlPoint(m, 0);
+  const glm::dvec3 c = patch.ControlPoint(m, n);
+  const glm::dvec3 d = patch.ControlPoint(0, n);
+  // Rounding of the subdivision's de Casteljau steps only: far below any tessellation tolerance.
+  const double tolerance = 1e-9 * patch.Size();
+  for (int j = 0; j <= n; ++j)
+  {
+    for (int i = 0; i <= m; ++i)
+    {
+      const double s = static_cast<double>(i) / m;
+      const double t = static_cast<double>(j) / n;
+      const glm::dvec3 bilinear = (1.0 - t) * ((1.0 - s) * a + s * b) + t * ((1.0 - s) * d + s * c);
+      if (!(glm::length(patch.ControlPoint(i, j) - bilinear) <= tolerance))
+      {
+        return false;
+      }
+    }
+  }
+  const glm::dvec3 normal = glm::cross(b - a, d - a);
+  const double length = glm::length(normal);
+  if (!(length > 0.0) || !(std::fabs(glm::dot(c - a, normal / length)) <= tolerance))
+  {
+    return false;
+  }
+  // Convex: every corner turns the same way about the normal.
+  return glm::dot(glm::cross(b - a, c - b), normal) > 0.0 &&
+    glm::dot(glm::cross(c - b, d - c), normal) > 0.0 &&
+    glm::dot(glm::cross(d - c, a - d), normal) > 0.0 &&
+    glm::dot(glm::cross(a - d, b - a), normal) > 0.0;
+}
+
+/// (1, 1) for a convex planar quadrilateral (IsConvexPlanarQuad); otherwise the smallest even
+/// (n_u, n_v) whose linear interpolation error bound is within tolerance: over a cell
+/// h_u x h_v it is (h_u^2 M_uu + 2 h_u h_v M_uv + h_v^2 M_vv) / 8.
 void ChooseResolution(const BezierPatch& patch, double tolerance, int& nu, int& nv)
 {
+  if (IsConvexPlanarQuad(patch))
+  {
+    // Two triangles are exact, and the characteristic point lies in their plane, so it needs
+    // not be a vertex.
+    nu = 1;
+    nv = 1;
+    return;
+  }
   double uu;
   double uv;
   double vv;

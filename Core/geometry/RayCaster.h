@@ -7,12 +7,13 @@
  *
  * Input: per patch its BezierPatch and a surface index (patches of one surface and degrees
  * share one resolution, so uniformly split surfaces have no cracks). Each patch becomes an
- * n_u x n_v grid of quads, n even (the parametric centre is a vertex) and at most 256, chosen
- * from the second-derivative bound of the control net so that the triangles deviate from the
- * patch by at most TessellationTolerance * Size(). One Embree scene, geometry id = patch index,
- * robust mode (no ray slips through a shared edge), BVH built in one thread; queries call
- * rtcIntersect1 (IntersectPacket: rtcIntersect16) and may run from many threads at once. Rays
- * are single precision.
+ * n_u x n_v grid of quads: one quad (two triangles, exact) for a convex planar quadrilateral
+ * (a bilinear patch, degree-elevated or not, in one plane); otherwise n even (the parametric
+ * centre is a vertex) and at most 256, chosen from the second-derivative bound of the control
+ * net so that the triangles deviate from the patch by at most TessellationTolerance * Size(). One
+ * Embree scene, geometry id = patch index, robust mode (no ray slips through a shared edge), BVH
+ * built in one thread; queries call rtcIntersect1 (IntersectPacket: rtcIntersect16) and may run
+ * from many threads at once. Rays are single precision.
  *
  * Intersect() reports the nearest hit a RayFilter accepts (a plain function pointer and
  * context, called per candidate hit during traversal: no allocation per ray); CastRay() and
