@@ -76,6 +76,11 @@ struct NodeRays
   NodeFilter Filter;
   glm::dvec3 Origin;
   glm::dvec3 Normal;
+  /// RayFilter::RejectsAllNearer: the self-exclusion distance when only the node's own surface
+  /// comes within twice it of the origin (then AcceptForNode rejects every hit nearer), else 0.
+  float RejectsAllNearer = 0.0f;
+
+  RayFilter Predicate() const { return { AcceptForNode, &this->Filter, this->RejectsAllNearer }; }
 };
 
 /// One lamp piece: its patch, its emission and its quadrature's least side.
@@ -424,6 +429,14 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       static_cast<double>(firstIndex[node] % n) / (n - 1),
       static_cast<double>(firstIndex[node] / n) / (n - 1),
       rays.Normal);
+    thread_local std::vector<std::size_t> near;
+    caster.PatchesNear(rays.Origin, 2.0 * rays.Filter.SelfExclusion, near);
+    if (std::all_of(near.begin(),
+          near.end(),
+          [&](std::size_t q) { return surfaceOfPatch[q] == patch.SurfaceIndex; }))
+    {
+      rays.RejectsAllNearer = rays.Filter.SelfExclusion;
+    }
     return rays;
   };
 
@@ -436,7 +449,7 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
     const std::size_t p = firstPatch[node];
     const Patch& patch = patches[p];
     const NodeRays rays = raysOf(node);
-    const RayFilter filter{ AcceptForNode, &rays.Filter };
+    const RayFilter filter = rays.Predicate();
     glm::dvec3 irradiance(0.0);
     for (const LampPiece& piece : pieces)
     {
@@ -609,7 +622,7 @@ bool ComputeDirectIrradiance(const std::vector<Patch>& patches,
       thread_local std::vector<glm::dvec3> local;
       strataOf(node, g, local);
       const NodeRays rays = raysOf(node);
-      const RayFilter filter{ AcceptForNode, &rays.Filter };
+      const RayFilter filter = rays.Predicate();
       const glm::dvec3& origin = rays.Origin;
       const glm::dvec3& normal = rays.Normal;
       // Any tangent frame: the strata are the same in every one.

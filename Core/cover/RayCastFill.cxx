@@ -90,6 +90,25 @@ bool AcceptForReceiver(const void* context, std::size_t patch, float distance, b
     patch == receiver.Receiver && (!receiver.CountSelf || distance < receiver.SelfExclusion));
 }
 
+/// The rays' filter from `origin`, the receiver's point: AcceptForReceiver, asked about first
+/// hits only (RayFilter::RejectsAllNearer) when no patch but the receiver's own comes within
+/// twice the self-exclusion distance of the origin, so that every hit nearer than that is P_i
+/// itself, which AcceptForReceiver rejects (a pane's reversed copy lies there too: filtered
+/// throughout).
+RayFilter ReceiverRays(const ReceiverFilter& receiver,
+  const RayCaster& rays,
+  const glm::dvec3& origin)
+{
+  RayFilter filter{ AcceptForReceiver, &receiver };
+  thread_local std::vector<std::size_t> near;
+  rays.PatchesNear(origin, 2.0 * receiver.SelfExclusion, near);
+  if (std::all_of(near.begin(), near.end(), [&](std::size_t p) { return p == receiver.Receiver; }))
+  {
+    filter.RejectsAllNearer = receiver.SelfExclusion;
+  }
+  return filter;
+}
+
 /// The unit normal of a patch whose control points all lie in one plane (to 1e-12 of its
 /// Size()), zero for any other patch.
 glm::dvec3 PlaneNormal(const BezierPatch& geometry)
@@ -274,7 +293,7 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   scratch.V.resize(grid.SampleCount());
   scratch.T.resize(grid.SampleCount());
   const SampleCast cast{ frame,
-    RayFilter{ AcceptForReceiver, &receiverFilter },
+    ReceiverRays(receiverFilter, *this->Rays, frame.Origin),
     buffer,
     scratch.U.data(),
     scratch.V.data(),
@@ -595,7 +614,7 @@ void RayCastFiller::FillBehindPanes(std::size_t receiver,
   const HemisphereFrame frame = HemisphereFrame::OfPatch(this->Patches[receiver]);
   const ReceiverFilter receiverFilter =
     FilterFor(receiver, this->Patches[receiver], this->Options, this->PassedBack);
-  const RayFilter filter{ AcceptForReceiver, &receiverFilter };
+  const RayFilter filter = ReceiverRays(receiverFilter, *this->Rays, frame.Origin);
   behind.Reset(receiver);
   const int samplesTheta = grid.SamplesTheta();
   const int samplesPhi = grid.SamplesPhi();
@@ -783,7 +802,7 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
   const Patch& self = this->Patches[receiver];
   const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
   const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options, this->PassedBack);
-  const RayFilter filter{ AcceptForReceiver, &receiverFilter };
+  const RayFilter filter = ReceiverRays(receiverFilter, *this->Rays, frame.Origin);
   return sphcover::VisibleProjectedSolidAngle(
     *this->Rays, frame.Origin, frame.Normal, filter, source, this->Patches[source], minimumSide);
 }

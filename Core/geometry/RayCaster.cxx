@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: BSD-3-Clause
 #include "geometry/RayCaster.h"
 
+#include "geometry/BoundingBoxTree.h"
 #include "geometry/RayPatchIntersection.h"
 
 #include <embree3/rtcore.h>
@@ -168,6 +169,22 @@ RTCRayHit MakeRayHit(const glm::dvec3& origin, const glm::dvec3& direction, floa
   return rayHit;
 }
 
+/// Whether a ray's hit is on its triangle's front side: Embree's Ng is cross(v1 - v0, v2 - v0),
+/// the triangles are wound like dQ/du x dQ/dv, so a front-side hit has Ng . dir < 0.
+bool FrontSide(const RTCRayHit& rayHit)
+{
+  return rayHit.hit.Ng_x * rayHit.ray.dir_x + rayHit.hit.Ng_y * rayHit.ray.dir_y +
+    rayHit.hit.Ng_z * rayHit.ray.dir_z <
+    0.0f;
+}
+
+bool FrontSide(const RTCRayHit16& packet, int k)
+{
+  return packet.hit.Ng_x[k] * packet.ray.dir_x[k] + packet.hit.Ng_y[k] * packet.ray.dir_y[k] +
+    packet.hit.Ng_z[k] * packet.ray.dir_z[k] <
+    0.0f;
+}
+
 /// The intersect context handed to Embree, extended with the caller's filter.
 struct FilterContext
 {
@@ -175,16 +192,12 @@ struct FilterContext
   RayFilter Filter;
 };
 
-/// Embree's context filter: asks the caller's predicate about every candidate hit. It is
-/// installed for every query (also without a predicate) so that Embree's traversal, and with it
-/// the hit chosen among equally near triangles, is the same for every query.
+/// Embree's context filter: asks the caller's predicate about every candidate hit. Installed
+/// only for queries that filter during traversal (RayFilter::RejectsAllNearer): a callback per
+/// candidate hit costs about a tenth of a row's rays (Documentation/notes/ray-casting.md).
 void FilterHit(const RTCFilterFunctionNArguments* args)
 {
   const RayFilter& filter = reinterpret_cast<const FilterContext*>(args->context)->Filter;
-  if (!filter.Accept)
-  {
-    return;
-  }
   for (unsigned int k = 0; k < args->N; ++k)
   {
     if (args->valid[k] == 0)
@@ -240,6 +253,9 @@ struct RayCaster::Implementation
   std::vector<int> QuadsU;
   std::vector<int> QuadsV;
   std::size_t Triangles = 0;
+  /// Per patch the bounding box of its triangles, and a tree over them (PatchesNear).
+  std::vector<Box> TriangleBounds;
+  std::unique_ptr<BoundingBoxTree> BoundsTree;
 
   Implementation(std::vector<RayCastPatch> patches, const RayCasterOptions& options)
     : Patches(std::move(patches))
@@ -271,10 +287,12 @@ struct RayCaster::Implementation
     rtcSetSceneFlags(this->Scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION | RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(this->Scene, RTC_BUILD_QUALITY_HIGH);
     this->ChooseResolutions();
+    this->TriangleBounds.resize(this->Patches.size());
     for (size_t p = 0; p < this->Patches.size(); ++p)
     {
       this->AddPatch(p);
     }
+    this->BoundsTree = std::make_unique<BoundingBoxTree>(this->TriangleBounds);
     rtcCommitScene(this->Scene);
     const RTCError error = rtcGetDeviceError(this->Device);
     if (error != RTC_ERROR_NONE)
@@ -339,6 +357,9 @@ struct RayCaster::Implementation
     const size_t vertexCount = static_cast<size_t>((nu + 1) * (nv + 1));
     float* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
       geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertexCount));
+    Box& bounds = this->TriangleBounds[p];
+    bounds.Lower = glm::dvec3(std::numeric_limits<double>::infinity());
+    bounds.Upper = -bounds.Lower;
     for (int j = 0; j <= nv; ++j)
     {
       for (int i = 0; i <= nu; ++i)
@@ -351,6 +372,9 @@ struct RayCaster::Implementation
         out[0] = static_cast<float>(q.x);
         out[1] = static_cast<float>(q.y);
         out[2] = static_cast<float>(q.z);
+        const glm::dvec3 vertex(out[0], out[1], out[2]);
+        bounds.Lower = glm::min(bounds.Lower, vertex);
+        bounds.Upper = glm::max(bounds.Upper, vertex);
       }
     }
     const size_t triangleCount = static_cast<size_t>(2 * nu * nv);
@@ -421,16 +445,26 @@ bool RayCaster::Intersect(const glm::dvec3& origin,
   TriangleHit& hit) const
 {
   const Implementation& impl = *this->Impl;
+  const bool firstHitOnly = filter.Accept && filter.RejectsAllNearer > 0.0f;
   FilterContext context;
   rtcInitIntersectContext(&context.Context);
-  context.Context.filter = FilterHit;
+  context.Context.filter = filter.Accept && !firstHitOnly ? FilterHit : nullptr;
   if (coherent)
   {
     context.Context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   }
   context.Filter = filter;
-  RTCRayHit rayHit = MakeRayHit(origin, direction, tNear);
+  const float start = firstHitOnly ? std::max(tNear, filter.RejectsAllNearer) : tNear;
+  RTCRayHit rayHit = MakeRayHit(origin, direction, start);
   rtcIntersect1(impl.Scene, &context.Context, &rayHit);
+  if (firstHitOnly && rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
+    !filter.Accept(filter.Context, rayHit.hit.geomID, rayHit.ray.tfar, FrontSide(rayHit)))
+  {
+    // Rare: the first hit is one the rays pass (a pane's back side): again, filtered throughout.
+    context.Context.filter = FilterHit;
+    rayHit = MakeRayHit(origin, direction, start);
+    rtcIntersect1(impl.Scene, &context.Context, &rayHit);
+  }
   if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID)
   {
     return false;
@@ -438,9 +472,7 @@ bool RayCaster::Intersect(const glm::dvec3& origin,
   hit.Patch = rayHit.hit.geomID;
   impl.HitParameters(hit.Patch, rayHit.hit.primID, rayHit.hit.u, rayHit.hit.v, hit.U, hit.V);
   hit.Distance = rayHit.ray.tfar;
-  hit.FrontSide = rayHit.hit.Ng_x * rayHit.ray.dir_x + rayHit.hit.Ng_y * rayHit.ray.dir_y +
-      rayHit.hit.Ng_z * rayHit.ray.dir_z <
-    0.0f;
+  hit.FrontSide = FrontSide(rayHit);
   hit.TriangleNormal = glm::dvec3(rayHit.hit.Ng_x, rayHit.hit.Ng_y, rayHit.hit.Ng_z);
   return true;
 }
@@ -454,11 +486,13 @@ void RayCaster::IntersectPacket(const glm::dvec3& origin,
   bool* found) const
 {
   const Implementation& impl = *this->Impl;
+  const bool firstHitOnly = filter.Accept && filter.RejectsAllNearer > 0.0f;
   FilterContext context;
   rtcInitIntersectContext(&context.Context);
-  context.Context.filter = FilterHit;
+  context.Context.filter = filter.Accept && !firstHitOnly ? FilterHit : nullptr;
   context.Context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   context.Filter = filter;
+  const float start = firstHitOnly ? std::max(tNear, filter.RejectsAllNearer) : tNear;
   alignas(64) int valid[PacketSize];
   alignas(64) RTCRayHit16 packet;
   const float ox = static_cast<float>(origin.x);
@@ -476,7 +510,7 @@ void RayCaster::IntersectPacket(const glm::dvec3& origin,
     packet.ray.dir_x[k] = static_cast<float>(direction.x);
     packet.ray.dir_y[k] = static_cast<float>(direction.y);
     packet.ray.dir_z[k] = static_cast<float>(direction.z);
-    packet.ray.tnear[k] = tNear;
+    packet.ray.tnear[k] = start;
     packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
     packet.ray.time[k] = 0.0f;
     packet.ray.mask[k] = 0xFFFFFFFFu;
@@ -486,6 +520,32 @@ void RayCaster::IntersectPacket(const glm::dvec3& origin,
     packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
   }
   rtcIntersect16(valid, impl.Scene, &context.Context, &packet);
+  if (firstHitOnly)
+  {
+    // The rays whose first hit the filter rejects (rare: a pane's back side), again, filtered
+    // throughout; the others keep their hits.
+    bool again = false;
+    for (int k = 0; k < count; ++k)
+    {
+      valid[k] = packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID &&
+          !filter.Accept(
+            filter.Context, packet.hit.geomID[k], packet.ray.tfar[k], FrontSide(packet, k))
+        ? -1
+        : 0;
+      if (valid[k] != 0)
+      {
+        again = true;
+        packet.ray.tfar[k] = std::numeric_limits<float>::infinity();
+        packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+      }
+    }
+    if (again)
+    {
+      context.Context.filter = FilterHit;
+      rtcIntersect16(valid, impl.Scene, &context.Context, &packet);
+    }
+  }
   for (int k = 0; k < count; ++k)
   {
     found[k] = packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
@@ -498,9 +558,7 @@ void RayCaster::IntersectPacket(const glm::dvec3& origin,
     impl.HitParameters(
       hit.Patch, packet.hit.primID[k], packet.hit.u[k], packet.hit.v[k], hit.U, hit.V);
     hit.Distance = packet.ray.tfar[k];
-    hit.FrontSide = packet.hit.Ng_x[k] * packet.ray.dir_x[k] +
-        packet.hit.Ng_y[k] * packet.ray.dir_y[k] + packet.hit.Ng_z[k] * packet.ray.dir_z[k] <
-      0.0f;
+    hit.FrontSide = FrontSide(packet, k);
     hit.TriangleNormal = glm::dvec3(packet.hit.Ng_x[k], packet.hit.Ng_y[k], packet.hit.Ng_z[k]);
   }
 }
@@ -588,6 +646,24 @@ bool RayCaster::FirstHit(const glm::dvec3& origin,
   distance = hit.Distance;
   front = hit.FrontSide;
   return true;
+}
+
+void RayCaster::PatchesNear(const glm::dvec3& point,
+  double radius,
+  std::vector<std::size_t>& patches) const
+{
+  const Implementation& impl = *this->Impl;
+  patches.clear();
+  impl.BoundsTree->Traverse([&](const BoundingBoxTree::Node& node)
+    { return node.Bounds.DistanceTo(point) <= radius; },
+    [&](int32_t item)
+    {
+      if (impl.TriangleBounds[static_cast<std::size_t>(item)].DistanceTo(point) <= radius)
+      {
+        patches.push_back(static_cast<std::size_t>(item));
+      }
+    });
+  std::sort(patches.begin(), patches.end());
 }
 
 std::size_t RayCaster::PatchCount() const

@@ -66,7 +66,8 @@ struct RayCasterOptions
 
 /// Whether a candidate hit counts (true) or the ray goes on behind it (false): the patch met,
 /// the distance along the ray and whether the triangle's front side (wound like dQ/du x dQ/dv)
-/// faces the ray. Called during traversal, from the querying thread.
+/// faces the ray. Called during traversal (or on the first hit, RayFilter::RejectsAllNearer),
+/// from the querying thread.
 using RayHitPredicate = bool (*)(const void* context,
   std::size_t patch,
   float distance,
@@ -76,6 +77,15 @@ struct RayFilter
 {
   RayHitPredicate Accept = nullptr; ///< nullptr: every hit counts
   const void* Context = nullptr;
+  /**
+   * When > 0, the caller's promise that Accept rejects every hit nearer than this distance (a
+   * ray's own start: nothing but the origin's own patches lies that near, PatchesNear). A query
+   * then casts from there without asking Accept during traversal, asks it about the first hit
+   * only, and casts again with it the rays whose first hit it rejects: the hits of the filter
+   * applied during traversal (but for the choice between equally near triangles), at the cost
+   * of one callback per ray instead of one per candidate hit. 0: the filter during traversal.
+   */
+  float RejectsAllNearer = 0.0f;
 };
 
 /// A hit on the tessellation.
@@ -190,6 +200,10 @@ public:
     std::size_t& patch,
     double& distance,
     bool& front) const;
+
+  /// The patches whose tessellation comes within `radius` of `point` (their triangles'
+  /// bounding boxes do), in increasing order; O(log patches) for a small radius.
+  void PatchesNear(const glm::dvec3& point, double radius, std::vector<std::size_t>& patches) const;
 
   std::size_t PatchCount() const;
   /// Number of triangles of the tessellation.
