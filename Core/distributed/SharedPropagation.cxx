@@ -5,7 +5,8 @@
 // owners. Communication per batch of B shots: one all-gather of K x (32 + 48 B + 24 B) bytes (the
 // scan, with what a Lambertian shot sends and the last batch's counts), and when the batch has
 // non-diffuse shooters a second join of their radiance toward what the other ranks' receivers
-// read (the regions of their rows, the cells of their fallbacks: ExchangeShotNeeds)
+// read (the regions of their rows, the cells of their fallbacks and of their views of the
+// shooter: ExchangeShotNeeds)
 // (Documentation/notes/distributed-solve.md).
 #include "distributed/SharedPropagation.h"
 
@@ -75,9 +76,10 @@ private:
   /**
    * Which of a non-diffuse shot's values the other ranks read, per non-diffuse row j: the
    * positions in row j of the entries (j, i) of their receivers i (SentPositions[j]) and the
-   * cells of the directions toward their receivers without h_ji (SentCells[j]), each the sorted
-   * union over the ranks, the same on every rank. Collective; from the first JoinScan of a Run,
-   * once after SharePropagation or SetFrames.
+   * cells of the directions toward their receivers without h_ji or of their receivers' views
+   * of Q_j (LightPropagation.h; SentCells[j]), each the sorted union over the ranks, the same
+   * on every rank. A view is built from the receiver's own row, which its rank holds. Collective;
+   * from the first JoinScan of a Run, once after SharePropagation or SetFrames.
    */
   void ExchangeShotNeeds();
 
@@ -182,7 +184,17 @@ void SharedPropagation::ExchangeShotNeeds()
          ++k)
     {
       const uint32_t back = this->Propagation.ColumnBack[k];
-      if (back < LightPropagation::FallbackFlag)
+      if (this->Propagation.HasView(j, k))
+      {
+        // A receiver's view of a non-diffuse shooter reads the cells of its view alone.
+        for (std::size_t v = this->Propagation.ViewStart(j, k);
+             v < this->Propagation.ViewStart(j, k + 1);
+             ++v)
+        {
+          cells.push_back(this->Propagation.Views[v].Cell);
+        }
+      }
+      else if (back < LightPropagation::FallbackFlag)
       {
         positions.push_back(back);
       }

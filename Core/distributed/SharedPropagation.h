@@ -14,8 +14,8 @@
  * batch, the ranks agree on its shooters (from every rank's candidates, chosen as the serial
  * scan chooses), their owners send what they shoot (the unshot radiance, with the scan; for the
  * non-diffuse shooters, all in one exchange, their reflected radiance toward the regions and the
- * fallback cells the other ranks' receivers read) and each rank updates its own receivers in
- * column order. So every owned patch's state, and each result of an owned patch (Irradiance,
+ * fallback and view cells the other ranks' receivers read) and each rank updates its own receivers
+ * in column order. So every owned patch's state, and each result of an owned patch (Irradiance,
  * ExitantRadiance, Brightness, the incident radiances of its row), is the serial one bit for
  * bit; the history's shooters and powers are serial's, its sums over the ranks (UnshotEnergy,
  * ReceiverUpdates) equal up to the order of addition. Communication per batch: see

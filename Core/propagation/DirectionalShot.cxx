@@ -3,11 +3,16 @@
 // is declared in LightPropagation.h, the derivation is in Documentation/notes/propagation.md):
 // the set-up of the weight tables and transposed entries, the unshot incident radiance
 // collected per shot, the two ways of summing the weight table (strip pairs, the
-// whole-hemisphere grid) and the receivers served without a region h_ji.
+// whole-hemisphere grid), the receivers served without a region h_ji, and the receivers'
+// views of the non-diffuse patches (LightPropagation.h, "Receivers' views").
 #include "propagation/LightPropagation.h"
 
 #include "cover/SphericalCover.h"
+#include "math/Constants.h"
 
+#include <algorithm>
+#include <cmath>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -27,6 +32,46 @@ inline void Prefetch(const void* address)
   (void)address;
 #endif
 }
+
+/// HemisphereGrid::CellOfLocalDirection for unit directions, cheaper: the row from cos theta
+/// against the rows' edges (a binary search instead of an arc tangent), -1 for z <= 0.
+class UnitCellLookup
+{
+public:
+  explicit UnitCellLookup(const HemisphereGrid& grid)
+    : Columns(grid.PhiBins())
+    , PhiStep(grid.PhiStep())
+  {
+    // cos of the lower edges of rows 1 .. ThetaBins - 1, decreasing.
+    for (int row = 1; row < grid.ThetaBins(); ++row)
+    {
+      this->EdgeCos.push_back(std::cos(grid.RowTheta(row)));
+    }
+  }
+  int CellOf(const glm::dvec3& unit) const
+  {
+    if (!(unit.z > 0.0))
+    {
+      return -1;
+    }
+    // theta >= the edge of row r iff z <= cos(edge): the row is the count of such edges.
+    const int row = static_cast<int>(
+      std::upper_bound(this->EdgeCos.begin(), this->EdgeCos.end(), unit.z, std::greater<double>()) -
+      this->EdgeCos.begin());
+    double phi = std::atan2(unit.y, unit.x);
+    if (phi < 0.0)
+    {
+      phi += TwoPi;
+    }
+    const int column = std::min(static_cast<int>(phi / this->PhiStep), this->Columns - 1);
+    return row * this->Columns + column;
+  }
+
+private:
+  std::vector<double> EdgeCos;
+  int Columns;
+  double PhiStep;
+};
 
 } // namespace
 
@@ -128,9 +173,15 @@ void LightPropagation::DirectionalShot(std::size_t shooter, DirectionalShotData&
   const ReflectanceWeights& table = *this->Reflectances.Table(shooter);
   this->TakeUnshotInStrips(shooter, shot);
   const std::size_t pairs = this->CoupleInRows(shooter, table, shot);
+  // A shooter whose receivers read their views needs the exitant radiance toward every cell
+  // they see it from: the grid gives them all at once, so Automatic takes it. The choice must
+  // not depend on which receivers this rank holds (the ranks' views differ), or a shared
+  // propagation would sum in another order than the serial one.
+  const bool views = !this->ViewColumn.empty() && this->ViewColumn[shooter] != NoView;
   shot.Grid = this->Method == DirectionalMethod::Grid ||
     (this->Method == DirectionalMethod::Automatic &&
-      static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount()));
+      (views ||
+        static_cast<double>(pairs) > GridCostInPairs * static_cast<double>(grid.CellCount())));
   shot.ByCell = shot.Grid;
   shot.Out.assign(cover.EntryEnd(shooter) - cover.EntryBegin(shooter), glm::dvec3(0.0));
   if (shot.Grid)
@@ -140,6 +191,10 @@ void LightPropagation::DirectionalShot(std::size_t shooter, DirectionalShotData&
   else
   {
     this->ShotByStripPairs(shooter, table, pairs, shot);
+  }
+  if (views)
+  {
+    this->FillViewCells(shooter, shot);
   }
 }
 
@@ -338,6 +393,7 @@ void LightPropagation::SetFrames(std::vector<HemisphereFrame> frames)
   }
   this->Frames = std::move(frames);
   this->EncodeFallbacks();
+  this->BuildReceiverViews();
   if (this->Hook)
   {
     this->Hook->FallbacksChanged();
@@ -375,6 +431,148 @@ void LightPropagation::EncodeFallbacks()
         code = FallbackFlag | static_cast<uint32_t>(cell);
       }
     }
+  }
+}
+
+bool LightPropagation::ServedByViews(std::size_t patch) const
+{
+  // Every non-diffuse patch: the view is what P_i sees whatever the reflectance, and the
+  // glossy room's error against Cycles falls with it too (Documentation/notes/propagation.md,
+  // 2026-12-07).
+  return this->ModelOfPatch[patch] >= 0;
+}
+
+void LightPropagation::BuildReceiverViews()
+{
+  this->ViewColumn.clear();
+  this->ViewBegin.clear();
+  this->Views.clear();
+  this->ViewCellsOf.clear();
+  const std::size_t n = this->PatchCount();
+  bool any = false;
+  for (std::size_t j = 0; j < n && !any; ++j)
+  {
+    any = this->ServedByViews(j);
+  }
+  if (this->Frames.empty() || !any)
+  {
+    return;
+  }
+  // A receiver i sees patch j through its region h_ij of H_i (paper §3.1): every sample
+  // direction d of the region's cells (each standing for CellMeasure / SamplesPerCell of the
+  // projected solid angle, HemisphereGrid.h) is a ray from P_i that meets Q_j, along which P_i
+  // receives j's exitant radiance toward -d, read in the cell of -d in H_j (a mirror's: the
+  // light it reflects from the mirror cell, where that ray goes on; file comment). The radiance
+  // P_i sees through h_ij is their average: the view is the share of the region's samples per
+  // cell of H_j.
+  const SphericalCover& cover = this->Cover;
+  const HemisphereGrid& grid = cover.Grid();
+  const int samplesTheta = grid.SamplesTheta();
+  const int samplesPhi = grid.SamplesPhi();
+  const UnitCellLookup lookup(grid);
+  std::vector<double> share(static_cast<std::size_t>(grid.CellCount()), 0.0);
+  std::vector<uint32_t> touched;
+  this->ViewColumn.assign(n, NoView);
+  this->ViewCellsOf.resize(n);
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    if (!this->ServedByViews(j))
+    {
+      continue;
+    }
+    this->ViewColumn[j] = this->ViewBegin.size();
+    const HemisphereFrame& mirror = this->Frames[j];
+    std::vector<uint32_t>& cellsOfColumn = this->ViewCellsOf[j];
+    for (std::size_t k = cover.ColumnBegin(j); k < cover.ColumnEnd(j); ++k)
+    {
+      this->ViewBegin.push_back(this->Views.size());
+      const SphericalCover::ColumnEntry& item = cover.ColumnAt(k);
+      const HemisphereFrame& from = this->Frames[item.Receiver];
+      // The receiver's local axes in the mirror's frame, turned around: a local direction d of
+      // H_i toward Q_j leaves Q_j toward the receiver along -d.
+      const glm::dvec3 back[3] = {
+        -mirror.ToLocal(from.Tangent), -mirror.ToLocal(from.Bitangent), -mirror.ToLocal(from.Normal)
+      };
+      touched.clear();
+      double total = 0.0;
+      for (std::size_t s = cover.StripBegin(item.EntryIndex); s < cover.StripEnd(item.EntryIndex);
+           ++s)
+      {
+        const SphericalCover::Strip& strip = cover.StripAt(s);
+        const double sample = grid.CellMeasure(strip.Row) / grid.SamplesPerCell();
+        for (int a = 0; a < samplesTheta; ++a)
+        {
+          const int sampleRow = strip.Row * samplesTheta + a;
+          for (int sampleColumn = strip.PhiBegin * samplesPhi;
+               sampleColumn < strip.PhiEnd * samplesPhi;
+               ++sampleColumn)
+          {
+            const glm::dvec3 d = grid.SampleDirection(sampleRow, sampleColumn);
+            const int cell = lookup.CellOf(d.x * back[0] + d.y * back[1] + d.z * back[2]);
+            if (cell < 0)
+            {
+              continue; // behind the mirror's tangent plane (a curved patch seen edge on)
+            }
+            double& cellShare = share[static_cast<std::size_t>(cell)];
+            if (cellShare == 0.0)
+            {
+              touched.push_back(static_cast<uint32_t>(cell));
+            }
+            cellShare += sample;
+            total += sample;
+          }
+        }
+      }
+      std::sort(touched.begin(), touched.end());
+      for (const uint32_t cell : touched)
+      {
+        this->Views.push_back({ cell, static_cast<float>(share[cell] / total) });
+        share[cell] = 0.0;
+        cellsOfColumn.push_back(cell);
+      }
+    }
+    this->ViewBegin.push_back(this->Views.size());
+    std::sort(cellsOfColumn.begin(), cellsOfColumn.end());
+    cellsOfColumn.erase(
+      std::unique(cellsOfColumn.begin(), cellsOfColumn.end()), cellsOfColumn.end());
+  }
+}
+
+std::size_t LightPropagation::ViewStart(std::size_t j, std::size_t k) const
+{
+  return this->ViewBegin[this->ViewColumn[j] + (k - this->Cover.ColumnBegin(j))];
+}
+
+bool LightPropagation::HasView(std::size_t j, std::size_t k) const
+{
+  return !this->ViewColumn.empty() && this->ViewColumn[j] != NoView &&
+    this->ViewStart(j, k + 1) > this->ViewStart(j, k);
+}
+
+glm::dvec3 LightPropagation::ViewRadiance(std::size_t j,
+  std::size_t k,
+  const DirectionalShotData& shot) const
+{
+  glm::dvec3 sum(0.0);
+  const std::size_t end = this->ViewStart(j, k + 1);
+  for (std::size_t v = this->ViewStart(j, k); v < end; ++v)
+  {
+    sum += static_cast<double>(this->Views[v].Weight) * shot.GridOut[this->Views[v].Cell];
+  }
+  return sum;
+}
+
+void LightPropagation::FillViewCells(std::size_t shooter, DirectionalShotData& shot) const
+{
+  if (shot.ByCell)
+  {
+    return; // a grid shot holds every cell
+  }
+  shot.GridOut.resize(static_cast<std::size_t>(this->Cover.Grid().CellCount()));
+  std::size_t unused = 0;
+  for (const uint32_t cell : this->ViewCellsOf[shooter])
+  {
+    shot.GridOut[cell] = this->TowardReceiver(shooter, FallbackFlag | cell, shot, unused);
   }
 }
 

@@ -291,7 +291,13 @@ std::vector<ShotRecord> LightPropagation::ShootBatch(const std::vector<Candidate
       if (directional[m])
       {
         const uint32_t back = this->ColumnBack[k];
-        if (back < FallbackFlag)
+        if (this->HasView(shooter, k))
+        {
+          // The shooter's light as the receiver sees it through the whole of Q_j (file comment).
+          value += this->ViewRadiance(shooter, k, shot);
+          fallbacks += back < FallbackFlag ? 0 : 1;
+        }
+        else if (back < FallbackFlag)
         {
           value += shot.Out[back];
         }
@@ -456,7 +462,23 @@ std::size_t LightPropagation::EstimateBytes(const SphericalCover& cover,
   const std::vector<Material>& materialOfPatch)
 {
   const SphericalCoverOptions& options = cover.Options();
-  return cover.EntryCount() * BytesPerEntry + cover.PatchCount() * BytesPerPatch +
+  // The receivers' views of the non-diffuse sources (BuildReceiverViews): a start per entry of
+  // their columns, and ViewBytesPerCell per cell of their regions.
+  std::size_t viewBytes = 0;
+  for (std::size_t e = 0; e < cover.EntryCount(); ++e)
+  {
+    const std::size_t source = cover.EntryAt(e).Source;
+    if (source < materialOfPatch.size() && materialOfPatch[source].Type != MaterialType::Diffuse)
+    {
+      std::size_t cells = 0;
+      for (std::size_t k = cover.StripBegin(e); k < cover.StripEnd(e); ++k)
+      {
+        cells += static_cast<std::size_t>(cover.StripAt(k).PhiEnd - cover.StripAt(k).PhiBegin);
+      }
+      viewBytes += sizeof(std::size_t) + cells * ViewBytesPerCell;
+    }
+  }
+  return cover.EntryCount() * BytesPerEntry + cover.PatchCount() * BytesPerPatch + viewBytes +
     PointReflectances::EstimateBytes(options.ThetaBins, options.PhiBins, materialOfPatch);
 }
 

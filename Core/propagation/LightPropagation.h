@@ -19,6 +19,13 @@
  * the whole-hemisphere grid (DirectionalMethod, the same sum); a receiver without h_ji gets the
  * radiance toward the cell of P_i - P_j (SetFrames) or the hemisphere's mean.
  *
+ * Receivers' views (with frames, SetFrames): a non-diffuse j sends i its exitant radiance
+ * averaged over the directions in which P_i sees Q_j, not over h_ji: the samples of h_ij taken
+ * into H_j and turned around (a mirror: the dE of the mirror cell of each), so a small receiver
+ * sees a lamp's image through the whole of Q_j (§3.1, §5.1; the incident light stays P_j's).
+ * Found once; a receiver whose samples all lie behind Q_j's plane is served by h_ji as above.
+ * Automatic shoots such a patch through the grid (every cell at once).
+ *
  * Order and convergence: BrightestFirst shoots the patch of largest unshot power U_j (§5 "the
  * brightest"; ties to the lowest index), FixedOrder cycles through the patches; both stop when
  * sum_j U_j falls below ConvergenceTolerance times the emitted power, or after MaximumShots. All
@@ -46,8 +53,9 @@
  *
  * Complexity: a shot costs O(column j) updates, plus for a non-diffuse shooter O(strips of row j x
  * in-strips with unshot light) by strip pairs or O(D log PhiBins) by the grid (D cells per
- * hemisphere), plus the O(N) scan for the next shooter. Memory: BytesPerEntry per entry and
- * BytesPerPatch per patch, the entries' state in column order (the order a shot walks).
+ * hemisphere) and O(view items), plus the O(N) scan for the next shooter. Memory: BytesPerEntry
+ * per entry, BytesPerPatch per patch (the entries' state in column order, the order a shot
+ * walks) and the views (ViewBytesPerCell per cell of the regions of non-diffuse sources).
  * Derivations, measurements and the variants tried: Documentation/notes/propagation.md.
  */
 #ifndef SPHCOVER_LIGHTPROPAGATION_H
@@ -132,10 +140,11 @@ struct ShotRecord
   /// Whether the shot reflected its unshot light through the whole-hemisphere grid
   /// (DirectionalMethod::Grid) rather than strip pairs.
   bool GridShot = false;
-  /// Receivers i served without the region h_ji, which is null (see the file comment).
+  /// Receivers i whose region h_ji is null (see the file comment): served by their view of the
+  /// shooter where they have one, else as the file comment says.
   std::size_t Fallbacks = 0;
   /// Of those, the ones served by the mean exitant radiance (no frames, or the direction
-  /// below the shooter's tangent plane).
+  /// below the shooter's tangent plane, and no view).
   std::size_t MeanFallbacks = 0;
   /// Wall-clock seconds of propagation since construction (or Reset), at the end of the shot.
   double Seconds = 0.0;
@@ -178,14 +187,20 @@ public:
   /// filter's output arrays.
   static constexpr std::size_t BytesPerEntry = 192;
   static constexpr std::size_t BytesPerPatch = 256;
+  /// Bytes of the receivers' views (SetFrames) per cell of a region h_ij of a non-diffuse
+  /// source j, as EstimateBytes counts them: a view holds an item of 8 bytes per cell of H_j its
+  /// samples fall in, at most one per sample, 1.8 per cell of h_ij as measured
+  /// (Documentation/notes/propagation.md, 2026-12-07).
+  static constexpr std::size_t ViewBytesPerCell = 16;
   /// Bytes per patch that the state holds whatever the materials and the cover: a diffuse
   /// patch's reflectance, emission, unshot radiance, model and power (a floor, for refusing a
   /// scene before the cover's entries are known).
   static constexpr std::size_t LeastBytesPerPatch =
     3 * sizeof(glm::dvec3) + sizeof(int) + sizeof(double);
   /// An estimate of the propagation's memory for the cover and one material per patch: the
-  /// state above and the weight tables (PointReflectances::EstimateBytes), computed without
-  /// allocating, so that a caller can refuse before constructing.
+  /// state above, the receivers' views (ViewBytesPerCell, with frames) and the weight tables
+  /// (PointReflectances::EstimateBytes), computed without allocating, so that a caller can
+  /// refuse before constructing.
   static std::size_t EstimateBytes(const SphericalCover& cover,
     const std::vector<Material>& materialOfPatch);
 
@@ -439,8 +454,25 @@ private:
     uint32_t code,
     const DirectionalShotData& shot,
     std::size_t& meanFallbacks) const;
-  /// Sets the ColumnBack codes of the receivers without h_ji from the frames.
+  /// Sets the ColumnBack codes of the receivers without h_ji from the frames, and the
+  /// receivers' views of the mirrors (BuildReceiverViews).
   void EncodeFallbacks();
+  /// Whether patch j serves its receivers by their views (every non-diffuse patch).
+  bool ServedByViews(std::size_t patch) const;
+  /// ViewBegin, Views and ViewCellsOf from the frames (none without): see the file comment.
+  void BuildReceiverViews();
+  /// Where the view of column position k of column j starts in Views, and ends at the next
+  /// position's start (ViewBegin); a position without one starts where it ends.
+  std::size_t ViewStart(std::size_t j, std::size_t k) const;
+  /// Whether column position k of column j (a receiver of a non-diffuse patch) has a view.
+  bool HasView(std::size_t j, std::size_t k) const;
+  /// The exitant radiance of directional shot `shot` of patch j averaged over the view of its
+  /// column position k, from shot.GridOut at the view's cells (FillViewCells, a grid shot, or
+  /// another rank's, ShareDirectionalShots).
+  glm::dvec3 ViewRadiance(std::size_t j, std::size_t k, const DirectionalShotData& shot) const;
+  /// A strip-pair shot of a patch served by views: shot.GridOut at ViewCellsOf[shooter], as
+  /// TowardReceiver gives them.
+  void FillViewCells(std::size_t shooter, DirectionalShotData& shot) const;
   /// sum_e E_e a_e Omega_e over row i (non-diffuse) or rho_i E_i (diffuse).
   glm::dvec3 Reflected(std::size_t patch) const;
 
@@ -489,6 +521,23 @@ private:
   std::vector<uint32_t> ColumnBack;
   /// a_e Omega_e per band for entries of non-diffuse rows (0 otherwise).
   std::vector<glm::dvec3> ColumnAlbedoMeasure;
+  /// A cell of the shooter's hemisphere in a receiver's view (BuildReceiverViews), with its
+  /// share of the view (the shares of a view sum to 1).
+  struct ViewCell
+  {
+    uint32_t Cell;
+    float Weight;
+  };
+  /// Per patch the start in ViewBegin of its column's view starts (NoView: not served by
+  /// views); ViewBegin holds ColumnEnd - ColumnBegin + 1 starts per such column, the view of a
+  /// position being Views[start, next start), by cell. All empty without frames or non-diffuse
+  /// patches.
+  static constexpr std::size_t NoView = ~std::size_t(0);
+  std::vector<std::size_t> ViewColumn;
+  std::vector<std::size_t> ViewBegin;
+  std::vector<ViewCell> Views;
+  /// Per patch served by views: the cells its column's views read, sorted, each once.
+  std::vector<std::vector<uint32_t>> ViewCellsOf;
   /// dE_e of the file comment.
   std::vector<glm::dvec3> UnshotIncident;
   /// The directional part of U_j (W, summed over the bands), kept up to date by the shots.

@@ -13,17 +13,17 @@ mean luminance.
 Measured 2026-12-07 after the render follows the mirror's reflected ray (RadianceRenderer.h,
 "Ideal mirrors"): 4.54 % and 7.36 %, mean luminance -0.24 % (before, the mirror cell of the
 characteristic points' stored E blended over the stencil: 5.13 % / 9.43 %); the unfolded room by
-sphcover itself 0.62 % / 1.17 %. The rest of the gap is the light the mirror sends into the room
-in the propagation (paper §5.1, a mirror patch's radiance toward P_i taken at its characteristic
-point; it stays at --direct-nodes 0, where the unfolded room gives 0.75 %), not the view of the
-mirror. The limits, 5.9 % / 9.6 % (1.3 times the measured errors) and 1 % for the mean, fail with
-the mirror's reflectance 0.9 (10.27 % / 11.43 %, mean -7.49 %); they would pass the old lookup
-(5.13 % / 9.43 %), which Core's NonDiffuseRendering.FlatMirrorShowsTheViewOfTheMirroredCamera
-fails pixel by pixel."""
+sphcover itself 0.62 % / 1.17 %. The rest of the gap was the light the mirror sends into the room
+in the propagation (paper §5.1, a mirror patch's radiance toward P_i taken along h_ji, from its
+characteristic point; it stayed at --direct-nodes 0, where the unfolded room gives 0.75 %).
+Since the receivers read their views of the mirror (LightPropagation.h, "Receivers' views";
+Documentation/notes/propagation.md, 2026-12-07): 1.60 % / 2.30 %, mean -0.45 %. The limits,
+2.1 % / 3.0 % (1.3 times those) and 1 % for the mean, fail the propagation without the views
+(4.52 % / 7.31 %)."""
 import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cycles_reference_check import check_against_cycles  # noqa: E402
 
-check_against_cycles("mirror_room.scene", "mirror_room_unfolded_cycles.exr", 0.059, 0.096, 0.01)
+check_against_cycles("mirror_room.scene", "mirror_room_unfolded_cycles.exr", 0.021, 0.030, 0.01)
