@@ -90,23 +90,20 @@ bool AcceptForReceiver(const void* context, std::size_t patch, float distance, b
     patch == receiver.Receiver && (!receiver.CountSelf || distance < receiver.SelfExclusion));
 }
 
-/// The rays' filter from `origin`, the receiver's point: AcceptForReceiver, asked about first
-/// hits only (RayFilter::RejectsAllNearer) when no patch but the receiver's own comes within
-/// twice the self-exclusion distance of the origin, so that every hit nearer than that is P_i
-/// itself, which AcceptForReceiver rejects (a pane's reversed copy lies there too: filtered
-/// throughout).
-RayFilter ReceiverRays(const ReceiverFilter& receiver,
+/// Whether every hit nearer than the self-exclusion distance of the rays from `origin`, the
+/// receiver's point, is P_i itself, which AcceptForReceiver rejects: no patch but the
+/// receiver's own comes within twice that distance (a pane's reversed copy lies there too).
+/// Then RayFilter::RejectsAllNearer is that distance, else 0.
+float ReceiverRejectsAllNearer(const ReceiverFilter& receiver,
   const RayCaster& rays,
   const glm::dvec3& origin)
 {
-  RayFilter filter{ AcceptForReceiver, &receiver };
-  thread_local std::vector<std::size_t> near;
+  std::vector<std::size_t> near;
   rays.PatchesNear(origin, 2.0 * receiver.SelfExclusion, near);
-  if (std::all_of(near.begin(), near.end(), [&](std::size_t p) { return p == receiver.Receiver; }))
-  {
-    filter.RejectsAllNearer = receiver.SelfExclusion;
-  }
-  return filter;
+  return std::all_of(
+           near.begin(), near.end(), [&](std::size_t p) { return p == receiver.Receiver; })
+    ? receiver.SelfExclusion
+    : 0.0f;
 }
 
 /// The unit normal of a patch whose control points all lie in one plane (to 1e-12 of its
@@ -197,6 +194,13 @@ RayCastFiller::RayCastFiller(const std::vector<Patch>& patches,
   {
     this->PassedBack.clear();
   }
+  for (std::size_t i = 0; i < patches.size(); ++i)
+  {
+    this->RejectsAllNearer.push_back(
+      ReceiverRejectsAllNearer(FilterFor(i, patches[i], options, this->PassedBack),
+        *this->Rays,
+        HemisphereFrame::OfPatch(patches[i]).Origin));
+  }
 }
 
 std::uint64_t RayCastFiller::RaysCast() const
@@ -208,10 +212,10 @@ RayCastFiller::~RayCastFiller() = default;
 
 std::size_t RayCastFiller::EnvironmentBytes() const
 {
-  // Vertices and indices (12 bytes each per vertex / triangle, about one vertex per two
-  // triangles) plus Embree's high-quality BVH, about 40 bytes per triangle (its reference
-  // figures: node and triangle storage of the 4-wide BVH with spatial splits).
-  return this->Rays->TriangleCount() * (6 + 12 + 40);
+  // Vertices and indices, 12 bytes each per vertex / triangle, plus Embree's high-quality BVH,
+  // about 40 bytes per triangle (its reference figures: node and triangle storage of the
+  // 4-wide BVH with spatial splits).
+  return this->Rays->VertexCount() * 12 + this->Rays->TriangleCount() * (12 + 40);
 }
 
 bool RayCastFiller::IsGrazing(const TriangleHit& hit, const glm::dvec3& direction) const
@@ -293,7 +297,7 @@ std::size_t RayCastFiller::CastSamples(std::size_t receiver,
   scratch.V.resize(grid.SampleCount());
   scratch.T.resize(grid.SampleCount());
   const SampleCast cast{ frame,
-    ReceiverRays(receiverFilter, *this->Rays, frame.Origin),
+    RayFilter{ AcceptForReceiver, &receiverFilter, this->RejectsAllNearer[receiver] },
     buffer,
     scratch.U.data(),
     scratch.V.data(),
@@ -614,7 +618,8 @@ void RayCastFiller::FillBehindPanes(std::size_t receiver,
   const HemisphereFrame frame = HemisphereFrame::OfPatch(this->Patches[receiver]);
   const ReceiverFilter receiverFilter =
     FilterFor(receiver, this->Patches[receiver], this->Options, this->PassedBack);
-  const RayFilter filter = ReceiverRays(receiverFilter, *this->Rays, frame.Origin);
+  const RayFilter filter =
+    RayFilter{ AcceptForReceiver, &receiverFilter, this->RejectsAllNearer[receiver] };
   behind.Reset(receiver);
   const int samplesTheta = grid.SamplesTheta();
   const int samplesPhi = grid.SamplesPhi();
@@ -802,7 +807,8 @@ double RayCastFiller::VisibleProjectedSolidAngle(std::size_t receiver,
   const Patch& self = this->Patches[receiver];
   const HemisphereFrame frame = HemisphereFrame::OfPatch(self);
   const ReceiverFilter receiverFilter = FilterFor(receiver, self, this->Options, this->PassedBack);
-  const RayFilter filter = ReceiverRays(receiverFilter, *this->Rays, frame.Origin);
+  const RayFilter filter =
+    RayFilter{ AcceptForReceiver, &receiverFilter, this->RejectsAllNearer[receiver] };
   return sphcover::VisibleProjectedSolidAngle(
     *this->Rays, frame.Origin, frame.Normal, filter, source, this->Patches[source], minimumSide);
 }

@@ -266,6 +266,9 @@ private:
   /// no patch is.
   std::vector<char> PassedBack;
   std::shared_ptr<const RayCaster> Rays;
+  /// Per receiver RayFilter::RejectsAllNearer of its point's rays (ReceiverRejectsAllNearer):
+  /// found once, as the measured lamp regions ask for it once per lamp patch a receiver sees.
+  std::vector<float> RejectsAllNearer;
   mutable std::atomic<std::uint64_t> RayCount{ 0 };
 };
 

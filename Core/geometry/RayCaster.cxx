@@ -253,6 +253,7 @@ struct RayCaster::Implementation
   std::vector<int> QuadsU;
   std::vector<int> QuadsV;
   std::size_t Triangles = 0;
+  std::size_t Vertices = 0;
   /// Per patch the bounding box of its triangles, and a tree over them (PatchesNear).
   std::vector<Box> TriangleBounds;
   std::unique_ptr<BoundingBoxTree> BoundsTree;
@@ -406,6 +407,7 @@ struct RayCaster::Implementation
     rtcAttachGeometryByID(this->Scene, geometry, static_cast<unsigned int>(p));
     rtcReleaseGeometry(geometry);
     this->Triangles += triangleCount;
+    this->Vertices += vertexCount;
   }
 
   /// Patch parameters of a hit from its triangle and barycentric coordinates.
@@ -674,6 +676,11 @@ std::size_t RayCaster::PatchCount() const
 std::size_t RayCaster::TriangleCount() const
 {
   return this->Impl->Triangles;
+}
+
+std::size_t RayCaster::VertexCount() const
+{
+  return this->Impl->Vertices;
 }
 
 void RayCaster::Resolution(std::size_t patch, int& quadsU, int& quadsV) const

@@ -208,6 +208,8 @@ public:
   std::size_t PatchCount() const;
   /// Number of triangles of the tessellation.
   std::size_t TriangleCount() const;
+  /// Number of vertices of the tessellation (each patch has its own).
+  std::size_t VertexCount() const;
   /// Tessellation resolution of a patch.
   void Resolution(std::size_t patch, int& quadsU, int& quadsV) const;
 
