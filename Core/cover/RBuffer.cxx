@@ -322,11 +322,25 @@ void RBuffer::Classify(const std::function<float(std::size_t sample, int32_t sou
     {
       std::vector<std::size_t>& sampleOf = vote.Samples();
       const bool grazing = GatherCellSamples(grid, row, column, this->SampleGrazings, sampleOf);
-      const CellWinner elected = ElectCellSource(vote, groupKey, groupCarry, sourceCarry);
+      // Most cells show one source in all their samples (the ray fill's uniform cells): it
+      // wins both rounds untied with every sample, and its carries change by its count minus
+      // PerCell, zero, so the vote would give what this gives.
+      const int32_t only = this->SampleSources[sampleOf[0]];
+      bool uniform = true;
+      for (std::size_t k = 1; k < sampleOf.size() && uniform; ++k)
+      {
+        uniform = this->SampleSources[sampleOf[k]] == only;
+      }
+      CellWinner elected{ only, false };
+      int votes = static_cast<int>(sampleOf.size());
+      std::size_t representative = sampleOf[static_cast<size_t>(order[0])];
+      if (!uniform)
+      {
+        elected = ElectCellSource(vote, groupKey, groupCarry, sourceCarry);
+        representative =
+          RepresentativeSample(this->SampleSources, sampleOf, order, elected.Source, votes);
+      }
       const int32_t winner = elected.Source;
-      int votes = 0;
-      const std::size_t representative =
-        RepresentativeSample(this->SampleSources, sampleOf, order, winner, votes);
       const int cell = grid.CellIndex(row, column);
       this->CellSources[static_cast<size_t>(cell)] = winner;
       this->CellVoteCounts[static_cast<size_t>(cell)] = static_cast<uint8_t>(std::min(votes, 255));
