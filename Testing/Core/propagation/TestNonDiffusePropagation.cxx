@@ -475,6 +475,22 @@ double CentredSquare(double a, double d)
 
 namespace
 {
+/// The materials of the mirror configurations below: surface 0 a mirror (k_s), 1 a black lamp
+/// (Le), any other black.
+std::vector<Material> MirrorLampReceiver(const std::vector<Patch>& patches,
+  const glm::dvec3& ks,
+  const glm::dvec3& le)
+{
+  std::vector<Material> materials;
+  for (const Patch& patch : patches)
+  {
+    materials.push_back(patch.SurfaceIndex == 0 ? Mirror(ks)
+        : patch.SurfaceIndex == 1               ? Diffuse(glm::dvec3(0.0), le)
+                                                : Diffuse(glm::dvec3(0.0)));
+  }
+  return materials;
+}
+
 /// The mirror configuration below with a receiver of half-size `half`; returns the updates
 /// served without h_ji.
 std::size_t CheckMirrorCarriesLight(double half, bool frames)
@@ -501,13 +517,7 @@ std::size_t CheckMirrorCarriesLight(double half, bool frames)
   EXPECT_LT(patches.back().Normal.z, 0.0);
   SphericalCover cover;
   EXPECT_TRUE(cover.Build(patches));
-  std::vector<Material> materials;
-  for (const Patch& patch : patches)
-  {
-    materials.push_back(patch.SurfaceIndex == 0 ? Mirror(ks)
-        : patch.SurfaceIndex == 1               ? Diffuse(glm::dvec3(0.0), le)
-                                                : Diffuse(glm::dvec3(0.0)));
-  }
+  const std::vector<Material> materials = MirrorLampReceiver(patches, ks, le);
   const size_t receiver = patches.size() - 1;
   // The receiver sees the mirror only: no entry of its row is the lamp.
   const size_t lamp = receiver - 1;
@@ -620,13 +630,7 @@ void MirrorImageOfASmallLamp(double d,
     1);
   SphericalCover cover;
   ASSERT_TRUE(cover.Build(patches));
-  std::vector<Material> materials;
-  for (const Patch& patch : patches)
-  {
-    materials.push_back(patch.SurfaceIndex == 0 ? Mirror(ks)
-        : patch.SurfaceIndex == 1               ? Diffuse(glm::dvec3(0.0), le)
-                                                : Diffuse(glm::dvec3(0.0)));
-  }
+  const std::vector<Material> materials = MirrorLampReceiver(patches, ks, le);
   const size_t receiver = patches.size() - 1;
   ASSERT_LT(patches[receiver].Normal.z, 0.0);
   ASSERT_LT(patches[receiver - 1].Normal.z, 0.0);
