@@ -152,6 +152,18 @@ HemisphereGrid::HemisphereGrid(int thetaBins, int phiBins, int samplesTheta, int
     this->ColumnSin[static_cast<size_t>(column)] = std::sin(phi);
   }
 
+  // The edges as CellOfAngles draws them: theta = r DeltaTheta, phi = c DeltaPhi.
+  for (int row = 0; row <= thetaBins; ++row)
+  {
+    this->RowEdgeCos.push_back(std::cos(row * this->DeltaTheta));
+    this->RowEdgeSin.push_back(std::sin(row * this->DeltaTheta));
+  }
+  for (int column = 0; column <= phiBins; ++column)
+  {
+    this->ColumnEdgeCos.push_back(std::cos(column * this->DeltaPhi));
+    this->ColumnEdgeSin.push_back(std::sin(column * this->DeltaPhi));
+  }
+
   // Order of the samples from the cell centre, in coordinates normalised to the unit square.
   this->CentreOrder.resize(static_cast<size_t>(this->SamplesPerCell()));
   std::iota(this->CentreOrder.begin(), this->CentreOrder.end(), 0);
@@ -219,10 +231,80 @@ int HemisphereGrid::CellOfAngles(double theta, double phi) const
 
 int HemisphereGrid::CellOfLocalDirection(const glm::dvec3& local) const
 {
-  double theta;
-  double phi;
-  LocalAngles(local, theta, phi);
-  return this->CellOfAngles(theta, phi);
+  // The directional part of the render (paper §5.3.1) looks the eye's cell up per stencil point
+  // and sample: by the edges' (sin, cos) instead of two atan2 (and a hypot). A direction at the
+  // angle a from an edge at the angle e has cross product |d| sin(a - e) with the edge's unit
+  // vector, so its sign says on which side the direction lies; farther than `margin` from both
+  // edges of the cell found, the rounding of atan2 and of CellOfAngles' division (a few 1e-16
+  // rad) cannot put the direction in another cell, so the cell is that of the atan2 path.
+  constexpr double margin = 1e-9;
+  auto byAngles = [&]
+  {
+    double theta;
+    double phi;
+    LocalAngles(local, theta, phi);
+    return this->CellOfAngles(theta, phi);
+  };
+  const double rxy = std::sqrt(local.x * local.x + local.y * local.y);
+  const double length = std::sqrt(rxy * rxy + local.z * local.z);
+  if (!(local.z > margin * length) || !(rxy > margin * length) || !std::isfinite(length))
+  {
+    // Near the pole (phi undefined), near or below the tangent plane, or not finite.
+    return byAngles();
+  }
+  // Row: the last edge r with theta >= r DeltaTheta, i.e. sin(theta - e_r) >= 0:
+  // rxy cos e_r - z sin e_r >= 0 (every theta and e_r in [0, pi/2], so the sign is monotone).
+  auto rowSide = [&](int r)
+  {
+    return rxy * this->RowEdgeCos[static_cast<size_t>(r)] -
+      local.z * this->RowEdgeSin[static_cast<size_t>(r)];
+  };
+  int low = 0;                    // rowSide(0) = rxy > 0
+  int high = this->ThetaBinCount; // rowSide(ThetaBins) = -z < 0
+  while (high - low > 1)
+  {
+    const int middle = (low + high) / 2;
+    (rowSide(middle) >= 0.0 ? low : high) = middle;
+  }
+  const int row = low;
+  // Column: phi in (0, pi) when y > 0, in (pi, 2 pi) when y < 0; the edges searched lie in the
+  // same half turn plus its ends, so sin(phi - e_c) = (y cos e_c - x sin e_c) / rxy is monotone
+  // in c there.
+  auto columnSide = [&](int c)
+  {
+    return local.y * this->ColumnEdgeCos[static_cast<size_t>(c)] -
+      local.x * this->ColumnEdgeSin[static_cast<size_t>(c)];
+  };
+  if (!(std::fabs(local.y) > margin * rxy))
+  {
+    // Near phi = 0 or pi: an edge of the half turns.
+    return byAngles();
+  }
+  // The edges from phi = 0 to the first at or beyond pi (y > 0), or from the last at or below
+  // pi to 2 pi (y < 0).
+  const int first = local.y > 0.0 ? 0 : this->PhiBinCount / 2;
+  const int last = local.y > 0.0 ? (this->PhiBinCount + 1) / 2 : this->PhiBinCount;
+  // Within half a turn of every edge searched but perhaps the ends (an odd PhiBins puts one
+  // just past pi): columnSide(first) >= 0 > columnSide(last) is checked, else the atan2 path.
+  if (!(columnSide(first) >= 0.0) || !(columnSide(last) < 0.0))
+  {
+    return byAngles();
+  }
+  low = first;
+  high = last;
+  while (high - low > 1)
+  {
+    const int middle = (low + high) / 2;
+    (columnSide(middle) >= 0.0 ? low : high) = middle;
+  }
+  const int column = low;
+  if (!(rowSide(row) > margin * length) || !(-rowSide(row + 1) > margin * length) ||
+    !(columnSide(column) > margin * rxy) || !(-columnSide(column + 1) > margin * rxy))
+  {
+    // Within the margin of an edge: the atan2 path's rounding decides.
+    return byAngles();
+  }
+  return this->CellIndex(row, column);
 }
 
 glm::dvec3 HemisphereGrid::CellCentreDirection(int cell) const

@@ -113,7 +113,12 @@ public:
   /// plane) or not finite. phi is taken modulo 2 pi. theta = pi/2 exactly belongs to the last
   /// row.
   int CellOfAngles(double theta, double phi) const;
-  /// The cell containing a local direction; -1 below the tangent plane.
+  /// The cell containing a local direction; -1 below the tangent plane. The same cell as
+  /// CellOfAngles(LocalAngles(local)) for every direction, without trigonometry for all but
+  /// those within 1e-9 rad of a cell's edge: the row and column are found by the signs of cross
+  /// products with the edges' (sin, cos) (binary searches over ThetaBins() + 1 and PhiBins() + 1
+  /// edges), and a direction that close to an edge takes the atan2 path, whose rounding alone
+  /// decides there.
   int CellOfLocalDirection(const glm::dvec3& local) const;
   /// The unit local direction at the centre (in theta and phi) of a cell.
   glm::dvec3 CellCentreDirection(int cell) const;
@@ -176,6 +181,12 @@ private:
   std::vector<double> SampleSin;
   std::vector<double> ColumnCos;
   std::vector<double> ColumnSin;
+  /// cos and sin of the row edges r DeltaTheta (r = 0 .. ThetaBins) and of the column edges
+  /// c DeltaPhi (c = 0 .. PhiBins): CellOfLocalDirection's tests.
+  std::vector<double> RowEdgeCos;
+  std::vector<double> RowEdgeSin;
+  std::vector<double> ColumnEdgeCos;
+  std::vector<double> ColumnEdgeSin;
   std::vector<int> CentreOrder;
 };
 

@@ -602,10 +602,164 @@ bool RayCaster::CastRay(const glm::dvec3& origin,
   {
     return false;
   }
+  this->ResolveHit(origin, direction, triangle, hit, false);
+  return true;
+}
+
+void RayCaster::CastPacket(const glm::dvec3& origin,
+  const glm::dvec3* directions,
+  int count,
+  float tNear,
+  const RayFilter& filter,
+  RayHit* hits,
+  bool* found,
+  bool quadStart) const
+{
+  TriangleHit triangles[PacketSize];
+  this->IntersectPacket(origin, directions, count, tNear, filter, triangles, found);
+  for (int k = 0; k < count; ++k)
+  {
+    if (found[k])
+    {
+      this->ResolveHit(origin, directions[k], triangles[k], hits[k], quadStart);
+    }
+  }
+}
+
+namespace
+{
+/// The (u, v, t) where the ray meets a convex planar bilinear patch with corners a = Q(0, 0),
+/// b = Q(1, 0), c = Q(1, 1), d = Q(0, 1), in closed form: t on the plane, then (u, v) of the
+/// bilinear map's inverse in the plane's two dominant coordinates (Q = a + e u + f v + g u v:
+/// v the root in [0, 1] of k2 v^2 + k1 v + k0 = 0 of the cross products). False where the ray
+/// is parallel to the plane or no root lies in the patch (the caller then starts from the
+/// triangle's point).
+bool QuadIntersection(const glm::dvec3& a,
+  const glm::dvec3& b,
+  const glm::dvec3& c,
+  const glm::dvec3& d,
+  const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  double& u,
+  double& v,
+  double& t)
+{
+  const glm::dvec3 normal = glm::cross(b - a, d - a) + glm::cross(c - b, c - d);
+  const double facing = glm::dot(direction, normal);
+  if (!(std::fabs(facing) > 0.0))
+  {
+    return false;
+  }
+  t = glm::dot(a - origin, normal) / facing;
+  const glm::dvec3 point = origin + t * direction;
+  // The plane's two coordinates in which the quad's projection is largest.
+  const glm::dvec3 magnitude = glm::abs(normal);
+  const int drop = magnitude.x >= magnitude.y && magnitude.x >= magnitude.z ? 0
+    : magnitude.y >= magnitude.z                                            ? 1
+                                                                            : 2;
+  const int i = drop == 0 ? 1 : 0;
+  const int j = drop == 2 ? 1 : 2;
+  auto cross2 = [i, j](const glm::dvec3& x, const glm::dvec3& y)
+  { return x[i] * y[j] - x[j] * y[i]; };
+  const glm::dvec3 e = b - a;
+  const glm::dvec3 f = d - a;
+  const glm::dvec3 g = a - b + c - d;
+  const glm::dvec3 h = point - a;
+  const double k2 = cross2(g, f);
+  const double k1 = cross2(e, f) + cross2(h, g);
+  const double k0 = cross2(h, e);
+  const double scale = std::fabs(cross2(e, f));
+  double roots[2];
+  int count = 0;
+  if (std::fabs(k2) <= 1e-12 * scale)
+  {
+    // A parallelogram (or nearly): the equation is linear.
+    if (!(std::fabs(k1) > 0.0))
+    {
+      return false;
+    }
+    roots[count++] = -k0 / k1;
+  }
+  else
+  {
+    const double discriminant = k1 * k1 - 4.0 * k0 * k2;
+    if (!(discriminant >= 0.0))
+    {
+      return false;
+    }
+    const double w = std::sqrt(discriminant);
+    // Without the cancellation of -k1 + w: q = -(k1 + sign(k1) w) / 2, roots q / k2 and k0 / q.
+    const double q = -0.5 * (k1 + std::copysign(w, k1));
+    roots[count++] = q / k2;
+    if (q != 0.0)
+    {
+      roots[count++] = k0 / q;
+    }
+  }
+  constexpr double slack = 1e-6;
+  for (int r = 0; r < count; ++r)
+  {
+    const double root = roots[r];
+    if (!(root >= -slack && root <= 1.0 + slack))
+    {
+      continue;
+    }
+    // h - f v = (e + g v) u: u by least squares over the three coordinates.
+    const glm::dvec3 along = e + g * root;
+    const double length2 = glm::dot(along, along);
+    if (!(length2 > 0.0))
+    {
+      continue;
+    }
+    const double candidate = glm::dot(h - f * root, along) / length2;
+    if (candidate >= -slack && candidate <= 1.0 + slack)
+    {
+      u = candidate;
+      v = root;
+      return std::isfinite(t);
+    }
+  }
+  return false;
+}
+}
+
+void RayCaster::ResolveHit(const glm::dvec3& origin,
+  const glm::dvec3& direction,
+  const TriangleHit& triangle,
+  RayHit& hit,
+  bool quadStart) const
+{
   hit.Patch = triangle.Patch;
   hit.U = triangle.U;
   hit.V = triangle.V;
   hit.T = triangle.Distance;
+  if (quadStart && this->Impl->Options.RefineHits && this->Impl->QuadsU[hit.Patch] == 1 &&
+    this->Impl->QuadsV[hit.Patch] == 1)
+  {
+    // A convex planar quadrilateral (ChooseResolution's one quad): its exact (u, v, t) in closed
+    // form, which the refinement below then only confirms (its first residual is within its
+    // tolerance), instead of three to five Newton steps from the triangle's point.
+    const BezierPatch& patch = *this->Impl->Patches[hit.Patch].Geometry;
+    const int m = patch.DegreeU();
+    const int n = patch.DegreeV();
+    double u;
+    double v;
+    double t;
+    if (QuadIntersection(patch.ControlPoint(0, 0),
+          patch.ControlPoint(m, 0),
+          patch.ControlPoint(m, n),
+          patch.ControlPoint(0, n),
+          origin,
+          direction,
+          u,
+          v,
+          t))
+    {
+      hit.U = u;
+      hit.V = v;
+      hit.T = t;
+    }
+  }
   if (this->Impl->Options.RefineHits)
   {
     double u = hit.U;
@@ -628,7 +782,6 @@ bool RayCaster::CastRay(const glm::dvec3& origin,
     normal = triangle.TriangleNormal;
   }
   hit.FrontSide = glm::dot(normal, direction) < 0.0;
-  return true;
 }
 
 bool RayCaster::FirstHit(const glm::dvec3& origin,

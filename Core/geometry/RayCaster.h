@@ -190,6 +190,26 @@ public:
     RayHit& hit) const;
 
   /**
+   * CastRay for `count` <= PacketSize unit directions from one origin (a tile of a camera's
+   * pixels, paper §5.3): one IntersectPacket, then each hit refined and sided as CastRay does.
+   * found[k] tells whether ray k hit, hits[k] its hit. The same as CastRay ray by ray up to the
+   * packet kernel's rounding (IntersectPacket): the refinement starts from the packet's
+   * triangle point, so a hit could differ from CastRay's by the refinement's convergence
+   * (1e-12 of the patch's size) and, for a ray through a shared edge or vertex, by the patch
+   * met. `quadStart`: on a convex planar quadrilateral (one quad of two exact triangles) the
+   * refinement starts from the closed-form (u, v, t) of the bilinear patch, which it confirms
+   * in one evaluation, instead of the triangle's point: the same point up to that convergence.
+   */
+  void CastPacket(const glm::dvec3& origin,
+    const glm::dvec3* directions,
+    int count,
+    float tNear,
+    const RayFilter& filter,
+    RayHit* hits,
+    bool* found,
+    bool quadStart = false) const;
+
+  /**
    * The first patch met by the ray origin + t direction, t > tNear, from either side: its
    * index, the distance t (of the tessellation) and whether the side met is the front. False
    * when the ray escapes.
@@ -214,6 +234,13 @@ public:
   void Resolution(std::size_t patch, int& quadsU, int& quadsV) const;
 
 private:
+  /// CastRay's refinement and side of a triangle hit (`quadStart`: CastPacket's).
+  void ResolveHit(const glm::dvec3& origin,
+    const glm::dvec3& direction,
+    const TriangleHit& triangle,
+    RayHit& hit,
+    bool quadStart) const;
+
   struct Implementation;
   std::unique_ptr<Implementation> Impl;
 };

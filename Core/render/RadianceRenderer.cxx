@@ -97,9 +97,18 @@ struct SampleHit
 /// distance: the few samples sorted by surface, the runs counted. `hits` is not empty.
 void MostHitSurface(std::vector<SampleHit>& hits, int& surface, double& depth)
 {
-  std::stable_sort(hits.begin(),
-    hits.end(),
-    [](const SampleHit& a, const SampleHit& b) { return a.Surface < b.Surface; });
+  // A stable insertion sort: the order std::stable_sort gives, without its buffer's allocation
+  // per pixel (a pixel has a few samples).
+  for (size_t k = 1; k < hits.size(); ++k)
+  {
+    const SampleHit hit = hits[k];
+    size_t m = k;
+    for (; m > 0 && hit.Surface < hits[m - 1].Surface; --m)
+    {
+      hits[m] = hits[m - 1];
+    }
+    hits[m] = hit;
+  }
   int best = -1;
   size_t bestCount = 0;
   double bestDistance = 0.0;
@@ -446,6 +455,9 @@ void RadianceRenderer::SetDirectionalIllumination(DirectionalIllumination illumi
     }
   }
   this->Directional = std::make_unique<DirectionalIllumination>(std::move(illumination));
+  // The caches hold the former illumination's values.
+  const std::lock_guard<std::mutex> lock(this->CachePoolMutex);
+  this->CachePool.clear();
 }
 
 const glm::dvec3* RadianceRenderer::MirrorOf(int surface) const
@@ -745,9 +757,24 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
   DirectionalCache* cache,
   SampleResult& sample,
   int bounces,
-  std::ptrdiff_t leaving) const
+  std::ptrdiff_t leaving,
+  const PrecastHit* precast) const
 {
   RayCaster::RayHit hit;
+  // The first cast's hit, given (a packet's, RenderRows) or cast here.
+  auto first = [&](float nearest, const RayFilter& filter)
+  {
+    if (precast)
+    {
+      hit.Patch = precast->Patch;
+      hit.U = precast->U;
+      hit.V = precast->V;
+      hit.T = precast->T;
+      hit.FrontSide = precast->FrontSide;
+      return precast->Found;
+    }
+    return this->Caster->CastRay(eye, direction, nearest, filter, hit);
+  };
   LeavingMirror mirror{ &this->Patches,
     this->PassedBack.empty() ? nullptr : &this->PassedBack,
     leaving < 0 ? -1 : this->Patches[static_cast<std::size_t>(leaving)].SurfaceIndex,
@@ -757,7 +784,7 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
   const RayFilter fromMirror{ PassOwnBackNear, &mirror };
   if (this->PassedBack.empty())
   {
-    if (!(leaving < 0 ? this->Caster->CastRay(eye, direction, hit)
+    if (!(leaving < 0 ? first(0.0f, RayFilter())
                       : this->Caster->CastRay(eye, direction, 0.0f, fromMirror, hit)))
     {
       return false;
@@ -774,7 +801,8 @@ bool RadianceRenderer::TraceSample(const glm::dvec3& eye,
   float nearest = 0.0f;
   for (int pane = 0; pane <= MaxPanesPerSample; ++pane)
   {
-    if (!this->Caster->CastRay(eye, direction, nearest, filter, hit))
+    if (!(pane == 0 ? first(nearest, filter)
+                    : this->Caster->CastRay(eye, direction, nearest, filter, hit)))
     {
       return pane > 0;
     }
@@ -841,6 +869,33 @@ void RadianceRenderer::MarkPassedBacks()
   }
 }
 
+RayFilter RadianceRenderer::EyeFilter() const
+{
+  return this->PassedBack.empty() ? RayFilter() : RayFilter{ PassPaneBacks, &this->PassedBack };
+}
+
+std::unique_ptr<RadianceRenderer::DirectionalCache> RadianceRenderer::AcquireCache() const
+{
+  {
+    const std::lock_guard<std::mutex> lock(this->CachePoolMutex);
+    if (!this->CachePool.empty())
+    {
+      std::unique_ptr<DirectionalCache> cache = std::move(this->CachePool.back());
+      this->CachePool.pop_back();
+      return cache;
+    }
+  }
+  // 2^16 slots (2 MiB): the pairs a thread's tiles of a frame see, most of them again in the
+  // next frame of a walk.
+  return std::make_unique<DirectionalCache>(16);
+}
+
+void RadianceRenderer::ReleaseCache(std::unique_ptr<DirectionalCache> cache) const
+{
+  const std::lock_guard<std::mutex> lock(this->CachePoolMutex);
+  this->CachePool.push_back(std::move(cache));
+}
+
 bool RadianceRenderer::Render(const Camera& camera,
   const RenderSettings& settings,
   RenderedImage& image,
@@ -884,7 +939,7 @@ std::vector<uint64_t> RadianceRenderer::DirectionalPairs(const Camera& camera,
     return {};
   }
   RenderedImage scratch;
-  std::vector<std::vector<uint64_t>> needed(static_cast<size_t>(std::max(0, camera.Height)));
+  std::vector<std::vector<uint64_t>> needed;
   this->RenderRows(camera, settings, scratch, parallelFor, nullptr, nullptr, &needed);
   std::vector<uint64_t> pairs;
   for (std::vector<uint64_t>& row : needed)
@@ -961,74 +1016,172 @@ bool RadianceRenderer::RenderRows(const Camera& camera,
   std::vector<double> offsetY;
   SampleOffsets(samples, offsetX, offsetY);
 
+  // Tiles of TileSide x TileSide pixels (paper §5.3: the visible surface of each pixel): a
+  // tile's rays of one sample index leave the eye through neighbouring pixels, so they are cast
+  // as one packet (RayCaster::CastPacket) and then shaded one by one, each pixel's samples in
+  // their order (the pixel's sum is the same sum as one ray at a time).
+  constexpr int side = TileSide;
+  const int tilesX = (width + side - 1) / side;
+  const int tilesY = (height + side - 1) / side;
+  if (needed)
+  {
+    needed->assign(static_cast<size_t>(tilesX) * static_cast<size_t>(tilesY), {});
+  }
+  const RayFilter eyeFilter = this->EyeFilter();
   std::atomic<std::size_t> missing{ 0 };
   std::atomic<uint64_t> paneLimit{ 0 };
-  auto renderRow = [&](int j)
+  auto renderTile = [&](int tileX, int tileY, DirectionalCache* cache)
   {
-    uint64_t rowPaneLimit = 0;
-    std::vector<SampleHit> hits;
-    std::unique_ptr<DirectionalCache> cache =
-      this->Directional ? std::make_unique<DirectionalCache>() : nullptr;
-    if (cache)
+    uint64_t tilePaneLimit = 0;
+    const int i0 = tileX * side;
+    const int j0 = tileY * side;
+    const int columns = std::min(side, width - i0);
+    const int rows = std::min(side, height - j0);
+    const int count = columns * rows;
+    glm::dvec3 sums[side * side];
+    // The samples' hits per pixel, kept per thread: no allocation per tile.
+    thread_local std::vector<SampleHit> hits[side * side];
+    double shiftX[side * side];
+    double shiftY[side * side];
+    for (int p = 0; p < count; ++p)
     {
-      cache->Given = given;
-      cache->Needed = needed ? &(*needed)[static_cast<size_t>(j)] : nullptr;
-    }
-    for (int i = 0; i < width; ++i)
-    {
-      hits.clear();
-      glm::dvec3 sum(0.0);
-      const size_t pixel = static_cast<size_t>(j) * static_cast<size_t>(width) + i;
-      // One sample stays at the pixel's centre (no shift).
-      double shiftX = 0.0;
-      double shiftY = 0.0;
+      sums[p] = glm::dvec3(0.0);
+      hits[p].clear();
+      shiftX[p] = 0.0;
+      shiftY[p] = 0.0;
       if (samples > 1)
       {
-        PixelShift(pixel, shiftX, shiftY);
+        // One sample stays at the pixel's centre (no shift).
+        PixelShift(static_cast<size_t>(j0 + p / columns) * static_cast<size_t>(width) +
+            static_cast<size_t>(i0 + p % columns),
+          shiftX[p],
+          shiftY[p]);
       }
-      for (int k = 0; k < samples; ++k)
+    }
+    glm::dvec3 directions[side * side];
+    RayCaster::RayHit cast[side * side];
+    bool found[side * side] = {};
+    for (int k = 0; k < samples; ++k)
+    {
+      for (int p = 0; p < count; ++p)
       {
-        const double x = 2.0 * (i + Wrap(offsetX[static_cast<size_t>(k)] + shiftX)) / width - 1.0;
-        const double y = 2.0 * (j + Wrap(offsetY[static_cast<size_t>(k)] + shiftY)) / height - 1.0;
-        const glm::dvec3 direction = glm::normalize(frame.Forward + x * frame.Right + y * frame.Up);
+        const int i = i0 + p % columns;
+        const int j = j0 + p / columns;
+        const double x =
+          2.0 * (i + Wrap(offsetX[static_cast<size_t>(k)] + shiftX[p])) / width - 1.0;
+        const double y =
+          2.0 * (j + Wrap(offsetY[static_cast<size_t>(k)] + shiftY[p])) / height - 1.0;
+        directions[p] = glm::normalize(frame.Forward + x * frame.Right + y * frame.Up);
+      }
+      if (settings.FastPrimaryRays)
+      {
+        this->Caster->CastPacket(frame.Eye, directions, count, 0.0f, eyeFilter, cast, found, true);
+      }
+      for (int p = 0; p < count; ++p)
+      {
+        PrecastHit precast;
+        precast.Found = found[p];
+        if (found[p])
+        {
+          precast.Patch = cast[p].Patch;
+          precast.U = cast[p].U;
+          precast.V = cast[p].V;
+          precast.T = cast[p].T;
+          precast.FrontSide = cast[p].FrontSide;
+        }
         SampleResult sample;
-        if (!this->TraceSample(frame.Eye, direction, cache.get(), sample))
+        if (!this->TraceSample(frame.Eye,
+              directions[p],
+              cache,
+              sample,
+              0,
+              -1,
+              settings.FastPrimaryRays ? &precast : nullptr))
         {
           continue;
         }
-        hits.push_back({ sample.Surface, sample.T });
-        rowPaneLimit += sample.PaneLimit ? 1 : 0;
+        hits[p].push_back({ sample.Surface, sample.T });
+        tilePaneLimit += sample.PaneLimit ? 1 : 0;
         if (sample.Lit)
         {
-          sum += sample.Radiance;
+          sums[p] += sample.Radiance;
         }
       }
-      StorePixel(pixel, sum, samples, hits, image);
     }
-    if (cache && cache->Missing > 0)
+    for (int p = 0; p < count; ++p)
     {
-      missing += cache->Missing;
+      StorePixel(static_cast<size_t>(j0 + p / columns) * static_cast<size_t>(width) +
+          static_cast<size_t>(i0 + p % columns),
+        sums[p],
+        samples,
+        hits[p],
+        image);
     }
-    paneLimit += rowPaneLimit;
+    paneLimit += tilePaneLimit;
+  };
+  // Listing or reading the pairs (needed, given): caches of this call's own, as fresh as the
+  // table (a pair a cache met in an earlier tile was listed there: the lists are merged).
+  std::mutex callPoolMutex;
+  std::vector<std::unique_ptr<DirectionalCache>> callPool;
+  auto runTile = [&](size_t tile)
+  {
+    const int tileX = static_cast<int>(tile % static_cast<size_t>(tilesX));
+    const int tileY = static_cast<int>(tile / static_cast<size_t>(tilesX));
+    if (!this->Directional)
+    {
+      renderTile(tileX, tileY, nullptr);
+      return;
+    }
+    if (!given && !needed)
+    {
+      std::unique_ptr<DirectionalCache> cache = this->AcquireCache();
+      renderTile(tileX, tileY, cache.get());
+      this->ReleaseCache(std::move(cache));
+      return;
+    }
+    std::unique_ptr<DirectionalCache> cache;
+    {
+      const std::lock_guard<std::mutex> lock(callPoolMutex);
+      if (!callPool.empty())
+      {
+        cache = std::move(callPool.back());
+        callPool.pop_back();
+      }
+    }
+    if (!cache)
+    {
+      cache = std::make_unique<DirectionalCache>();
+      cache->Given = given;
+    }
+    cache->Needed = needed ? &(*needed)[tile] : nullptr;
+    renderTile(tileX, tileY, cache.get());
+    const std::lock_guard<std::mutex> lock(callPoolMutex);
+    callPool.push_back(std::move(cache));
   };
 
-  // Ten batches of rows, each run in parallel; progress and abort between batches.
-  const int batch = std::max(1, (height + 9) / 10);
-  for (int first = 0; first < height; first += batch)
+  // Ten batches of tile rows, the tiles of each run in parallel; progress and abort between
+  // batches.
+  const int batch = std::max(1, (tilesY + 9) / 10);
+  for (int first = 0; first < tilesY; first += batch)
   {
-    const int last = std::min(height, first + batch);
-    parallelFor(static_cast<size_t>(last - first),
+    const int last = std::min(tilesY, first + batch);
+    const size_t firstTile = static_cast<size_t>(first) * static_cast<size_t>(tilesX);
+    parallelFor(static_cast<size_t>(last - first) * static_cast<size_t>(tilesX),
       [&](size_t begin, size_t end)
       {
-        for (size_t r = begin; r < end; ++r)
+        for (size_t t = begin; t < end; ++t)
         {
-          renderRow(first + static_cast<int>(r));
+          runTile(firstTile + t);
         }
       });
-    if (progress && !progress(static_cast<double>(last) / height))
+    if (progress && !progress(static_cast<double>(std::min(height, last * side)) / height))
     {
       return false;
     }
+  }
+  for (const std::unique_ptr<DirectionalCache>& cache : callPool)
+  {
+    missing += cache->Missing;
   }
   image.PaneLimitSamples = paneLimit.load();
   image.SampleCount = static_cast<uint64_t>(pixels) * static_cast<uint64_t>(samples);

@@ -18,7 +18,9 @@
  * k, I_dir,k = DirectionalExitantRadiance of point k toward the eye in k's hemisphere frame
  * (the BRDF being linear in E, the same as the BRDF applied to the interpolated E), resolved
  * to the cells of the HemisphereGrid; a two-sided surface's back side shows its Lambertian
- * part only. The samples of a row of pixels share a cache per (point, eye cell).
+ * part only. I_dir,k depends on the eye through its cell only, so Render keeps it per (point,
+ * eye cell) in caches that live across frames (a walk-through's): a frame evaluates the pairs
+ * no frame before it met (RadianceRenderer::CachePool).
  *
  * Ideal mirrors (paper §3.5.1, "I(theta_r, phi_r) = k_specular e(theta_r, phi_r - pi)"): the
  * radiance a mirror sends toward the eye is k_s times the radiance that arrives at the visible
@@ -45,8 +47,12 @@
  * instead of adding up; one sample is the pixel's centre when N = 1); Radiance is their mean (an
  * escaping ray counts 0), SurfaceId the surface most samples hit (ties: the lowest index; -1:
  * none) and Depth their mean distance on it (-1: none). Cost: O(samples x (log triangles +
- * stencil)); rows in ten batches through a ParallelFor, progress and abort between batches;
- * the image does not depend on the thread count. Details: Documentation/notes/ray-casting.md.
+ * stencil)); tiles of 4 x 4 pixels whose rays of one sample index are cast as one Embree packet
+ * (TileSide), the tiles in ten batches of tile rows through a ParallelFor, progress and abort
+ * between batches; the image does not depend on the thread count. A packet's hits are those of
+ * single rays up to Embree's packet kernel's rounding (RayCaster::CastPacket): the image equals
+ * one cast ray by ray within Documentation/notes/walk-through.md's (2026-12-07) tolerance.
+ * Details: Documentation/notes/ray-casting.md.
  */
 #ifndef SPHCOVER_RADIANCERENDERER_H
 #define SPHCOVER_RADIANCERENDERER_H
@@ -66,6 +72,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -73,6 +80,7 @@ namespace sphcover
 {
 
 class RayCaster;
+struct RayFilter;
 
 /// What the directional part of non-diffuse surfaces needs (paper §5.3.1; see the file comment):
 /// the propagation's result on the cover.
@@ -121,6 +129,12 @@ struct RenderSettings
   /// (a 4K image at 128 samples per pixel); the largest size and spp (32768^2 x 4096) would
   /// take weeks.
   std::size_t MaximumSamples = std::size_t(1) << 30;
+  /// The eye rays of a tile cast as Embree packets (RadianceRenderer::TileSide), their hits on
+  /// flat quadrilaterals refined from the closed-form point (RayCaster::CastPacket's
+  /// quadStart); false: one rtcIntersect1 per ray refined from the triangle's point, the image
+  /// of the renderer before issue 41 bit for bit (the reference of the tolerance,
+  /// Documentation/notes/walk-through.md, 2026-12-07).
+  bool FastPrimaryRays = true;
 };
 
 /// The rendered arrays, pixel (i, j) at index j * Width + i, row 0 at the bottom.
@@ -322,6 +336,10 @@ public:
   /// Mirrors a sample's ray is reflected by (see the file comment); the next one met shows its
   /// stored value.
   static constexpr int MaxMirrorBounces = 8;
+  /// Render casts the eye rays of TileSide x TileSide pixels, one sample index at a time, as one
+  /// packet (RayCaster::CastPacket: 16 rays, one Embree packet), and runs the tiles in
+  /// parallel.
+  static constexpr int TileSide = 4;
 
   /// The interpolated, clamped radiance of the front side at (u, v) of a surface (paper
   /// §5.3.2); zero where the surface has no characteristic points. The Lambertian part only.
@@ -432,15 +450,34 @@ private:
     const ProgressCallback& progress,
     const DirectionalValueTable* given,
     std::vector<std::vector<uint64_t>>* needed) const;
+  /// The first hit of an eye ray cast beforehand (RayCaster::CastPacket, with TraceSample's
+  /// own filter): RayCaster::RayHit's fields, and whether it hit.
+  struct PrecastHit
+  {
+    bool Found = false;
+    std::size_t Patch = 0;
+    double U = 0.0;
+    double V = 0.0;
+    double T = 0.0;
+    bool FrontSide = true;
+  };
   /// Casts one sample ray from the eye (or, `bounces` > 0, reflected by that many mirrors, from
   /// a point of patch `leaving`, which then passes the back of its surface's triangles close
-  /// by); false where it meets nothing.
+  /// by); false where it meets nothing. `precast`: an eye ray's first hit, already cast (the
+  /// rays behind panes and off mirrors are cast here).
   bool TraceSample(const glm::dvec3& eye,
     const glm::dvec3& direction,
     DirectionalCache* cache,
     SampleResult& sample,
     int bounces = 0,
-    std::ptrdiff_t leaving = -1) const;
+    std::ptrdiff_t leaving = -1,
+    const PrecastHit* precast = nullptr) const;
+  /// The filter of TraceSample's first cast from the eye (panes' and two-sided surfaces' backs
+  /// passed), for the packets cast before it.
+  RayFilter EyeFilter() const;
+  /// A cache of the directional part for one task of a Render (see CachePool).
+  std::unique_ptr<DirectionalCache> AcquireCache() const;
+  void ReleaseCache(std::unique_ptr<DirectionalCache> cache) const;
   glm::dvec3 RadianceToward(int surface,
     double u,
     double v,
@@ -483,6 +520,13 @@ private:
   std::vector<std::vector<std::size_t>> MirrorPatches;
   DirectLight Direct;
   PointReflectances Reflectances;
+  /// The directional part's caches of Render's tasks, kept across Render calls (a walk-through's
+  /// frames): each task takes one and gives it back, so a frame pays only the (point, eye cell)
+  /// pairs its caches have not met yet, in this or an earlier frame (paper §5.3.1: I_dir of a
+  /// point depends on the eye through its cell only). Their values are exact, so the image does
+  /// not depend on which cache a task gets. Emptied by SetDirectionalIllumination.
+  mutable std::mutex CachePoolMutex;
+  mutable std::vector<std::unique_ptr<DirectionalCache>> CachePool;
 };
 
 } // namespace sphcover

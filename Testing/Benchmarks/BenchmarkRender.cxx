@@ -6,7 +6,8 @@
  * is measured by a benchmark program, never by timed tests).
  *
  *   BenchmarkRender [--threads N] [--size 512 | WxH] [--spp 1] [--max-level L]
- *                   [--walk-sizes 256x256,1024x768] [--frames 8]
+ *                   [--walk-sizes 256x256,1024x768] [--frames 8] [--compare 0|1]
+ *                   [--scenes cornell_box.scene[:L],teapot_room.scene[:L]]
  *
  * --max-level overrides the scenes' subdivision depth (the teapot room's non-diffuse
  * propagation at its own depth 5 takes many minutes).
@@ -25,8 +26,14 @@
  *  - the walk-through (`sphcover walk`, issue 18): at each of --walk-sizes, --frames cameras
  *    on an orbit around the first camera (OrbitPath, as `walk --orbit`) rendered by the one
  *    renderer with the directional part, the mean milliseconds per frame next to raw Embree's
- *    for the same rays of the same frames, and their ratio: what a frame costs against the
- *    limit of its primary rays alone.
+ *    for the same rays of the same frames, single rays (rtcIntersect1, rows in parallel) and
+ *    packets (rtcIntersect16 over 4 x 4 pixel tiles, one sample index per packet, tile rows in
+ *    parallel), and the ratios: what a frame costs against the limit of its primary rays alone.
+ *    With --compare 1 each frame is rendered again with RenderSettings::FastPrimaryRays off (one
+ *    rtcIntersect1 per ray, the renderer's images before packets), timed, and the packet
+ *    frames' largest and mean radiance differences from it printed (issue 41's tolerance).
+ *    Cycles at 16 spp for the same views is not run here: Data/reference/render_cycles.py
+ *    (Documentation/notes/walk-through.md gives its times for the scenes' first cameras).
  */
 #include "cover/HemisphereGrid.h"
 #include "cover/RayCastFill.h"
@@ -52,6 +59,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace sphcover;
@@ -197,6 +205,147 @@ struct RawScene
   }
 };
 
+/// The renderer's primary direction of sample k of pixel (i, j) (RadianceRenderer's camera
+/// frame and Hammersley positions, unshifted: the shift only moves samples within a pixel).
+struct PrimaryRays
+{
+  glm::dvec3 Forward;
+  glm::dvec3 Right;
+  glm::dvec3 Up;
+  double HalfWidth;
+  double HalfHeight;
+  int Width;
+  int Height;
+  int Samples;
+
+  explicit PrimaryRays(const Camera& camera, int samples)
+    : Width(camera.Width)
+    , Height(camera.Height)
+    , Samples(samples)
+  {
+    this->Forward = glm::normalize(camera.FocalPoint - camera.Position);
+    this->Right = glm::normalize(glm::cross(this->Forward, camera.ViewUp));
+    this->Up = glm::cross(this->Right, this->Forward);
+    this->HalfHeight = std::tan(0.5 * camera.ViewAngle * Pi / 180.0);
+    this->HalfWidth = this->HalfHeight * camera.Width / camera.Height;
+  }
+  glm::dvec3 Direction(int i, int j, int k) const
+  {
+    double radical = 0.0;
+    double digit = 0.5;
+    for (unsigned b = static_cast<unsigned>(k); b != 0; b >>= 1, digit *= 0.5)
+    {
+      radical += (b & 1u) ? digit : 0.0;
+    }
+    const double x = (2.0 * (i + (k + 0.5) / this->Samples) / this->Width - 1.0) * this->HalfWidth;
+    const double y =
+      (2.0 * (j + radical + 0.5 / this->Samples) / this->Height - 1.0) * this->HalfHeight;
+    return glm::normalize(this->Forward + x * this->Right + y * this->Up);
+  }
+};
+
+/// Casts the same rays as RawScene::Cast as rtcIntersect16 packets of 4 x 4 pixels (one sample
+/// index per packet, as RadianceRenderer's tiles), the tile rows in parallel; returns the hits.
+size_t CastPackets(RTCScene scene,
+  const Camera& camera,
+  int samples,
+  const ParallelFor& parallelFor)
+{
+  const PrimaryRays rays(camera, samples);
+  constexpr int side = RadianceRenderer::TileSide;
+  const int tilesX = (camera.Width + side - 1) / side;
+  const int tilesY = (camera.Height + side - 1) / side;
+  std::vector<size_t> hitsPerRow(static_cast<size_t>(tilesY), 0);
+  parallelFor(static_cast<size_t>(tilesY),
+    [&](size_t begin, size_t end)
+    {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+      for (size_t tileY = begin; tileY < end; ++tileY)
+      {
+        for (int tileX = 0; tileX < tilesX; ++tileX)
+        {
+          const int i0 = tileX * side;
+          const int j0 = static_cast<int>(tileY) * side;
+          const int columns = std::min(side, camera.Width - i0);
+          const int count = columns * std::min(side, camera.Height - j0);
+          for (int k = 0; k < samples; ++k)
+          {
+            alignas(64) int valid[16];
+            alignas(64) RTCRayHit16 packet;
+            for (int p = 0; p < 16; ++p)
+            {
+              const bool active = p < count;
+              valid[p] = active ? -1 : 0;
+              const glm::dvec3 d =
+                rays.Direction(i0 + (active ? p % columns : 0), j0 + (active ? p / columns : 0), k);
+              packet.ray.org_x[p] = static_cast<float>(camera.Position.x);
+              packet.ray.org_y[p] = static_cast<float>(camera.Position.y);
+              packet.ray.org_z[p] = static_cast<float>(camera.Position.z);
+              packet.ray.dir_x[p] = static_cast<float>(d.x);
+              packet.ray.dir_y[p] = static_cast<float>(d.y);
+              packet.ray.dir_z[p] = static_cast<float>(d.z);
+              packet.ray.tnear[p] = 0.0f;
+              packet.ray.tfar[p] = std::numeric_limits<float>::infinity();
+              packet.ray.time[p] = 0.0f;
+              packet.ray.mask[p] = 0xFFFFFFFFu;
+              packet.ray.id[p] = static_cast<unsigned>(p);
+              packet.ray.flags[p] = 0;
+              packet.hit.geomID[p] = RTC_INVALID_GEOMETRY_ID;
+              packet.hit.instID[0][p] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect16(valid, scene, &context, &packet);
+            for (int p = 0; p < count; ++p)
+            {
+              hitsPerRow[tileY] += packet.hit.geomID[p] != RTC_INVALID_GEOMETRY_ID;
+            }
+          }
+        }
+      }
+    });
+  size_t hits = 0;
+  for (size_t h : hitsPerRow)
+  {
+    hits += h;
+  }
+  return hits;
+}
+
+/// The largest and the mean absolute difference of two images' radiance (over the pixels'
+/// bands), relative to the reference's largest value, and the pixels that differ at all.
+struct ImageDifference
+{
+  double Largest = 0.0;
+  double Sum = 0.0;
+  size_t Values = 0;
+  size_t PixelsDiffering = 0;
+  size_t Pixels = 0;
+  double LargestRadiance = 0.0;
+  size_t SurfaceDiffering = 0;
+
+  void Add(const RenderedImage& reference, const RenderedImage& image)
+  {
+    for (size_t p = 0; p < reference.SurfaceId.size(); ++p)
+    {
+      bool differs = false;
+      for (size_t c = 0; c < 3; ++c)
+      {
+        const double a = reference.Radiance[3 * p + c];
+        const double b = image.Radiance[3 * p + c];
+        this->LargestRadiance = std::max(this->LargestRadiance, std::fabs(a));
+        this->Largest = std::max(this->Largest, std::fabs(a - b));
+        this->Sum += std::fabs(a - b);
+        differs = differs || a != b;
+      }
+      this->Values += 3;
+      this->PixelsDiffering += differs ? 1 : 0;
+      this->SurfaceDiffering += reference.SurfaceId[p] != image.SurfaceId[p] ? 1 : 0;
+    }
+    this->Pixels += reference.SurfaceId.size();
+  }
+};
+
 /// "N" (N x N) or "WxH"; false when it is neither.
 bool ParseSize(const std::string& text, int& width, int& height)
 {
@@ -226,6 +375,7 @@ void Walk(const char* name,
   const std::vector<Size>& sizes,
   int frames,
   int samples,
+  bool compare,
   const ParallelFor& parallelFor)
 {
   for (const Size& size : sizes)
@@ -235,9 +385,15 @@ void Walk(const char* name,
     orbitStart.Height = size.Height;
     RenderSettings settings;
     settings.SamplesPerPixel = samples;
+    RenderSettings single = settings;
+    single.FastPrimaryRays = false;
     double walkSeconds = 0.0;
     double rawSeconds = 0.0;
+    double packetSeconds = 0.0;
+    double singleSeconds = 0.0;
     size_t hits = 0;
+    size_t packetHits = 0;
+    ImageDifference difference;
     for (const Camera& camera : OrbitPath(orbitStart, frames, OrbitPivot(orbitStart, lower, upper)))
     {
       RenderedImage image;
@@ -247,17 +403,45 @@ void Walk(const char* name,
       start = Clock::now();
       hits += raw.Cast(camera, samples, parallelFor);
       rawSeconds += SecondsSince(start);
+      start = Clock::now();
+      packetHits += CastPackets(raw.Scene, camera, samples, parallelFor);
+      packetSeconds += SecondsSince(start);
+      if (compare)
+      {
+        RenderedImage reference;
+        start = Clock::now();
+        renderer.Render(camera, single, reference, parallelFor);
+        singleSeconds += SecondsSince(start);
+        difference.Add(reference, image);
+      }
     }
-    std::printf("%-18s walk %4dx%-4d %3d frames %9.1f ms/frame  raw Embree %8.2f ms/frame  "
-                "ratio %6.1f  (%zu rays hit)\n",
+    std::printf("%-18s walk %4dx%-4d %3d frames %8.1f ms/frame  raw Embree 1 %7.2f  16 %7.2f "
+                "ms/frame  walk / raw 1 %5.2f  / raw 16 %5.2f  (%zu, %zu rays hit)\n",
       name,
       size.Width,
       size.Height,
       frames,
       1e3 * walkSeconds / frames,
       1e3 * rawSeconds / frames,
+      1e3 * packetSeconds / frames,
       walkSeconds / rawSeconds,
-      hits);
+      walkSeconds / packetSeconds,
+      hits,
+      packetHits);
+    if (compare)
+    {
+      std::printf("%-18s   single-ray walk %8.1f ms/frame; packets against it: largest |dL| %.3g "
+                  "(%.3g of the largest L), mean |dL| %.3g, %zu of %zu pixels differ, %zu "
+                  "surface ids\n",
+        "",
+        1e3 * singleSeconds / frames,
+        difference.Largest,
+        difference.Largest / std::max(difference.LargestRadiance, 1e-300),
+        difference.Sum / static_cast<double>(std::max<size_t>(difference.Values, 1)),
+        difference.PixelsDiffering,
+        difference.Pixels,
+        difference.SurfaceDiffering);
+    }
   }
 }
 
@@ -267,7 +451,8 @@ void Run(const char* name,
   int samples,
   int maxLevel,
   const std::vector<Size>& walkSizes,
-  int frames)
+  int frames,
+  bool compare)
 {
   const ParallelFor parallelFor = threads <= 1 ? ParallelFor(SequentialFor) : ThreadedFor(threads);
   const Scene scene = LoadSceneFile(std::string(SPHCOVER_DATA_DIR "/scenes/") + name);
@@ -375,6 +560,7 @@ void Run(const char* name,
     walkSizes,
     frames,
     samples,
+    compare,
     parallelFor);
 }
 }
@@ -387,6 +573,9 @@ int main(int argc, char* argv[])
   int maxLevel = -1;
   std::vector<Size> walkSizes{ { 256, 256 }, { 1024, 768 } };
   int frames = 8;
+  bool compare = false;
+  std::vector<std::pair<std::string, int>> scenes{ { "cornell_box.scene", -1 },
+    { "teapot_room.scene", -1 } };
   for (int k = 1; k + 1 < argc; k += 2)
   {
     if (std::strcmp(argv[k], "--threads") == 0)
@@ -435,6 +624,25 @@ int main(int argc, char* argv[])
     {
       maxLevel = std::atoi(argv[k + 1]);
     }
+    else if (std::strcmp(argv[k], "--compare") == 0)
+    {
+      compare = std::atoi(argv[k + 1]) != 0;
+    }
+    else if (std::strcmp(argv[k], "--scenes") == 0)
+    {
+      // NAME[:LEVEL],...: the scenes of Data/scenes, each at its own --max-level if given.
+      scenes.clear();
+      const std::string list = argv[k + 1];
+      for (size_t begin = 0; begin <= list.size();)
+      {
+        const size_t end = std::min(list.find(',', begin), list.size());
+        const std::string item = list.substr(begin, end - begin);
+        const size_t colon = item.find(':');
+        scenes.emplace_back(item.substr(0, colon),
+          colon == std::string::npos ? -1 : std::atoi(item.c_str() + colon + 1));
+        begin = end + 1;
+      }
+    }
   }
   std::printf("%d thread(s), %dx%d pixels, %d sample(s) per pixel\n",
     threads,
@@ -443,9 +651,16 @@ int main(int argc, char* argv[])
     samples);
   std::printf("scene              patches triangles subdiv_s cover_s prop_ms setup_ms render_ms "
               "Mrays/s  raw_ms  ratio    dir_ms dirset_ms\n");
-  for (const char* scene : { "cornell_box.scene", "teapot_room.scene" })
+  for (const auto& scene : scenes)
   {
-    Run(scene, threads, size, samples, maxLevel, walkSizes, frames);
+    Run(scene.first.c_str(),
+      threads,
+      size,
+      samples,
+      scene.second >= 0 ? scene.second : maxLevel,
+      walkSizes,
+      frames,
+      compare);
   }
   return 0;
 }
