@@ -242,3 +242,46 @@ TEST(HemisphereGrid, RejectsBadSizes)
   EXPECT_THROW(HemisphereGrid(8, 8, 0, 1), std::invalid_argument);
   EXPECT_THROW(HemisphereGrid(8, 8, 1, 17), std::invalid_argument);
 }
+
+TEST(HemisphereGrid, CellOfLocalDirectionIsTheCellOfItsAngles)
+{
+  // The edge tests without trigonometry must give the atan2 path's cell for every direction:
+  // random ones, and ones at and within a few ulps to 1e-6 rad of the row and column edges,
+  // the pole and the horizon, on grids of odd and even sizes.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (const auto& size : { std::pair<int, int>(32, 128), std::pair<int, int>(7, 13) })
+  {
+    const HemisphereGrid grid(size.first, size.second, 1, 1);
+    const double dTheta = 0.5 * Pi / size.first;
+    const double dPhi = 2.0 * Pi / size.second;
+    std::size_t compared = 0;
+    auto check = [&](double theta, double phi)
+    {
+      const glm::dvec3 local(
+        std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+      double t;
+      double p;
+      HemisphereGrid::LocalAngles(local, t, p);
+      ASSERT_EQ(grid.CellOfLocalDirection(local), grid.CellOfAngles(t, p))
+        << "theta " << theta << " phi " << phi;
+      ++compared;
+    };
+    for (int k = 0; k < 20000; ++k)
+    {
+      check(0.5 * Pi * unit(rng), 2.0 * Pi * unit(rng) - Pi);
+    }
+    for (const double offset : { 0.0, 1e-15, -1e-15, 1e-12, -1e-12, 1e-9, -1e-9, 1e-6, -1e-6 })
+    {
+      for (int r = 0; r <= size.first; ++r)
+      {
+        check(std::clamp(r * dTheta + offset, 0.0, 0.5 * Pi), 2.0 * Pi * unit(rng));
+      }
+      for (int c = -size.second; c <= size.second; ++c)
+      {
+        check(0.5 * Pi * unit(rng), c * dPhi + offset);
+      }
+    }
+    EXPECT_GT(compared, 20000u);
+  }
+}
