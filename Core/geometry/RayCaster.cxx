@@ -218,6 +218,26 @@ void FilterHit(const RTCFilterFunctionNArguments* args)
     }
   }
 }
+
+/// Sets up the context of a query with `filter` from `tNear` and returns where its rays start:
+/// the filter during traversal, or, when the caller promises RayFilter::RejectsAllNearer, no
+/// filter from that distance on (`firstHitOnly`: the filter is then asked about the first hit).
+float PrepareQuery(const RayFilter& filter,
+  float tNear,
+  bool coherent,
+  FilterContext& context,
+  bool& firstHitOnly)
+{
+  firstHitOnly = filter.Accept && filter.RejectsAllNearer > 0.0f;
+  rtcInitIntersectContext(&context.Context);
+  context.Context.filter = filter.Accept && !firstHitOnly ? FilterHit : nullptr;
+  if (coherent)
+  {
+    context.Context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  }
+  context.Filter = filter;
+  return firstHitOnly ? std::max(tNear, filter.RejectsAllNearer) : tNear;
+}
 }
 
 std::string RayCastCoordinateProblem(const std::vector<RayCastPatch>& patches)
@@ -447,16 +467,9 @@ bool RayCaster::Intersect(const glm::dvec3& origin,
   TriangleHit& hit) const
 {
   const Implementation& impl = *this->Impl;
-  const bool firstHitOnly = filter.Accept && filter.RejectsAllNearer > 0.0f;
   FilterContext context;
-  rtcInitIntersectContext(&context.Context);
-  context.Context.filter = filter.Accept && !firstHitOnly ? FilterHit : nullptr;
-  if (coherent)
-  {
-    context.Context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  }
-  context.Filter = filter;
-  const float start = firstHitOnly ? std::max(tNear, filter.RejectsAllNearer) : tNear;
+  bool firstHitOnly;
+  const float start = PrepareQuery(filter, tNear, coherent, context, firstHitOnly);
   RTCRayHit rayHit = MakeRayHit(origin, direction, start);
   rtcIntersect1(impl.Scene, &context.Context, &rayHit);
   if (firstHitOnly && rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID &&
@@ -488,13 +501,9 @@ void RayCaster::IntersectPacket(const glm::dvec3& origin,
   bool* found) const
 {
   const Implementation& impl = *this->Impl;
-  const bool firstHitOnly = filter.Accept && filter.RejectsAllNearer > 0.0f;
   FilterContext context;
-  rtcInitIntersectContext(&context.Context);
-  context.Context.filter = filter.Accept && !firstHitOnly ? FilterHit : nullptr;
-  context.Context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  context.Filter = filter;
-  const float start = firstHitOnly ? std::max(tNear, filter.RejectsAllNearer) : tNear;
+  bool firstHitOnly;
+  const float start = PrepareQuery(filter, tNear, true, context, firstHitOnly);
   alignas(64) int valid[PacketSize];
   alignas(64) RTCRayHit16 packet;
   const float ox = static_cast<float>(origin.x);
